@@ -1,0 +1,92 @@
+//! Deforming 100,000 points with the creature body's 3×3×11 lattice, against the plain
+//! reference implementation in `tests/support/reference.rs` (binomials and `powf` per control
+//! point per point).
+//!
+//! Run: `cargo bench -p creature-ffd --bench deform`
+
+// Setup outside the timed code may fail loudly: a broken input is a broken bench.
+#![allow(clippy::expect_used)]
+
+use core::hint::black_box;
+
+use creature_ffd::glam::Vec3;
+use creature_ffd::{Axis, Lattice};
+use criterion::{BatchSize, Criterion, Throughput, criterion_group, criterion_main};
+
+#[path = "../tests/support/reference.rs"]
+mod reference;
+
+const POINTS: usize = 100_000;
+
+/// A small deterministic generator (xorshift32), so inputs are the same on every run.
+struct Xorshift(u32);
+
+impl Xorshift {
+    fn next_f32(&mut self) -> f32 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 17;
+        self.0 ^= self.0 << 5;
+        (self.0 >> 8) as f32 / (1u32 << 24) as f32
+    }
+}
+
+/// The body lattice shaped the seed's way (random slice scales, random positive gaps) and
+/// `POINTS` points inside it.
+fn inputs() -> (Lattice, Vec<Vec3>) {
+    let mut rng = Xorshift(0x9e37_79b9);
+    let mut lattice = Lattice::new(
+        Vec3::new(-0.5, -0.5, -2.0),
+        [Vec3::X, Vec3::Y, Vec3::Z * 4.0],
+        [2, 2, 10],
+    )
+    .expect("valid lattice");
+    for k in 0..11 {
+        let scale = Vec3::new(0.5 + rng.next_f32(), 0.5 + rng.next_f32(), 1.0);
+        lattice
+            .scale_slice(Axis::U, k, scale)
+            .expect("positive scale");
+    }
+    let gaps: Vec<f32> = (0..10).map(|_| 0.2 + 0.4 * rng.next_f32()).collect();
+    lattice
+        .distribute_slices(Axis::U, &gaps)
+        .expect("positive gaps");
+    let points = (0..POINTS)
+        .map(|_| lattice.world_coords(Vec3::new(rng.next_f32(), rng.next_f32(), rng.next_f32())))
+        .collect();
+    (lattice, points)
+}
+
+fn bench(c: &mut Criterion) {
+    let (lattice, points) = inputs();
+    let mut group = c.benchmark_group("deform_100k_3x3x11");
+    group.throughput(Throughput::Elements(POINTS as u64));
+    group.sample_size(20);
+    group.bench_function("creature_ffd_deform_in_place", |b| {
+        b.iter_batched_ref(
+            || points.clone(),
+            |buffer| lattice.deform_in_place(black_box(buffer)),
+            BatchSize::LargeInput,
+        );
+    });
+    group.bench_function("reference_powf", |b| {
+        b.iter_batched_ref(
+            || points.clone(),
+            |buffer| {
+                for p in buffer.iter_mut() {
+                    *p = reference::deform(
+                        lattice.origin(),
+                        lattice.axes(),
+                        lattice.divisions(),
+                        lattice.control_points(),
+                        black_box(*p),
+                    );
+                }
+            },
+            BatchSize::LargeInput,
+        );
+    });
+    group.finish();
+}
+
+criterion_group!(benches, bench);
+criterion_main!(benches);

@@ -1,0 +1,482 @@
+//! Jacobians, normal transformation, fold detection and inversion.
+
+use glam::{Mat3, Vec3, Vec3A};
+
+use crate::bernstein::Basis;
+use crate::error::FfdError;
+use crate::lattice::{Lattice, MAX_DIVISIONS, OutsidePolicy, is_inside};
+
+/// Determinants with an absolute value at or below this count as singular.
+pub const SINGULAR_DETERMINANT: f32 = 1e-6;
+
+/// What [`Lattice::fold_report`] found on its sample grid.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
+pub struct FoldReport {
+    /// The smallest Jacobian determinant seen. 1 for an undeformed lattice; at or below 0 where
+    /// the deformation folds space over itself (turns it inside out).
+    pub min_determinant: f32,
+    /// Local `(s, t, u)` of the sample with the smallest determinant.
+    pub min_at: Vec3,
+    /// The largest Jacobian determinant seen (a volume growth factor).
+    pub max_determinant: f32,
+    /// Samples taken: `samples_per_axis³`.
+    pub samples: usize,
+    /// Samples whose determinant is at or below 0.
+    pub folded_samples: usize,
+}
+
+impl FoldReport {
+    /// Whether any sample folded (determinant at or below 0).
+    #[must_use]
+    pub fn folds(&self) -> bool {
+        self.folded_samples > 0
+    }
+}
+
+/// Limits for [`Lattice::inverse_with`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
+pub struct InverseOptions {
+    /// Newton iterations at most. Default 32.
+    pub max_iterations: u32,
+    /// Accepted distance between the deformed guess and the target, as a fraction of the
+    /// lattice's diagonal length. Default `1e-5`.
+    pub tolerance: f32,
+}
+
+impl InverseOptions {
+    /// The defaults: 32 iterations, tolerance `1e-5` of the lattice's diagonal.
+    pub const DEFAULT: Self = Self {
+        max_iterations: 32,
+        tolerance: 1e-5,
+    };
+
+    /// Sets [`InverseOptions::max_iterations`].
+    #[must_use]
+    pub const fn with_max_iterations(mut self, max_iterations: u32) -> Self {
+        self.max_iterations = max_iterations;
+        self
+    }
+
+    /// Sets [`InverseOptions::tolerance`].
+    #[must_use]
+    pub const fn with_tolerance(mut self, tolerance: f32) -> Self {
+        self.tolerance = tolerance;
+        self
+    }
+}
+
+impl Default for InverseOptions {
+    fn default() -> Self {
+        Self::DEFAULT
+    }
+}
+
+/// Most samples per axis [`Lattice::fold_report`] takes (so at most 256³ evaluations).
+pub const MAX_FOLD_SAMPLES: usize = 256;
+
+impl Lattice {
+    /// The Jacobian `∂deform/∂p` at world point `p`: the identity for an undeformed lattice, and
+    /// outside the lattice under [`OutsidePolicy::Unchanged`].
+    ///
+    /// ```
+    /// use creature_ffd::{glam::{Mat3, Vec3}, Lattice};
+    ///
+    /// let mut lattice = Lattice::new(Vec3::ZERO, [Vec3::X, Vec3::Y, Vec3::Z], [1, 1, 1])?;
+    /// // Stretch the whole lattice 2x along x: move the four x = 1 corners.
+    /// for j in 0..2 {
+    ///     for k in 0..2 {
+    ///         lattice.set_control_point([1, j, k], Vec3::new(2.0, j as f32, k as f32))?;
+    ///     }
+    /// }
+    /// let j = lattice.jacobian(Vec3::splat(0.5));
+    /// assert!(j.abs_diff_eq(Mat3::from_diagonal(Vec3::new(2.0, 1.0, 1.0)), 1e-6));
+    /// # Ok::<(), creature_ffd::FfdError>(())
+    /// ```
+    #[must_use]
+    pub fn jacobian(&self, p: Vec3) -> Mat3 {
+        let local = self.local_coords(p);
+        if self.outside_policy() == OutsidePolicy::Unchanged && !is_inside(local) {
+            return Mat3::IDENTITY;
+        }
+        self.jacobian_local(local)
+    }
+
+    /// The Jacobian `∂deform/∂p` at local coordinates `(s, t, u)` (extrapolating outside).
+    #[must_use]
+    pub fn jacobian_local(&self, local: Vec3) -> Mat3 {
+        if !self.is_deformed() {
+            return Mat3::IDENTITY;
+        }
+        let [l, m, n] = self.divisions();
+        let binomials = self.binomials();
+        let mut b: [Basis; 3] = [[0.0; MAX_DIVISIONS + 1]; 3];
+        let mut d: [Basis; 3] = [[0.0; MAX_DIVISIONS + 1]; 3];
+        for (axis, x) in local.to_array().into_iter().enumerate() {
+            binomials[axis].eval(x, &mut b[axis]);
+            binomials[axis].eval_derivative(x, &mut d[axis]);
+        }
+        // Partial derivatives of the displacement with respect to s, t and u.
+        let (mut ds, mut dt, mut du) = (Vec3A::ZERO, Vec3A::ZERO, Vec3A::ZERO);
+        let offsets = self.offsets();
+        let mut idx = 0;
+        for k in 0..=n {
+            for j in 0..=m {
+                for i in 0..=l {
+                    let o = offsets[idx];
+                    idx += 1;
+                    ds += o * (d[0][i] * b[1][j] * b[2][k]);
+                    dt += o * (b[0][i] * d[1][j] * b[2][k]);
+                    du += o * (b[0][i] * b[1][j] * d[2][k]);
+                }
+            }
+        }
+        let [gs, gt, gu] = *self.dual();
+        // J = I + [∂D/∂s ∂D/∂t ∂D/∂u] · [∇s ∇t ∇u]ᵀ
+        let partials = Mat3::from_cols(ds.into(), dt.into(), du.into());
+        let gradients = Mat3::from_cols(gs.into(), gt.into(), gu.into()).transpose();
+        Mat3::IDENTITY + partials * gradients
+    }
+
+    /// Transforms a surface normal at world point `p` by the inverse transpose of the Jacobian,
+    /// and normalises it. A zero normal stays zero.
+    ///
+    /// # Errors
+    /// [`FfdError::NonFinite`] for a non-finite `p` or `normal`, and
+    /// [`FfdError::SingularJacobian`] where the deformation crushes space (determinant within
+    /// [`SINGULAR_DETERMINANT`] of 0).
+    ///
+    /// ```
+    /// use creature_ffd::{glam::Vec3, Lattice};
+    ///
+    /// let mut lattice = Lattice::new(Vec3::ZERO, [Vec3::X, Vec3::Y, Vec3::Z], [1, 1, 1])?;
+    /// for j in 0..2 {
+    ///     for k in 0..2 {
+    ///         lattice.set_control_point([1, j, k], Vec3::new(2.0, j as f32, k as f32))?;
+    ///     }
+    /// }
+    /// // A 45° normal in the xy plane tilts towards y when x is stretched.
+    /// let n = lattice.deform_normal(Vec3::splat(0.5), Vec3::new(1.0, 1.0, 0.0))?;
+    /// assert!(n.y > n.x && n.is_normalized());
+    /// # Ok::<(), creature_ffd::FfdError>(())
+    /// ```
+    pub fn deform_normal(&self, p: Vec3, normal: Vec3) -> Result<Vec3, FfdError> {
+        if !p.is_finite() {
+            return Err(FfdError::NonFinite {
+                what: "point",
+                index: 0,
+            });
+        }
+        if !normal.is_finite() {
+            return Err(FfdError::NonFinite {
+                what: "normal",
+                index: 0,
+            });
+        }
+        let j = self.jacobian(p);
+        let determinant = j.determinant();
+        if !(crate::math::abs(determinant) > SINGULAR_DETERMINANT) {
+            return Err(FfdError::SingularJacobian {
+                local: self.local_coords(p),
+                determinant,
+            });
+        }
+        Ok((j.inverse().transpose() * normal).normalize_or_zero())
+    }
+
+    /// Samples the Jacobian determinant on a `samples_per_axis³` grid spanning the lattice
+    /// (corners included) and reports the smallest, where it is, and how many samples fold.
+    ///
+    /// `samples_per_axis` is clamped to `2..=MAX_FOLD_SAMPLES`. A grid catches folds at least as
+    /// wide as its spacing; raise the count for a finer check.
+    ///
+    /// ```
+    /// use creature_ffd::{glam::Vec3, Lattice};
+    ///
+    /// let mut lattice = Lattice::new(Vec3::ZERO, [Vec3::X, Vec3::Y, Vec3::Z], [1, 1, 2])?;
+    /// assert_eq!(lattice.fold_report(5).min_determinant, 1.0);
+    /// // Push the middle slice past the last one: the body turns inside out.
+    /// for i in 0..2 {
+    ///     for j in 0..2 {
+    ///         lattice.set_control_point([i, j, 1], Vec3::new(i as f32, j as f32, 2.0))?;
+    ///     }
+    /// }
+    /// assert!(lattice.fold_report(5).folds());
+    /// # Ok::<(), creature_ffd::FfdError>(())
+    /// ```
+    #[must_use]
+    pub fn fold_report(&self, samples_per_axis: usize) -> FoldReport {
+        let count = samples_per_axis.clamp(2, MAX_FOLD_SAMPLES);
+        let step = 1.0 / (count - 1) as f32;
+        let mut report = FoldReport {
+            min_determinant: f32::INFINITY,
+            min_at: Vec3::ZERO,
+            max_determinant: f32::NEG_INFINITY,
+            samples: count * count * count,
+            folded_samples: 0,
+        };
+        for a in 0..count {
+            for b in 0..count {
+                for c in 0..count {
+                    let local = Vec3::new(a as f32, b as f32, c as f32) * step;
+                    let det = self.jacobian_local(local).determinant();
+                    // NaN cannot arise from finite control points; count it as folded anyway.
+                    if !(det > 0.0) {
+                        report.folded_samples += 1;
+                    }
+                    if !(det >= report.min_determinant) {
+                        report.min_determinant = det;
+                        report.min_at = local;
+                    }
+                    if det > report.max_determinant {
+                        report.max_determinant = det;
+                    }
+                }
+            }
+        }
+        report
+    }
+
+    /// Whether the deformation folds over anywhere on a `samples_per_axis³` grid: shorthand for
+    /// `self.fold_report(samples_per_axis).folds()`.
+    #[must_use]
+    pub fn folds(&self, samples_per_axis: usize) -> bool {
+        self.fold_report(samples_per_axis).folds()
+    }
+
+    /// The undeformed point that [`Lattice::deform`] maps to `q`, by damped Newton iteration
+    /// with the default [`InverseOptions`].
+    ///
+    /// # Errors
+    /// See [`Lattice::inverse_with`].
+    ///
+    /// ```
+    /// use creature_ffd::{glam::Vec3, Lattice};
+    ///
+    /// let mut lattice = Lattice::new(Vec3::ZERO, [Vec3::X, Vec3::Y, Vec3::Z], [2, 2, 2])?;
+    /// lattice.set_control_point([1, 1, 1], Vec3::new(0.6, 0.55, 0.5))?;
+    /// let p = Vec3::new(0.3, 0.4, 0.7);
+    /// let back = lattice.inverse(lattice.deform(p))?;
+    /// assert!(back.distance(p) < 1e-4);
+    /// # Ok::<(), creature_ffd::FfdError>(())
+    /// ```
+    pub fn inverse(&self, q: Vec3) -> Result<Vec3, FfdError> {
+        self.inverse_with(q, &InverseOptions::DEFAULT)
+    }
+
+    /// [`Lattice::inverse`] with explicit limits.
+    ///
+    /// # Errors
+    /// [`FfdError::NonFinite`] for a non-finite `q` or tolerance, [`FfdError::SingularJacobian`]
+    /// when an iterate lands where the deformation is crushed, and [`FfdError::NoConvergence`]
+    /// with the best residual when the limit is reached (a `q` outside the deformed lattice's
+    /// reach, or a folded lattice with several preimages).
+    pub fn inverse_with(&self, q: Vec3, options: &InverseOptions) -> Result<Vec3, FfdError> {
+        if !q.is_finite() {
+            return Err(FfdError::NonFinite {
+                what: "point",
+                index: 0,
+            });
+        }
+        if !options.tolerance.is_finite() {
+            return Err(FfdError::NonFinite {
+                what: "tolerance",
+                index: 0,
+            });
+        }
+        if !self.is_deformed() {
+            return Ok(q);
+        }
+        let [s, t, u] = self.axes();
+        let tolerance = options.tolerance * (s + t + u).length();
+        let mut p = q;
+        let mut residual = self.deform(p) - q;
+        let mut error = residual.length();
+        for iteration in 0..options.max_iterations {
+            if error <= tolerance {
+                return Ok(p);
+            }
+            let j = self.jacobian(p);
+            let determinant = j.determinant();
+            if !(crate::math::abs(determinant) > SINGULAR_DETERMINANT) {
+                return Err(FfdError::SingularJacobian {
+                    local: self.local_coords(p),
+                    determinant,
+                });
+            }
+            let step = j.inverse() * residual;
+            // Backtrack until the residual shrinks (at most 10 halvings).
+            let mut scale = 1.0;
+            let mut improved = false;
+            for _ in 0..10 {
+                let candidate = p - step * scale;
+                let r = self.deform(candidate) - q;
+                let e = r.length();
+                if e < error {
+                    p = candidate;
+                    residual = r;
+                    error = e;
+                    improved = true;
+                    break;
+                }
+                scale *= 0.5;
+            }
+            if !improved {
+                return Err(FfdError::NoConvergence {
+                    target: q,
+                    residual: error,
+                    iterations: iteration + 1,
+                });
+            }
+        }
+        if error <= tolerance {
+            Ok(p)
+        } else {
+            Err(FfdError::NoConvergence {
+                target: q,
+                residual: error,
+                iterations: options.max_iterations,
+            })
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn unit(divisions: [usize; 3]) -> Lattice {
+        Lattice::new(Vec3::ZERO, [Vec3::X, Vec3::Y, Vec3::Z], divisions).unwrap()
+    }
+
+    fn bent() -> Lattice {
+        let mut lattice = unit([2, 2, 3]);
+        lattice
+            .set_control_point([1, 1, 1], Vec3::new(0.6, 0.5, 0.35))
+            .unwrap();
+        lattice
+            .set_control_point([2, 2, 3], Vec3::new(1.2, 1.1, 1.0))
+            .unwrap();
+        lattice
+    }
+
+    #[test]
+    fn jacobian_matches_finite_differences() {
+        let lattice = bent();
+        let p = Vec3::new(0.3, 0.6, 0.45);
+        let j = lattice.jacobian(p);
+        let h = 1e-3;
+        for (axis, e) in [Vec3::X, Vec3::Y, Vec3::Z].into_iter().enumerate() {
+            let numeric = (lattice.deform(p + e * h) - lattice.deform(p - e * h)) / (2.0 * h);
+            let analytic = j.col(axis);
+            assert!(
+                numeric.abs_diff_eq(analytic, 5e-3),
+                "axis {axis}: {numeric} vs {analytic}"
+            );
+        }
+    }
+
+    #[test]
+    fn jacobian_on_a_sheared_frame_matches_finite_differences() {
+        let axes = [
+            Vec3::new(2.0, 0.3, 0.0),
+            Vec3::new(-0.4, 1.5, 0.2),
+            Vec3::new(0.1, 0.2, 3.0),
+        ];
+        let mut lattice = Lattice::new(Vec3::new(1.0, -2.0, 0.5), axes, [2, 3, 2]).unwrap();
+        let p = lattice.control_point([1, 2, 1]).unwrap();
+        lattice
+            .set_control_point([1, 2, 1], p + Vec3::new(0.3, -0.2, 0.4))
+            .unwrap();
+        let x = lattice.world_coords(Vec3::new(0.4, 0.5, 0.6));
+        let j = lattice.jacobian(x);
+        let h = 1e-3;
+        for (axis, e) in [Vec3::X, Vec3::Y, Vec3::Z].into_iter().enumerate() {
+            let numeric = (lattice.deform(x + e * h) - lattice.deform(x - e * h)) / (2.0 * h);
+            assert!(numeric.abs_diff_eq(j.col(axis), 5e-3), "axis {axis}");
+        }
+    }
+
+    #[test]
+    fn undeformed_lattice_has_identity_jacobian_and_no_folds() {
+        let lattice = unit([2, 2, 10]);
+        assert_eq!(lattice.jacobian(Vec3::splat(0.5)), Mat3::IDENTITY);
+        let report = lattice.fold_report(4);
+        assert_eq!(report.min_determinant, 1.0);
+        assert_eq!(report.samples, 64);
+        assert!(!report.folds());
+    }
+
+    #[test]
+    fn fold_samples_are_clamped() {
+        let lattice = unit([1, 1, 1]);
+        assert_eq!(lattice.fold_report(0).samples, 8);
+        assert_eq!(
+            lattice.fold_report(usize::MAX).samples,
+            MAX_FOLD_SAMPLES.pow(3)
+        );
+    }
+
+    #[test]
+    fn crushed_lattice_gives_a_singular_jacobian_error() {
+        let mut lattice = unit([1, 1, 1]);
+        // Flatten the whole lattice onto z = 0.
+        for i in 0..2 {
+            for j in 0..2 {
+                lattice
+                    .set_control_point([i, j, 1], Vec3::new(i as f32, j as f32, 0.0))
+                    .unwrap();
+            }
+        }
+        assert!(matches!(
+            lattice.deform_normal(Vec3::splat(0.5), Vec3::Z),
+            Err(FfdError::SingularJacobian { .. })
+        ));
+        assert!(lattice.folds(3));
+    }
+
+    #[test]
+    fn normal_of_undeformed_lattice_is_unchanged() {
+        let lattice = unit([2, 2, 2]);
+        let n = Vec3::new(0.0, 0.6, 0.8);
+        assert_eq!(lattice.deform_normal(Vec3::splat(0.2), n), Ok(n));
+        assert!(lattice.deform_normal(Vec3::NAN, n).is_err());
+        assert!(lattice.deform_normal(Vec3::ZERO, Vec3::NAN).is_err());
+    }
+
+    #[test]
+    fn inverse_round_trips_a_bent_lattice() {
+        let lattice = bent();
+        for p in [
+            Vec3::new(0.1, 0.2, 0.3),
+            Vec3::new(0.9, 0.8, 0.7),
+            Vec3::new(0.5, 0.5, 0.5),
+            Vec3::ZERO,
+        ] {
+            let q = lattice.deform(p);
+            let back = lattice.inverse(q).unwrap();
+            assert!(back.distance(p) < 1e-4, "{p} -> {q} -> {back}");
+        }
+    }
+
+    #[test]
+    fn inverse_reports_non_convergence() {
+        let lattice = bent();
+        let options = InverseOptions::DEFAULT.with_max_iterations(0);
+        assert!(matches!(
+            lattice.inverse_with(Vec3::splat(0.5), &options),
+            Err(FfdError::NoConvergence { iterations: 0, .. })
+        ));
+        assert!(lattice.inverse(Vec3::NAN).is_err());
+        let nan_tolerance = InverseOptions::DEFAULT.with_tolerance(f32::NAN);
+        assert!(lattice.inverse_with(Vec3::ZERO, &nan_tolerance).is_err());
+    }
+
+    #[test]
+    fn inverse_of_undeformed_is_exact() {
+        let lattice = unit([2, 2, 10]);
+        let q = Vec3::new(0.123, 4.5, -6.0);
+        assert_eq!(lattice.inverse(q), Ok(q));
+    }
+}

@@ -1,0 +1,185 @@
+//! Integration tests through the public API only.
+
+// Helpers outside `#[test]` functions unwrap too: a failure there is a test failure.
+#![allow(clippy::unwrap_used)]
+
+mod support;
+
+use approx::assert_abs_diff_eq;
+use creature_ffd::glam::{Mat3, Vec3};
+use creature_ffd::{Axis, FfdError, InverseOptions, Lattice, OutsidePolicy};
+
+use support::reference;
+
+/// The creature body's lattice, shaped by a fixed pattern of slice scales and gaps.
+fn shaped_body() -> Lattice {
+    let mut lattice = Lattice::new(
+        Vec3::new(-0.5, -0.4, -2.0),
+        [Vec3::X, Vec3::Y * 0.8, Vec3::Z * 4.0],
+        [2, 2, 10],
+    )
+    .unwrap();
+    for k in 0..11 {
+        let f = k as f32;
+        let scale = Vec3::new(
+            0.6 + 0.1 * (f * 1.3).sin(),
+            0.9 + 0.3 * (f * 0.7).cos(),
+            1.0,
+        );
+        lattice.scale_slice(Axis::U, k, scale).unwrap();
+    }
+    let gaps: Vec<f32> = (0..10).map(|q| 0.3 + 0.05 * (q % 4) as f32).collect();
+    lattice.distribute_slices(Axis::U, &gaps).unwrap();
+    lattice
+}
+
+fn sample_points(lattice: &Lattice, count: usize) -> Vec<Vec3> {
+    (0..count)
+        .map(|i| {
+            let a = i as f32;
+            let local = Vec3::new(
+                (a * 0.618_034).fract(),
+                (a * 0.414_213_5).fract(),
+                (a * 0.732_050_8).fract(),
+            );
+            lattice.world_coords(local)
+        })
+        .collect()
+}
+
+#[test]
+fn deform_agrees_with_the_reference_implementation() {
+    let lattice = shaped_body();
+    for p in sample_points(&lattice, 500) {
+        let expected = reference::deform(
+            lattice.origin(),
+            lattice.axes(),
+            lattice.divisions(),
+            lattice.control_points(),
+            p,
+        );
+        assert_abs_diff_eq!(lattice.deform(p), expected, epsilon = 2e-5);
+    }
+}
+
+#[test]
+fn deform_agrees_with_the_reference_on_an_oblique_lattice() {
+    let axes = [
+        Vec3::new(3.0, 0.5, 0.0),
+        Vec3::new(-0.5, 2.0, 0.6),
+        Vec3::new(0.2, -0.3, 5.0),
+    ];
+    let mut lattice = Lattice::new(Vec3::new(10.0, -4.0, 2.0), axes, [3, 1, 4]).unwrap();
+    lattice
+        .set_control_point([2, 1, 3], Vec3::new(11.0, -1.0, 7.0))
+        .unwrap();
+    lattice
+        .set_control_point([0, 0, 0], Vec3::new(9.0, -4.5, 2.5))
+        .unwrap();
+    for local in [
+        Vec3::splat(0.5),
+        Vec3::new(0.1, 0.9, 0.3),
+        Vec3::new(1.2, -0.1, 0.5),
+    ] {
+        let p = lattice.world_coords(local);
+        let expected = reference::deform(
+            lattice.origin(),
+            lattice.axes(),
+            lattice.divisions(),
+            lattice.control_points(),
+            p,
+        );
+        assert_abs_diff_eq!(lattice.deform(p), expected, epsilon = 1e-4);
+    }
+}
+
+#[test]
+fn batch_matches_single_points_bit_for_bit() {
+    let lattice = shaped_body();
+    let points = sample_points(&lattice, 1000);
+    let mut batch = points.clone();
+    lattice.deform_in_place(&mut batch);
+    for (p, q) in points.iter().zip(&batch) {
+        assert_eq!(
+            lattice.deform(*p).to_array().map(f32::to_bits),
+            q.to_array().map(f32::to_bits)
+        );
+    }
+    let mut checked = points.clone();
+    lattice.try_deform_in_place(&mut checked).unwrap();
+    assert_eq!(checked, batch);
+}
+
+#[test]
+fn undeformed_body_lattice_is_the_exact_identity() {
+    let body = [Vec3::new(-1.0, 0.0, -3.0), Vec3::new(1.0, 2.0, 3.0)];
+    let lattice = Lattice::around(&body, [2, 2, 10], 0.25).unwrap();
+    for p in sample_points(&lattice, 200) {
+        assert_eq!(lattice.deform(p), p);
+    }
+}
+
+#[test]
+fn shaped_body_does_not_fold_and_inverts() {
+    let lattice = shaped_body();
+    let report = lattice.fold_report(12);
+    assert!(!report.folds(), "{report:?}");
+    assert!(report.min_determinant > 0.0);
+    for p in sample_points(&lattice, 50) {
+        let back = lattice.inverse(lattice.deform(p)).unwrap();
+        assert_abs_diff_eq!(back, p, epsilon = 1e-3);
+    }
+}
+
+#[test]
+fn normals_stay_perpendicular_to_deformed_tangents() {
+    let lattice = shaped_body();
+    let p = lattice.world_coords(Vec3::new(0.3, 0.6, 0.4));
+    let n = Vec3::new(0.0, 1.0, 0.0);
+    // Two tangents of the plane y = const through p.
+    let j = lattice.jacobian(p);
+    let deformed_n = lattice.deform_normal(p, n).unwrap();
+    for tangent in [Vec3::X, Vec3::Z] {
+        let deformed_tangent = j * tangent;
+        assert_abs_diff_eq!(deformed_n.dot(deformed_tangent), 0.0, epsilon = 1e-5);
+    }
+    assert_ne!(j, Mat3::IDENTITY);
+}
+
+#[test]
+fn outside_policy_is_selectable() {
+    let mut lattice = shaped_body();
+    let outside = lattice.world_coords(Vec3::new(0.5, 0.5, 1.3));
+    assert_ne!(lattice.deform(outside), outside);
+    lattice.set_outside_policy(OutsidePolicy::Unchanged);
+    assert_eq!(lattice.deform(outside), outside);
+    assert_eq!(lattice.jacobian(outside), Mat3::IDENTITY);
+}
+
+#[test]
+fn inverse_options_are_honoured() {
+    let lattice = shaped_body();
+    let q = lattice.deform(lattice.world_coords(Vec3::splat(0.5)));
+    let strict = InverseOptions::default()
+        .with_tolerance(0.0)
+        .with_max_iterations(1);
+    assert!(matches!(
+        lattice.inverse_with(q, &strict),
+        Err(FfdError::NoConvergence { .. })
+    ));
+    let loose = InverseOptions::default().with_tolerance(1e-2);
+    assert!(lattice.inverse_with(q, &loose).is_ok());
+}
+
+#[test]
+fn errors_describe_the_fix() {
+    let err = Lattice::new(Vec3::ZERO, [Vec3::X, Vec3::X, Vec3::Z], [1, 1, 1]).unwrap_err();
+    assert!(err.to_string().contains("independent"), "{err}");
+    let err = Lattice::around(&[], [1, 1, 1], 1.0).unwrap_err();
+    assert_eq!(
+        err.to_string(),
+        "no points were given: pass at least one point"
+    );
+    let boxed: Box<dyn core::error::Error> = Box::new(err);
+    assert!(!boxed.to_string().is_empty());
+}

@@ -1,0 +1,386 @@
+//! Developer tasks for the `creature` workspace, run as `cargo xtask <task>`.
+//!
+//! `cargo xtask ci` is the project's test command: `.ci/run` calls it and nothing else, so a
+//! local run and CI check the same things in the same order.
+
+// A host tool: `std` paths are the natural ones here.
+#![allow(clippy::std_instead_of_core, clippy::std_instead_of_alloc)]
+
+use std::env;
+use std::fmt::Write as _;
+use std::fs;
+use std::path::{Path, PathBuf};
+use std::process::{Command, ExitCode};
+use std::time::Instant;
+
+/// The micro-crates' folders, in dependency-free order. Each is checked when it is a workspace
+/// member; all are leaves, so every one must build without `std`.
+const MICRO_CRATES: [&str; 7] = [
+    "ffd", "metaball", "march", "autorig", "skin", "limbs", "gait",
+];
+
+/// The embedded target the no_std check builds for.
+const NO_STD_TARGET: &str = "thumbv7em-none-eabihf";
+
+const USAGE: &str = "\
+usage: cargo xtask <task>
+
+tasks:
+  ci           everything below, in order, stopping at the first failure
+  fmt          cargo fmt --check
+  clippy       cargo clippy (default and all features, all targets) with -D warnings
+  test         cargo test --workspace --all-features (unit, integration, property, doc tests)
+  doc          cargo doc --workspace --no-deps with RUSTDOCFLAGS=-D warnings
+  no-std       build every micro-crate without std (thumbv7em-none-eabihf, or a host
+               no_std staticlib when that target cannot be installed)
+  package      cargo package --workspace: every publishable crate packages and builds alone
+  bench-build  cargo bench --workspace --no-run: benches keep compiling
+  tidy         project rules: README and CHANGELOG per crate, no #[should_panic]
+
+environment:
+  CREATURE_NO_STD_FALLBACK=1   skip the embedded target and use the host staticlib check
+";
+
+type Task = fn(&Workspace) -> Result<(), String>;
+
+const TASKS: [(&str, Task); 8] = [
+    ("tidy", tidy),
+    ("fmt", fmt),
+    ("clippy", clippy),
+    ("test", test),
+    ("doc", doc),
+    ("no-std", no_std),
+    ("package", package),
+    ("bench-build", bench_build),
+];
+
+fn main() -> ExitCode {
+    let args: Vec<String> = env::args().skip(1).collect();
+    let Some(task) = args.first() else {
+        eprint!("{USAGE}");
+        return ExitCode::FAILURE;
+    };
+    let workspace = match Workspace::find() {
+        Ok(w) => w,
+        Err(e) => {
+            eprintln!("xtask: {e}");
+            return ExitCode::FAILURE;
+        }
+    };
+    let result = match task.as_str() {
+        "ci" => ci(&workspace),
+        "-h" | "--help" | "help" => {
+            print!("{USAGE}");
+            Ok(())
+        }
+        name => match TASKS.iter().find(|(n, _)| *n == name) {
+            Some((name, run)) => step(name, *run, &workspace),
+            None => Err(format!("unknown task `{name}`\n\n{USAGE}")),
+        },
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("\nxtask: FAILED: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+fn ci(workspace: &Workspace) -> Result<(), String> {
+    let start = Instant::now();
+    for (name, run) in TASKS {
+        step(name, run, workspace)?;
+    }
+    println!(
+        "\nxtask: ci passed: {} steps in {:.0} s",
+        TASKS.len(),
+        start.elapsed().as_secs_f64()
+    );
+    Ok(())
+}
+
+fn step(name: &str, run: Task, workspace: &Workspace) -> Result<(), String> {
+    println!("\n==> xtask {name}");
+    let start = Instant::now();
+    run(workspace).map_err(|e| format!("step `{name}`: {e}"))?;
+    println!(
+        "==> xtask {name}: ok ({:.1} s)",
+        start.elapsed().as_secs_f64()
+    );
+    Ok(())
+}
+
+/// The workspace root and its micro-crate members.
+struct Workspace {
+    root: PathBuf,
+    micro_crates: Vec<&'static str>,
+}
+
+impl Workspace {
+    fn find() -> Result<Self, String> {
+        let manifest_dir = env::var("CARGO_MANIFEST_DIR").map_err(|_| {
+            "run me through `cargo xtask`, which sets CARGO_MANIFEST_DIR".to_string()
+        })?;
+        let root = Path::new(&manifest_dir)
+            .parent()
+            .ok_or("xtask/ has no parent folder")?
+            .to_path_buf();
+        let manifest = fs::read_to_string(root.join("Cargo.toml"))
+            .map_err(|e| format!("cannot read the root Cargo.toml: {e}"))?;
+        let micro_crates = MICRO_CRATES
+            .into_iter()
+            .filter(|name| manifest.contains(&format!("\"{name}\"")))
+            .collect();
+        Ok(Self { root, micro_crates })
+    }
+
+    fn cargo(&self) -> Command {
+        let mut command = Command::new(env::var("CARGO").unwrap_or_else(|_| "cargo".into()));
+        command.current_dir(&self.root);
+        command
+    }
+
+    /// Folders of every publishable member (the micro-crates and the facade, when present).
+    fn publishable(&self) -> Vec<PathBuf> {
+        let mut out: Vec<PathBuf> = self
+            .micro_crates
+            .iter()
+            .map(|c| self.root.join(c))
+            .collect();
+        let facade = self.root.join("creature");
+        if facade.join("Cargo.toml").exists() {
+            out.push(facade);
+        }
+        out
+    }
+}
+
+/// Runs a command, streaming its output; fails with the command line when it fails.
+fn run(mut command: Command) -> Result<(), String> {
+    let line = describe(&command);
+    println!("$ {line}");
+    let status = command
+        .status()
+        .map_err(|e| format!("could not start `{line}`: {e}"))?;
+    if status.success() {
+        Ok(())
+    } else {
+        Err(format!("`{line}` failed ({status})"))
+    }
+}
+
+fn describe(command: &Command) -> String {
+    let mut line = String::new();
+    for (key, value) in command.get_envs() {
+        if let Some(value) = value {
+            let _ = write!(
+                line,
+                "{}={} ",
+                key.to_string_lossy(),
+                value.to_string_lossy()
+            );
+        }
+    }
+    line.push_str(&command.get_program().to_string_lossy());
+    for arg in command.get_args() {
+        line.push(' ');
+        line.push_str(&arg.to_string_lossy());
+    }
+    line
+}
+
+fn fmt(w: &Workspace) -> Result<(), String> {
+    let mut c = w.cargo();
+    c.args(["fmt", "--all", "--check"]);
+    run(c).map_err(|e| format!("{e}; run `cargo fmt --all` and commit the result"))
+}
+
+fn clippy(w: &Workspace) -> Result<(), String> {
+    for features in [None, Some("--all-features")] {
+        let mut c = w.cargo();
+        c.args(["clippy", "--workspace", "--all-targets", "--locked"]);
+        c.args(features);
+        c.args(["--", "-D", "warnings"]);
+        run(c)?;
+    }
+    Ok(())
+}
+
+fn test(w: &Workspace) -> Result<(), String> {
+    let mut c = w.cargo();
+    c.args(["test", "--workspace", "--all-features", "--locked"]);
+    run(c)
+}
+
+fn doc(w: &Workspace) -> Result<(), String> {
+    let mut c = w.cargo();
+    c.args([
+        "doc",
+        "--workspace",
+        "--no-deps",
+        "--all-features",
+        "--locked",
+    ]);
+    c.env("RUSTDOCFLAGS", "-D warnings");
+    run(c)
+}
+
+fn package(w: &Workspace) -> Result<(), String> {
+    let mut c = w.cargo();
+    // --allow-dirty: a developer's tree may have uncommitted files; CI's clone is clean anyway.
+    c.args(["package", "--workspace", "--allow-dirty", "--locked"]);
+    run(c)
+}
+
+fn bench_build(w: &Workspace) -> Result<(), String> {
+    let mut c = w.cargo();
+    c.args(["bench", "--workspace", "--no-run", "--locked"]);
+    run(c)
+}
+
+fn no_std(w: &Workspace) -> Result<(), String> {
+    if w.micro_crates.is_empty() {
+        println!("no micro-crates yet: nothing to check");
+        return Ok(());
+    }
+    let forced = env::var_os("CREATURE_NO_STD_FALLBACK").is_some_and(|v| v == "1");
+    let target_ready = if forced {
+        println!("CREATURE_NO_STD_FALLBACK=1: skipping the {NO_STD_TARGET} target");
+        false
+    } else {
+        match Command::new("rustup")
+            .args(["target", "add", NO_STD_TARGET])
+            .status()
+        {
+            Ok(s) if s.success() => true,
+            Ok(s) => {
+                println!("`rustup target add {NO_STD_TARGET}` failed ({s}): using the fallback");
+                false
+            }
+            Err(e) => {
+                println!("rustup is not available ({e}): using the fallback");
+                false
+            }
+        }
+    };
+    if target_ready {
+        println!("no_std check: building for {NO_STD_TARGET}");
+        for name in &w.micro_crates {
+            let mut c = w.cargo();
+            c.args(["build", "--locked", "-p", &format!("creature-{name}")]);
+            c.args(["--no-default-features", "--features", "libm"]);
+            c.args(["--target", NO_STD_TARGET]);
+            run(c)?;
+        }
+        println!("no_std check: ran the {NO_STD_TARGET} build");
+        Ok(())
+    } else {
+        no_std_fallback(w)
+    }
+}
+
+/// Builds a host `#![no_std]` staticlib with its own panic handler and allocator that links
+/// every micro-crate with default features off. If anything in their graph links `std`, its
+/// `panic_impl` lang item collides with ours (E0152) and the build fails.
+fn no_std_fallback(w: &Workspace) -> Result<(), String> {
+    let dir = w.root.join("target").join("no-std-check");
+    fs::create_dir_all(dir.join("src")).map_err(|e| format!("cannot create {dir:?}: {e}"))?;
+    let mut manifest = String::from(
+        "# Generated by `cargo xtask no-std`; not a workspace member.\n\
+         [package]\nname = \"no-std-check\"\nversion = \"0.0.0\"\nedition = \"2024\"\npublish = false\n\n\
+         [lib]\ncrate-type = [\"staticlib\"]\npath = \"src/lib.rs\"\n\n\
+         [profile.dev]\npanic = \"abort\"\n\n[profile.release]\npanic = \"abort\"\n\n\
+         [workspace]\n\n[dependencies]\n",
+    );
+    let mut source =
+        String::from("//! Generated by `cargo xtask no-std`.\n#![no_std]\n\nextern crate alloc;\n");
+    for name in &w.micro_crates {
+        let path = w.root.join(name);
+        let _ = writeln!(
+            manifest,
+            "creature-{name} = {{ path = {:?}, default-features = false, features = [\"libm\"] }}",
+            path.to_string_lossy()
+        );
+        let _ = writeln!(source, "extern crate creature_{name};");
+    }
+    source.push_str(
+        "\nstruct NoAlloc;\n\n\
+         unsafe impl core::alloc::GlobalAlloc for NoAlloc {\n\
+         \x20   unsafe fn alloc(&self, _: core::alloc::Layout) -> *mut u8 {\n\
+         \x20       core::ptr::null_mut()\n\
+         \x20   }\n\
+         \x20   unsafe fn dealloc(&self, _: *mut u8, _: core::alloc::Layout) {}\n\
+         }\n\n\
+         #[global_allocator]\nstatic ALLOCATOR: NoAlloc = NoAlloc;\n\n\
+         #[panic_handler]\nfn panic(_: &core::panic::PanicInfo<'_>) -> ! {\n    loop {}\n}\n",
+    );
+    let write = |path: PathBuf, text: &str| {
+        fs::write(&path, text).map_err(|e| format!("cannot write {path:?}: {e}"))
+    };
+    write(dir.join("Cargo.toml"), &manifest)?;
+    write(dir.join("src").join("lib.rs"), &source)?;
+    // Same dependency versions as the workspace.
+    fs::copy(w.root.join("Cargo.lock"), dir.join("Cargo.lock"))
+        .map_err(|e| format!("cannot copy Cargo.lock: {e}"))?;
+    let mut c = w.cargo();
+    c.arg("build")
+        .arg("--manifest-path")
+        .arg(dir.join("Cargo.toml"));
+    c.arg("--target-dir").arg(dir.join("target"));
+    run(c).map_err(|e| {
+        format!(
+            "{e}; a micro-crate pulls in std (E0152 duplicate `panic_impl` means std is linked)"
+        )
+    })?;
+    println!(
+        "no_std check: ran the host staticlib fallback ({} crates)",
+        w.micro_crates.len()
+    );
+    Ok(())
+}
+
+fn tidy(w: &Workspace) -> Result<(), String> {
+    let mut problems = Vec::new();
+    for dir in w.publishable() {
+        for file in ["README.md", "CHANGELOG.md"] {
+            if !dir.join(file).exists() {
+                problems.push(format!("{} has no {file}", dir.display()));
+            }
+        }
+        let mut sources = Vec::new();
+        for sub in ["src", "tests"] {
+            collect_rust_files(&dir.join(sub), &mut sources);
+        }
+        for path in sources {
+            let text = fs::read_to_string(&path).unwrap_or_default();
+            if text.contains(concat!("#[should", "_panic")) {
+                problems.push(format!(
+                    "{}: #[should_panic] tests hide panics; return and test an error instead",
+                    path.display()
+                ));
+            }
+        }
+    }
+    if problems.is_empty() {
+        println!("tidy: {} crates checked", w.publishable().len());
+        Ok(())
+    } else {
+        Err(problems.join("\n"))
+    }
+}
+
+fn collect_rust_files(dir: &Path, out: &mut Vec<PathBuf>) {
+    let Ok(entries) = fs::read_dir(dir) else {
+        return;
+    };
+    let mut entries: Vec<PathBuf> = entries.filter_map(|e| e.ok().map(|e| e.path())).collect();
+    entries.sort();
+    for path in entries {
+        if path.is_dir() {
+            collect_rust_files(&path, out);
+        } else if path.extension().is_some_and(|e| e == "rs") {
+            out.push(path);
+        }
+    }
+}

@@ -25,10 +25,10 @@ impl Binomials {
         }
     }
 
-    /// Fills `out[0..=n]` with `B_i^n(x)`. Valid for any finite `x` (extrapolation outside
-    /// `[0, 1]`).
+    /// Fills `out[0..=n]` with `B_i^n(x)` (as much of it as `out` holds). Valid for any finite
+    /// `x` (extrapolation outside `[0, 1]`).
     #[inline]
-    pub(crate) fn eval(&self, x: f32, out: &mut Basis) {
+    pub(crate) fn eval(&self, x: f32, out: &mut [f32]) {
         eval_row(&self.coefficients, self.degree, x, out);
     }
 
@@ -65,17 +65,20 @@ fn row(n: usize) -> Basis {
 }
 
 #[inline]
-fn eval_row(coefficients: &Basis, n: usize, x: f32, out: &mut Basis) {
+fn eval_row(coefficients: &Basis, n: usize, x: f32, out: &mut [f32]) {
     let y = 1.0 - x;
-    // out[i] <- x^i, then multiply by y^(n - i) walking down.
+    let len = (n + 1).min(out.len());
+    let out = &mut out[..len];
+    let coefficients = &coefficients[..len];
+    // out[i] <- C(n, i) x^i, then times y^(n - i) walking down.
     let mut power = 1.0;
-    for slot in out.iter_mut().take(n + 1) {
-        *slot = power;
+    for (slot, c) in out.iter_mut().zip(coefficients) {
+        *slot = *c * power;
         power *= x;
     }
     let mut power = 1.0;
-    for i in (0..=n).rev() {
-        out[i] *= power * coefficients[i];
+    for slot in out.iter_mut().rev() {
+        *slot *= power;
         power *= y;
     }
 }

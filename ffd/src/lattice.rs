@@ -4,7 +4,7 @@ use alloc::vec::Vec;
 
 use glam::{Vec3, Vec3A};
 
-use crate::bernstein::{Basis, Binomials};
+use crate::bernstein::Binomials;
 use crate::error::FfdError;
 use crate::math;
 
@@ -12,6 +12,9 @@ use crate::math;
 ///
 /// Bases of higher degree lose most of their precision in `f32`, and no body needs them.
 pub const MAX_DIVISIONS: usize = 32;
+
+/// Layers of at most this many control points take the precomputed-weights path.
+const SMALL_LAYER: usize = 9;
 
 /// Smallest accepted `|S · (T × U)| / (|S| |T| |U|)`: below it the lattice counts as flat.
 pub const MIN_VOLUME_RATIO: f32 = 1e-6;
@@ -379,14 +382,13 @@ impl Lattice {
     #[must_use]
     #[inline]
     pub fn deform(&self, p: Vec3) -> Vec3 {
-        if !self.deformed || !p.is_finite() {
+        if !self.deformed {
             return p;
         }
-        let local = self.local_coords(p);
-        if self.outside == OutsidePolicy::Unchanged && !is_inside(local) {
-            return p;
+        match self.local_if_moved(p) {
+            Some(local) => Vec3::from(Vec3A::from(p) + self.displacement(local)),
+            None => p,
         }
-        Vec3::from(Vec3A::from(p) + self.displacement(local))
     }
 
     /// [`Lattice::deform`] that rejects a non-finite `p` and a non-finite result.
@@ -414,7 +416,25 @@ impl Lattice {
         if !self.deformed {
             return;
         }
-        for p in points {
+        const BATCH: usize = 4;
+        let mut chunks = points.chunks_exact_mut(BATCH);
+        for chunk in &mut chunks {
+            let mut locals = [Vec3::ZERO; BATCH];
+            let mut moved = [false; BATCH];
+            for (q, p) in chunk.iter().enumerate() {
+                if let Some(local) = self.local_if_moved(*p) {
+                    locals[q] = local;
+                    moved[q] = true;
+                }
+            }
+            let displacements = self.displacements(&locals);
+            for ((p, d), moved) in chunk.iter_mut().zip(displacements).zip(moved) {
+                if moved {
+                    *p = Vec3::from(Vec3A::from(*p) + d);
+                }
+            }
+        }
+        for p in chunks.into_remainder() {
             *p = self.deform(*p);
         }
     }
@@ -453,34 +473,89 @@ impl Lattice {
         Vec3::from(Vec3A::from(p) + self.displacement(local))
     }
 
-    /// `Σ B_i(s) B_j(t) B_k(u) (P_ijk − grid_ijk)`.
+    /// `Σ B_i(s) B_j(t) B_k(u) (P_ijk − grid_ijk)` at one point.
     #[inline]
     pub(crate) fn displacement(&self, local: Vec3) -> Vec3A {
+        let [d] = self.displacements(&[local]);
+        d
+    }
+
+    /// The displacement at `N` points at once. Every point goes through exactly the same
+    /// arithmetic whatever `N` is (so batches are bit-identical to single points); interleaving
+    /// independent points only gives the processor more to do in parallel.
+    #[inline]
+    fn displacements<const N: usize>(&self, locals: &[Vec3; N]) -> [Vec3A; N] {
         let [l, m, n] = self.divisions;
-        let mut bs: Basis = [0.0; MAX_DIVISIONS + 1];
-        let mut bt: Basis = [0.0; MAX_DIVISIONS + 1];
-        let mut bu: Basis = [0.0; MAX_DIVISIONS + 1];
-        self.binomials[0].eval(local.x, &mut bs);
-        self.binomials[1].eval(local.y, &mut bt);
-        self.binomials[2].eval(local.z, &mut bu);
-        let bs = &bs[..=l];
-        let bt = &bt[..=m];
-        let bu = &bu[..=n];
         let row = l + 1;
         let layer = row * (m + 1);
-        let mut total = Vec3A::ZERO;
-        for (wu, layer_offsets) in bu.iter().zip(self.offsets.chunks_exact(layer)) {
-            let mut plane = Vec3A::ZERO;
-            for (wt, row_offsets) in bt.iter().zip(layer_offsets.chunks_exact(row)) {
-                let mut line = Vec3A::ZERO;
-                for (ws, d) in bs.iter().zip(row_offsets) {
-                    line += *d * *ws;
+        let mut out = [Vec3A::ZERO; N];
+        if layer <= SMALL_LAYER {
+            // Common case (the body's 3×3 cross-sections): weigh each layer with the products
+            // B_i(s) B_j(t), splatted once and reused by every layer, then sum the layers with
+            // B_k(u).
+            let mut weights = [[Vec3A::ZERO; SMALL_LAYER]; N];
+            let mut bu = [[0.0f32; MAX_DIVISIONS + 1]; N];
+            for q in 0..N {
+                let mut bs = [0.0f32; SMALL_LAYER];
+                let mut bt = [0.0f32; SMALL_LAYER];
+                self.binomials[0].eval(locals[q].x, &mut bs);
+                self.binomials[1].eval(locals[q].y, &mut bt);
+                self.binomials[2].eval(locals[q].z, &mut bu[q]);
+                for (j, wt) in bt.iter().take(m + 1).enumerate() {
+                    for (i, ws) in bs.iter().take(row).enumerate() {
+                        weights[q][j * row + i] = Vec3A::splat(*wt * *ws);
+                    }
                 }
-                plane += line * *wt;
             }
-            total += plane * *wu;
+            for (k, layer_offsets) in self.offsets.chunks_exact(layer).enumerate().take(n + 1) {
+                let mut sums = [Vec3A::ZERO; N];
+                for (c, d) in layer_offsets.iter().enumerate() {
+                    for q in 0..N {
+                        sums[q] += *d * weights[q][c];
+                    }
+                }
+                for q in 0..N {
+                    out[q] += sums[q] * bu[q][k];
+                }
+            }
+            return out;
         }
-        total
+        for q in 0..N {
+            let mut bs = [0.0f32; MAX_DIVISIONS + 1];
+            let mut bt = [0.0f32; MAX_DIVISIONS + 1];
+            let mut bu = [0.0f32; MAX_DIVISIONS + 1];
+            self.binomials[0].eval(locals[q].x, &mut bs);
+            self.binomials[1].eval(locals[q].y, &mut bt);
+            self.binomials[2].eval(locals[q].z, &mut bu);
+            let mut total = Vec3A::ZERO;
+            for (wu, layer_offsets) in bu[..=n].iter().zip(self.offsets.chunks_exact(layer)) {
+                let mut plane = Vec3A::ZERO;
+                for (wt, row_offsets) in bt[..=m].iter().zip(layer_offsets.chunks_exact(row)) {
+                    let mut line = Vec3A::ZERO;
+                    for (ws, d) in bs[..=l].iter().zip(row_offsets) {
+                        line += *d * *ws;
+                    }
+                    plane += line * *wt;
+                }
+                total += plane * *wu;
+            }
+            out[q] = total;
+        }
+        out
+    }
+
+    /// Local coordinates of `p` if [`Lattice::deform`] moves it (finite, and inside unless the
+    /// policy extrapolates).
+    #[inline]
+    fn local_if_moved(&self, p: Vec3) -> Option<Vec3> {
+        if !p.is_finite() {
+            return None;
+        }
+        let local = self.local_coords(p);
+        if self.outside == OutsidePolicy::Unchanged && !is_inside(local) {
+            return None;
+        }
+        Some(local)
     }
 
     /// Control point offsets from the grid, in storage order.
@@ -723,5 +798,45 @@ mod tests {
             lattice.try_deform(far),
             Err(FfdError::NonFiniteResult { index: 0 })
         );
+    }
+
+    #[test]
+    fn batches_with_skipped_points_match_single_points() {
+        let mut lattice = unit([2, 2, 10]).with_outside_policy(OutsidePolicy::Unchanged);
+        lattice
+            .set_control_point([1, 1, 5], Vec3::new(0.7, 0.4, 0.5))
+            .unwrap();
+        let points = [
+            Vec3::splat(0.5),
+            Vec3::new(2.0, 0.5, 0.5),
+            Vec3::NAN,
+            Vec3::new(0.1, 0.9, 0.4),
+            Vec3::new(0.3, 0.2, 0.6),
+            Vec3::new(-1.0, 0.0, 0.0),
+            Vec3::new(0.6, 0.6, 0.45),
+        ];
+        let mut batch = points;
+        lattice.deform_in_place(&mut batch);
+        for (p, q) in points.iter().zip(&batch) {
+            let single = lattice.deform(*p);
+            assert!(
+                single == *q || (single.is_nan() && q.is_nan()),
+                "{p}: {single} vs {q}"
+            );
+        }
+        assert_eq!(batch[1], points[1]);
+        assert_ne!(batch[0], points[0]);
+    }
+
+    #[test]
+    fn large_layers_take_the_general_path_and_agree_with_trilinear_math() {
+        // 4x4 layers exceed the small-layer path: a 1-division-in-u lattice with one moved
+        // corner still interpolates that corner exactly.
+        let mut lattice = unit([3, 3, 1]);
+        lattice
+            .set_control_point([3, 3, 1], Vec3::splat(1.5))
+            .unwrap();
+        assert_eq!(lattice.deform(Vec3::ONE), Vec3::splat(1.5));
+        assert_eq!(lattice.deform(Vec3::ZERO), Vec3::ZERO);
     }
 }

@@ -37,6 +37,10 @@ tasks:
   bench-build  cargo bench --workspace --no-run: benches keep compiling
   tidy         project rules: README and CHANGELOG per crate, no #[should_panic]
 
+not part of ci:
+  bless        regenerate golden files: runs every crate's `tests/golden.rs` with
+               CREATURE_BLESS=1 (review the diff, and add a CHANGELOG line)
+
 environment:
   CREATURE_NO_STD_FALLBACK=1   skip the embedded target and use the host staticlib check
 ";
@@ -69,6 +73,7 @@ fn main() -> ExitCode {
     };
     let result = match task.as_str() {
         "ci" => ci(&workspace),
+        "bless" => step("bless", bless, &workspace),
         "-h" | "--help" | "help" => {
             print!("{USAGE}");
             Ok(())
@@ -128,9 +133,10 @@ impl Workspace {
             .to_path_buf();
         let manifest = fs::read_to_string(root.join("Cargo.toml"))
             .map_err(|e| format!("cannot read the root Cargo.toml: {e}"))?;
+        let members = workspace_members(&manifest)?;
         let micro_crates = MICRO_CRATES
             .into_iter()
-            .filter(|name| manifest.contains(&format!("\"{name}\"")))
+            .filter(|name| members.iter().any(|m| m == name))
             .collect();
         Ok(Self { root, micro_crates })
     }
@@ -154,6 +160,20 @@ impl Workspace {
         }
         out
     }
+}
+
+/// The quoted entries of the root manifest's `members = [...]` list.
+fn workspace_members(manifest: &str) -> Result<Vec<String>, String> {
+    let start = manifest
+        .find("members = [")
+        .ok_or("the root Cargo.toml has no `members = [` list")?;
+    let list = &manifest[start + "members = [".len()..];
+    let end = list.find(']').ok_or("the `members` list is not closed")?;
+    Ok(list[..end]
+        .split(',')
+        .map(|entry| entry.trim().trim_matches('"').to_string())
+        .filter(|entry| !entry.is_empty())
+        .collect())
 }
 
 /// Runs a command, streaming its output; fails with the command line when it fails.
@@ -229,7 +249,14 @@ fn doc(w: &Workspace) -> Result<(), String> {
 fn package(w: &Workspace) -> Result<(), String> {
     let mut c = w.cargo();
     // --allow-dirty: a developer's tree may have uncommitted files; CI's clone is clean anyway.
-    c.args(["package", "--workspace", "--allow-dirty", "--locked"]);
+    c.args([
+        "package",
+        "--workspace",
+        "--exclude",
+        "xtask",
+        "--allow-dirty",
+        "--locked",
+    ]);
     run(c)
 }
 
@@ -337,6 +364,33 @@ fn no_std_fallback(w: &Workspace) -> Result<(), String> {
         "no_std check: ran the host staticlib fallback ({} crates)",
         w.micro_crates.len()
     );
+    Ok(())
+}
+
+/// Golden files change only through this command: each crate's `tests/golden.rs` rewrites its
+/// files when `CREATURE_BLESS=1` is set, and compares against them otherwise.
+fn bless(w: &Workspace) -> Result<(), String> {
+    let mut blessed = 0;
+    for dir in w.publishable() {
+        if !dir.join("tests").join("golden.rs").exists() {
+            continue;
+        }
+        let name = dir
+            .file_name()
+            .map(|n| n.to_string_lossy().into_owned())
+            .unwrap_or_default();
+        let package = if name == "creature" {
+            name
+        } else {
+            format!("creature-{name}")
+        };
+        let mut c = w.cargo();
+        c.args(["test", "-p", &package, "--all-features", "--test", "golden"]);
+        c.env("CREATURE_BLESS", "1");
+        run(c)?;
+        blessed += 1;
+    }
+    println!("bless: regenerated the golden files of {blessed} crates; review `git diff`");
     Ok(())
 }
 

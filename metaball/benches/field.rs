@@ -1,0 +1,100 @@
+//! Sampling a 256×256 grid over a 50-ball creature-like field (the seed's median creature has
+//! 49 balls): the culled field against the plain all-balls reference in
+//! `tests/support/reference.rs` (every ball at every sample, as the seed does) and against the
+//! crate's own exact sum.
+//!
+//! Run: `cargo bench -p creature-metaball --bench field`
+
+// Setup outside the timed code may fail loudly: a broken input is a broken bench.
+#![allow(clippy::expect_used)]
+
+use core::hint::black_box;
+
+use creature_metaball::glam::Vec2;
+use creature_metaball::{Ball2, Falloff, Field2, SEED_BLOBBINESS};
+use criterion::{Criterion, Throughput, criterion_group, criterion_main};
+
+#[path = "../tests/support/reference.rs"]
+#[allow(dead_code)]
+mod reference;
+
+const SIDE: usize = 256;
+
+/// The fixed creature and the grid (origin, step) spanning its outline's box plus a margin.
+fn inputs() -> (Vec<Ball2>, Vec2, f32) {
+    let balls = reference::creature();
+    let mut min = Vec2::splat(f32::INFINITY);
+    let mut max = Vec2::splat(f32::NEG_INFINITY);
+    for b in &balls {
+        min = min.min(b.center - 1.5 * b.radius);
+        max = max.max(b.center + 1.5 * b.radius);
+    }
+    let step = (max - min).max_element() / (SIDE - 1) as f32;
+    (balls, min, step)
+}
+
+fn bench(c: &mut Criterion) {
+    let (balls, origin, step) = inputs();
+    let field = Field2::new(&balls, Falloff::SEED).expect("valid creature");
+    let mut group = c.benchmark_group(format!("field_256x256_{}_balls", balls.len()));
+    group.throughput(Throughput::Elements((SIDE * SIDE) as u64));
+    group.sample_size(20);
+    group.bench_function("culled_sample_grid", |b| {
+        b.iter(|| {
+            field
+                .sample_grid(black_box(origin), black_box(step), SIDE, SIDE)
+                .expect("valid grid")
+        });
+    });
+    group.bench_function("culled_value_per_point", |b| {
+        b.iter(|| {
+            let mut sum = 0.0f32;
+            for row in 0..SIDE {
+                for column in 0..SIDE {
+                    let p = origin + step * Vec2::new(column as f32, row as f32);
+                    sum += field.value(black_box(p));
+                }
+            }
+            sum
+        });
+    });
+    group.bench_function("exact_all_balls", |b| {
+        b.iter(|| {
+            let mut sum = 0.0f32;
+            for row in 0..SIDE {
+                for column in 0..SIDE {
+                    let p = origin + step * Vec2::new(column as f32, row as f32);
+                    sum += field.value_exact(black_box(p));
+                }
+            }
+            sum
+        });
+    });
+    group.bench_function("reference_all_balls", |b| {
+        b.iter(|| {
+            let mut samples = Vec::with_capacity(SIDE * SIDE);
+            for row in 0..SIDE {
+                for column in 0..SIDE {
+                    let p = origin + step * Vec2::new(column as f32, row as f32);
+                    samples.push(reference::value(&balls, SEED_BLOBBINESS, black_box(p)));
+                }
+            }
+            samples
+        });
+    });
+    group.finish();
+
+    let stats = field.grid_stats();
+    println!(
+        "grid: {} balls, cell {:.1}, {} cells, {} entries ({:.1} per cell); error bound {:e}",
+        balls.len(),
+        stats.cell_size,
+        stats.cells,
+        stats.entries,
+        stats.entries as f32 / stats.cells as f32,
+        field.error_bound()
+    );
+}
+
+criterion_group!(benches, bench);
+criterion_main!(benches);

@@ -1,0 +1,650 @@
+//! Fields: the sum of a set of balls' falloffs, culled through a uniform grid.
+
+use alloc::vec::Vec;
+use core::ops::{Add, Mul};
+
+use glam::{Vec2, Vec3};
+
+use crate::ball::validate_ball;
+use crate::grid::Core;
+use crate::{Ball2, Ball3, Falloff, ISO_LEVEL, MetaballError};
+
+/// The default culling epsilon: a ball is skipped where it contributes less than `1e-4`
+/// (a ten-thousandth of the iso level).
+pub const DEFAULT_EPSILON: f32 = 1e-4;
+
+/// Accepted culling epsilons.
+pub const EPSILON_RANGE: (f32, f32) = (1e-12, 0.1);
+
+/// Largest `width × height` that [`Field2::sample_grid`] fills.
+pub const MAX_GRID_SAMPLES: usize = 1 << 24;
+
+/// How a field evaluates its balls.
+///
+/// ```
+/// use creature_metaball::{Falloff, FieldOptions};
+///
+/// let options = FieldOptions::DEFAULT
+///     .with_falloff(Falloff::WYVILL)
+///     .with_epsilon(1e-6);
+/// assert_eq!(FieldOptions::default().falloff, Falloff::SEED);
+/// assert_eq!(options.epsilon, 1e-6);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
+pub struct FieldOptions {
+    /// The falloff of every ball. Default: [`Falloff::SEED`].
+    pub falloff: Falloff,
+    /// Culling epsilon: each ball is skipped beyond the radius where its contribution drops
+    /// below this ([`Falloff::cutoff_radius`]), so a culled value differs from the exact
+    /// all-balls sum by at most `epsilon × ball count` (see [`Field2::error_bound`]). In
+    /// [`EPSILON_RANGE`]. Ignored by [`Falloff::Wyvill`], whose support ends at `R` (culling is
+    /// exact). Default: [`DEFAULT_EPSILON`] (`1e-4`).
+    pub epsilon: f32,
+    /// Edge of the grid's square (cubic) cells, or `None` to use the median cutoff radius.
+    /// The grid never exceeds `16 n + 1024` cells nor `64 n + 4096` ball entries for `n` balls:
+    /// a smaller size is doubled until it fits. Default: `None`.
+    pub cell_size: Option<f32>,
+}
+
+impl FieldOptions {
+    /// The seeds' falloff, epsilon `1e-4`, automatic cell size.
+    pub const DEFAULT: Self = Self {
+        falloff: Falloff::SEED,
+        epsilon: DEFAULT_EPSILON,
+        cell_size: None,
+    };
+
+    /// Sets [`falloff`](Self::falloff).
+    #[must_use]
+    pub const fn with_falloff(mut self, falloff: Falloff) -> Self {
+        self.falloff = falloff;
+        self
+    }
+
+    /// Sets [`epsilon`](Self::epsilon).
+    #[must_use]
+    pub const fn with_epsilon(mut self, epsilon: f32) -> Self {
+        self.epsilon = epsilon;
+        self
+    }
+
+    /// Sets [`cell_size`](Self::cell_size) (`None` for automatic).
+    #[must_use]
+    pub const fn with_cell_size(mut self, cell_size: Option<f32>) -> Self {
+        self.cell_size = cell_size;
+        self
+    }
+
+    /// Checks the falloff, the epsilon and the cell size.
+    ///
+    /// # Errors
+    /// [`MetaballError::NonFinite`], [`MetaballError::NotPositive`] or
+    /// [`MetaballError::OutOfRange`] naming the option.
+    pub fn validate(&self) -> Result<(), MetaballError> {
+        self.falloff.validate()?;
+        let e = self.epsilon;
+        if !e.is_finite() {
+            return Err(MetaballError::NonFinite {
+                what: "epsilon",
+                index: 0,
+            });
+        }
+        let (min, max) = EPSILON_RANGE;
+        if !(e >= min && e <= max) {
+            return Err(MetaballError::OutOfRange {
+                what: "epsilon",
+                index: 0,
+                value: e,
+                min,
+                max,
+            });
+        }
+        if let Some(size) = self.cell_size {
+            if !size.is_finite() {
+                return Err(MetaballError::NonFinite {
+                    what: "cell size",
+                    index: 0,
+                });
+            }
+            if !(size > 0.0) {
+                return Err(MetaballError::NotPositive {
+                    what: "cell size",
+                    index: 0,
+                    value: size,
+                });
+            }
+        }
+        Ok(())
+    }
+}
+
+impl Default for FieldOptions {
+    fn default() -> Self {
+        Self::DEFAULT
+    }
+}
+
+/// One id's share of the field at a point.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Share {
+    /// The [`Ball2::id`] / [`Ball3::id`] the share belongs to.
+    pub id: u32,
+    /// Its weight, in `(0, 1]`; the weights of one [`Shares`] sum to 1.
+    pub weight: f32,
+}
+
+/// The top-k [`Share`]s at a point, largest weight first (ties: smaller id first). Stored inline
+/// up to 4, the glTF skinning limit.
+pub type Shares = smallvec::SmallVec<[Share; 4]>;
+
+/// Statistics of a field's culling grid, for diagnostics and tuning.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
+pub struct GridStats {
+    /// Edge of a cell.
+    pub cell_size: f32,
+    /// Number of cells.
+    pub cells: usize,
+    /// Ball entries over all cells (a ball is listed in every cell its cutoff box overlaps).
+    pub entries: usize,
+}
+
+fn check_options_and_count(options: &FieldOptions, count: usize) -> Result<(), MetaballError> {
+    options.validate()?;
+    if count == 0 {
+        return Err(MetaballError::NoBalls);
+    }
+    if count > u32::MAX as usize {
+        return Err(MetaballError::TooManyBalls {
+            needed: count as f32,
+            max: u32::MAX as usize,
+        });
+    }
+    Ok(())
+}
+
+fn check_attributes(count: usize, found: usize) -> Result<(), MetaballError> {
+    if count == found {
+        Ok(())
+    } else {
+        Err(MetaballError::WrongLength {
+            what: "attributes",
+            expected: count,
+            found,
+        })
+    }
+}
+
+/// A 2D metaball field `D(p) = Σ f_i(p)`, inside where `D(p) ≥ ISO_LEVEL` (1.0).
+///
+/// Built once from a ball set; then every sample costs O(balls near `p`): each ball is cut off
+/// where its contribution drops below [`FieldOptions::epsilon`], and a uniform grid lists, per
+/// cell, the balls whose cutoff reaches it. The culled [`value`](Self::value) differs from the
+/// exact all-balls [`value_exact`](Self::value_exact) by at most
+/// [`error_bound`](Self::error_bound) `= epsilon × ball count` (zero for Wyvill), and the
+/// gradient by at most [`gradient_error_bound`](Self::gradient_error_bound). Outside
+/// [`bounds`](Self::bounds) the culled field is exactly 0.
+///
+/// Non-finite sample points are outside every ball: value 0, zero gradient, no shares. No
+/// method returns NaN.
+///
+/// ```
+/// use creature_metaball::{Ball2, Falloff, Field2, glam::Vec2};
+///
+/// let balls = [
+///     Ball2::new(Vec2::new(0.0, 0.0), 10.0, 0),
+///     Ball2::new(Vec2::new(18.0, 0.0), 8.0, 1),
+/// ];
+/// let field = Field2::new(&balls, Falloff::SEED)?;
+/// assert!(field.contains(Vec2::new(9.0, 0.0))); // the two balls have merged
+/// assert!(!field.contains(Vec2::new(0.0, 14.0)));
+///
+/// // The gradient points uphill, towards the centre.
+/// assert!(field.gradient(Vec2::new(-5.0, 0.0)).x > 0.0);
+///
+/// // Top-2 ids and their shares, summing to 1.
+/// let shares = field.shares(Vec2::new(4.0, 0.0), 2);
+/// assert_eq!(shares[0].id, 0);
+/// assert!((shares[0].weight + shares[1].weight - 1.0).abs() < 1e-6);
+///
+/// // Culled and exact sums agree within the documented bound.
+/// let p = Vec2::new(25.0, 3.0);
+/// assert!((field.value(p) - field.value_exact(p)).abs() <= field.error_bound());
+/// # Ok::<(), creature_metaball::MetaballError>(())
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct Field2 {
+    balls: Vec<Ball2>,
+    options: FieldOptions,
+    core: Core<2>,
+}
+
+impl Field2 {
+    /// A field of `balls` with `falloff` and the other [`FieldOptions::DEFAULT`]s.
+    ///
+    /// # Errors
+    /// [`MetaballError::NoBalls`] for an empty slice; for a bad ball (non-finite or
+    /// out-of-range centre, radius not positive or outside
+    /// [`RADIUS_RANGE`](crate::RADIUS_RANGE)) the error names its index; a bad falloff constant
+    /// is named too.
+    pub fn new(balls: &[Ball2], falloff: Falloff) -> Result<Self, MetaballError> {
+        Self::with_options(balls, &FieldOptions::DEFAULT.with_falloff(falloff))
+    }
+
+    /// A field of `balls` with `options`.
+    ///
+    /// # Errors
+    /// As [`Field2::new`], plus a bad epsilon or cell size.
+    pub fn with_options(balls: &[Ball2], options: &FieldOptions) -> Result<Self, MetaballError> {
+        check_options_and_count(options, balls.len())?;
+        let mut input = Vec::with_capacity(balls.len());
+        for (index, ball) in balls.iter().enumerate() {
+            let center = ball.center.to_array();
+            validate_ball(&center, ball.radius, index)?;
+            input.push((center, ball.radius, ball.id));
+        }
+        let core = Core::build(
+            &input,
+            options.falloff.kernel(),
+            options.epsilon,
+            options.cell_size,
+        );
+        Ok(Self {
+            balls: balls.to_vec(),
+            options: *options,
+            core,
+        })
+    }
+
+    /// The balls, in input order.
+    #[must_use]
+    pub fn balls(&self) -> &[Ball2] {
+        &self.balls
+    }
+
+    /// The options the field was built with.
+    #[must_use]
+    pub fn options(&self) -> &FieldOptions {
+        &self.options
+    }
+
+    /// The falloff.
+    #[must_use]
+    pub fn falloff(&self) -> Falloff {
+        self.options.falloff
+    }
+
+    /// How many balls the field has (at least 1).
+    #[must_use]
+    pub fn ball_count(&self) -> usize {
+        self.core.len()
+    }
+
+    /// The culled field value at `p`: the sum over the balls whose cutoff reaches `p`, in ball
+    /// order. Within [`error_bound`](Self::error_bound) of [`value_exact`](Self::value_exact).
+    #[must_use]
+    #[inline]
+    pub fn value(&self, p: Vec2) -> f32 {
+        self.core.value(p.to_array())
+    }
+
+    /// The exact field value at `p`: the sum over every ball, no culling, in ball order (the
+    /// seeds' computation; O(all balls)).
+    #[must_use]
+    pub fn value_exact(&self, p: Vec2) -> f32 {
+        self.core.value_exact(p.to_array())
+    }
+
+    /// Whether `p` is inside: `value(p) ≥ ISO_LEVEL`.
+    #[must_use]
+    pub fn contains(&self, p: Vec2) -> bool {
+        self.value(p) >= ISO_LEVEL
+    }
+
+    /// The analytic gradient of the culled field at `p` (it points towards higher values, i.e.
+    /// inwards at the iso line).
+    #[must_use]
+    pub fn gradient(&self, p: Vec2) -> Vec2 {
+        self.value_and_gradient(p).1
+    }
+
+    /// The culled value and analytic gradient together, for the price of one.
+    #[must_use]
+    pub fn value_and_gradient(&self, p: Vec2) -> (f32, Vec2) {
+        let (v, g) = self.core.value_and_gradient(p.to_array());
+        (v, Vec2::from_array(g))
+    }
+
+    /// The exact analytic gradient over every ball.
+    #[must_use]
+    pub fn gradient_exact(&self, p: Vec2) -> Vec2 {
+        Vec2::from_array(self.core.value_and_gradient_exact(p.to_array()).1)
+    }
+
+    /// The `k` ids with the largest summed contribution at `p`, largest first, with their
+    /// shares renormalised to sum to 1 over the kept ids (as the seed's skinning does with its
+    /// top 4). When `k` is at least the number of ids reaching `p`, each share is exactly the
+    /// per-id `Σ f_i / D` of the culled field.
+    ///
+    /// Fewer than `k` entries when fewer ids reach `p` (no padding); empty for `k = 0` or where
+    /// the culled field is 0.
+    ///
+    /// ```
+    /// use creature_metaball::{Ball2, Falloff, Field2, glam::Vec2};
+    ///
+    /// // Two balls owned by bone 3, one by bone 5.
+    /// let balls = [
+    ///     Ball2::new(Vec2::new(0.0, 0.0), 5.0, 3),
+    ///     Ball2::new(Vec2::new(6.0, 0.0), 5.0, 3),
+    ///     Ball2::new(Vec2::new(12.0, 0.0), 5.0, 5),
+    /// ];
+    /// let field = Field2::new(&balls, Falloff::SEED)?;
+    /// let shares = field.shares(Vec2::new(8.0, 0.0), 4);
+    /// assert_eq!(shares.len(), 2);
+    /// assert_eq!(shares[0].id, 3);
+    /// assert!(shares[0].weight > shares[1].weight);
+    /// # Ok::<(), creature_metaball::MetaballError>(())
+    /// ```
+    #[must_use]
+    pub fn shares(&self, p: Vec2, k: usize) -> Shares {
+        self.core.shares(p.to_array(), k)
+    }
+
+    /// Blends one attribute per ball (colour, texture weights, anything linear) with the
+    /// per-ball shares `f_i(p) / D(p)` of the culled field: `Σ f_i a_i / Σ f_i`.
+    ///
+    /// `Ok(None)` where no ball reaches `p` (culled value 0).
+    ///
+    /// ```
+    /// use creature_metaball::{Ball2, Falloff, Field2, glam::{Vec2, Vec3}};
+    ///
+    /// let balls = [Ball2::new(Vec2::ZERO, 5.0, 0), Ball2::new(Vec2::new(8.0, 0.0), 5.0, 1)];
+    /// let colours = [Vec3::new(1.0, 0.0, 0.0), Vec3::new(0.0, 0.0, 1.0)];
+    /// let field = Field2::new(&balls, Falloff::SEED)?;
+    /// let mid = field.blend(Vec2::new(4.0, 0.0), &colours)?.unwrap_or_default();
+    /// assert!((mid.x - 0.5).abs() < 1e-5 && (mid.z - 0.5).abs() < 1e-5);
+    /// assert_eq!(field.blend(Vec2::new(1e4, 0.0), &colours)?, None);
+    /// # Ok::<(), creature_metaball::MetaballError>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`MetaballError::WrongLength`] unless there is exactly one attribute per ball.
+    pub fn blend<T>(&self, p: Vec2, attributes: &[T]) -> Result<Option<T>, MetaballError>
+    where
+        T: Copy + Add<Output = T> + Mul<f32, Output = T>,
+    {
+        check_attributes(self.core.len(), attributes.len())?;
+        Ok(self.core.blend(p.to_array(), attributes))
+    }
+
+    /// The largest possible difference between [`value`](Self::value) and
+    /// [`value_exact`](Self::value_exact) anywhere, up to `f32` rounding: the sum over the
+    /// balls of the most each can contribute beyond its cutoff, i.e. `epsilon × ball count`
+    /// for the exponential falloff and 0 for Wyvill.
+    ///
+    /// Near the iso line this moves the outline by at most about
+    /// `error_bound / |gradient|`: for a lone seed ball of radius `R`, `|∇D| = 1/R` there.
+    #[must_use]
+    pub fn error_bound(&self) -> f32 {
+        self.core.value_error()
+    }
+
+    /// The largest possible length of `gradient(p) − gradient_exact(p)`, up to rounding: the
+    /// sum over the balls of the steepest each can be beyond its cutoff.
+    #[must_use]
+    pub fn gradient_error_bound(&self) -> f32 {
+        self.core.gradient_error()
+    }
+
+    /// The box `(min, max)` outside which the culled field is exactly 0: every ball's centre
+    /// ± its cutoff radius.
+    #[must_use]
+    pub fn bounds(&self) -> (Vec2, Vec2) {
+        let (lo, hi) = self.core.bounds();
+        (Vec2::from_array(lo), Vec2::from_array(hi))
+    }
+
+    /// The culling grid's statistics.
+    #[must_use]
+    pub fn grid_stats(&self) -> GridStats {
+        GridStats {
+            cell_size: self.core.cell_size(),
+            cells: self.core.cell_count(),
+            entries: self.core.entry_count(),
+        }
+    }
+
+    /// Samples the culled field on a `width × height` grid with spacing `step`: sample
+    /// `row * width + column` is `value(origin + step * (column, row))` (x = column, y = row,
+    /// the layout `creature-march`'s `march_grid` reads). Empty if either size is 0.
+    ///
+    /// Faster than sampling point by point: it runs ball by ball, and for the Gaussian
+    /// falloffs (seed, Blinn) splits `exp(−a (dx² + dy²)/R²)` into a row factor times a column
+    /// factor, so a ball costs one `exp` per row and column it reaches rather than one per
+    /// sample. Each sample sums exactly the balls `value` would, in the same order, so it is
+    /// within `f32` rounding (about `1e-6` relative) of `value` and obeys the same
+    /// [`error_bound`](Self::error_bound); it is not bit-identical to `value`.
+    ///
+    /// ```
+    /// use creature_metaball::{Ball2, Falloff, Field2, glam::Vec2};
+    ///
+    /// let field = Field2::new(&[Ball2::new(Vec2::ZERO, 10.0, 0)], Falloff::SEED)?;
+    /// let (min, max) = field.bounds();
+    /// let samples = field.sample_grid(min, 2.0, 32, 32)?;
+    /// assert_eq!(samples.len(), 32 * 32);
+    /// assert!(samples.iter().any(|&v| v >= 1.0));
+    /// # let _ = max;
+    /// # Ok::<(), creature_metaball::MetaballError>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`MetaballError::NonFinite`] for a non-finite origin or step,
+    /// [`MetaballError::NotPositive`] for a step ≤ 0, [`MetaballError::OutOfRange`] for more
+    /// than [`MAX_GRID_SAMPLES`] samples.
+    pub fn sample_grid(
+        &self,
+        origin: Vec2,
+        step: f32,
+        width: usize,
+        height: usize,
+    ) -> Result<Vec<f32>, MetaballError> {
+        if !origin.is_finite() {
+            return Err(MetaballError::NonFinite {
+                what: "grid origin",
+                index: 0,
+            });
+        }
+        if !step.is_finite() {
+            return Err(MetaballError::NonFinite {
+                what: "grid step",
+                index: 0,
+            });
+        }
+        if !(step > 0.0) {
+            return Err(MetaballError::NotPositive {
+                what: "grid step",
+                index: 0,
+                value: step,
+            });
+        }
+        let count = width.saturating_mul(height);
+        if count > MAX_GRID_SAMPLES {
+            return Err(MetaballError::OutOfRange {
+                what: "grid sample count",
+                index: 0,
+                value: count as f32,
+                min: 0.0,
+                max: MAX_GRID_SAMPLES as f32,
+            });
+        }
+        Ok(self
+            .core
+            .sample_grid(origin.to_array(), step, width, height))
+    }
+}
+
+/// A 3D metaball field: [`Field2`] with [`Vec3`] points (a cubic grid culls the balls).
+///
+/// ```
+/// use creature_metaball::{Ball3, Falloff, Field3, glam::Vec3};
+///
+/// let balls = [
+///     Ball3::new(Vec3::ZERO, 1.0, 0),
+///     Ball3::new(Vec3::new(1.5, 0.0, 0.0), 1.0, 1),
+/// ];
+/// let field = Field3::new(&balls, Falloff::SEED)?;
+/// assert!(field.contains(Vec3::new(0.75, 0.0, 0.0)));
+/// assert!(field.gradient(Vec3::new(0.0, 0.0, 1.0)).z < 0.0);
+/// # Ok::<(), creature_metaball::MetaballError>(())
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct Field3 {
+    balls: Vec<Ball3>,
+    options: FieldOptions,
+    core: Core<3>,
+}
+
+impl Field3 {
+    /// A field of `balls` with `falloff` and the other [`FieldOptions::DEFAULT`]s.
+    ///
+    /// # Errors
+    /// As [`Field2::new`].
+    pub fn new(balls: &[Ball3], falloff: Falloff) -> Result<Self, MetaballError> {
+        Self::with_options(balls, &FieldOptions::DEFAULT.with_falloff(falloff))
+    }
+
+    /// A field of `balls` with `options`.
+    ///
+    /// # Errors
+    /// As [`Field2::with_options`].
+    pub fn with_options(balls: &[Ball3], options: &FieldOptions) -> Result<Self, MetaballError> {
+        check_options_and_count(options, balls.len())?;
+        let mut input = Vec::with_capacity(balls.len());
+        for (index, ball) in balls.iter().enumerate() {
+            let center = ball.center.to_array();
+            validate_ball(&center, ball.radius, index)?;
+            input.push((center, ball.radius, ball.id));
+        }
+        let core = Core::build(
+            &input,
+            options.falloff.kernel(),
+            options.epsilon,
+            options.cell_size,
+        );
+        Ok(Self {
+            balls: balls.to_vec(),
+            options: *options,
+            core,
+        })
+    }
+
+    /// The balls, in input order.
+    #[must_use]
+    pub fn balls(&self) -> &[Ball3] {
+        &self.balls
+    }
+
+    /// The options the field was built with.
+    #[must_use]
+    pub fn options(&self) -> &FieldOptions {
+        &self.options
+    }
+
+    /// The falloff.
+    #[must_use]
+    pub fn falloff(&self) -> Falloff {
+        self.options.falloff
+    }
+
+    /// How many balls the field has (at least 1).
+    #[must_use]
+    pub fn ball_count(&self) -> usize {
+        self.core.len()
+    }
+
+    /// The culled field value at `p`; see [`Field2::value`].
+    #[must_use]
+    #[inline]
+    pub fn value(&self, p: Vec3) -> f32 {
+        self.core.value(p.to_array())
+    }
+
+    /// The exact all-balls value at `p`; see [`Field2::value_exact`].
+    #[must_use]
+    pub fn value_exact(&self, p: Vec3) -> f32 {
+        self.core.value_exact(p.to_array())
+    }
+
+    /// Whether `p` is inside: `value(p) ≥ ISO_LEVEL`.
+    #[must_use]
+    pub fn contains(&self, p: Vec3) -> bool {
+        self.value(p) >= ISO_LEVEL
+    }
+
+    /// The analytic gradient of the culled field at `p`.
+    #[must_use]
+    pub fn gradient(&self, p: Vec3) -> Vec3 {
+        self.value_and_gradient(p).1
+    }
+
+    /// The culled value and analytic gradient together.
+    #[must_use]
+    pub fn value_and_gradient(&self, p: Vec3) -> (f32, Vec3) {
+        let (v, g) = self.core.value_and_gradient(p.to_array());
+        (v, Vec3::from_array(g))
+    }
+
+    /// The exact analytic gradient over every ball.
+    #[must_use]
+    pub fn gradient_exact(&self, p: Vec3) -> Vec3 {
+        Vec3::from_array(self.core.value_and_gradient_exact(p.to_array()).1)
+    }
+
+    /// The top-`k` ids and their renormalised shares at `p`; see [`Field2::shares`].
+    #[must_use]
+    pub fn shares(&self, p: Vec3, k: usize) -> Shares {
+        self.core.shares(p.to_array(), k)
+    }
+
+    /// Blends one attribute per ball with the shares `f_i / D`; see [`Field2::blend`].
+    ///
+    /// # Errors
+    /// [`MetaballError::WrongLength`] unless there is exactly one attribute per ball.
+    pub fn blend<T>(&self, p: Vec3, attributes: &[T]) -> Result<Option<T>, MetaballError>
+    where
+        T: Copy + Add<Output = T> + Mul<f32, Output = T>,
+    {
+        check_attributes(self.core.len(), attributes.len())?;
+        Ok(self.core.blend(p.to_array(), attributes))
+    }
+
+    /// The bound on `|value − value_exact|`; see [`Field2::error_bound`].
+    #[must_use]
+    pub fn error_bound(&self) -> f32 {
+        self.core.value_error()
+    }
+
+    /// The bound on `|gradient − gradient_exact|`; see [`Field2::gradient_error_bound`].
+    #[must_use]
+    pub fn gradient_error_bound(&self) -> f32 {
+        self.core.gradient_error()
+    }
+
+    /// The box outside which the culled field is exactly 0.
+    #[must_use]
+    pub fn bounds(&self) -> (Vec3, Vec3) {
+        let (lo, hi) = self.core.bounds();
+        (Vec3::from_array(lo), Vec3::from_array(hi))
+    }
+
+    /// The culling grid's statistics.
+    #[must_use]
+    pub fn grid_stats(&self) -> GridStats {
+        GridStats {
+            cell_size: self.core.cell_size(),
+            cells: self.core.cell_count(),
+            entries: self.core.entry_count(),
+        }
+    }
+}

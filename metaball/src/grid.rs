@@ -1,0 +1,736 @@
+//! The culled field's engine, shared by 2D and 3D: per-ball constants plus a uniform grid of
+//! cells, each listing (by ball index) the balls whose cutoff box overlaps it.
+
+use alloc::vec;
+use alloc::vec::Vec;
+use core::ops::{Add, Mul};
+
+use smallvec::SmallVec;
+
+use crate::falloff::Kernel;
+use crate::math;
+use crate::{Share, Shares};
+
+/// One ball as the inner loops read it, copied into every cell it overlaps.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Entry<const D: usize> {
+    center: [f32; D],
+    inv_r2: f32,
+    /// `r_c²`: the ball is skipped at squared distances from here on.
+    cutoff_d2: f32,
+    index: u32,
+}
+
+/// Per-ball constants and the grid.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Core<const D: usize> {
+    kernel: Kernel,
+    /// Every ball, in input order (the exact sum runs over these).
+    balls: Vec<Entry<D>>,
+    ids: Vec<u32>,
+    origin: [f32; D],
+    cell: f32,
+    inv_cell: f32,
+    dims: [usize; D],
+    /// `starts[c]..starts[c + 1]` indexes `entries` for cell `c` (cells x-fastest).
+    starts: Vec<u32>,
+    entries: Vec<Entry<D>>,
+    bounds: ([f32; D], [f32; D]),
+    value_error: f32,
+    gradient_error: f32,
+}
+
+impl Core<2> {
+    /// Samples the culled field on a regular grid, ball by ball: for Gaussian falloffs
+    /// `exp(−a (dx² + dy²)/R²) = exp(−a dx²/R²) · exp(−a dy²/R²)`, so each ball needs one
+    /// `exp` per covered row and column instead of one per covered sample. Every sample sums
+    /// exactly the balls [`value`](Core::value) sums (the same cutoff test on the same squared
+    /// distance), in ball order; the terms differ from `value`'s only by rounding.
+    pub(crate) fn sample_grid(
+        &self,
+        origin: [f32; 2],
+        step: f32,
+        width: usize,
+        height: usize,
+    ) -> Vec<f32> {
+        let x_of = |j: usize| origin[0] + step * j as f32;
+        let y_of = |i: usize| origin[1] + step * i as f32;
+        let (scale, sharpness) = match self.kernel {
+            Kernel::Exponential { b } => (math::exp(-b), -b),
+            Kernel::Gauss {
+                strength,
+                sharpness,
+            } => (strength, sharpness),
+            Kernel::Wyvill { .. } => {
+                let mut out = Vec::with_capacity(width * height);
+                for i in 0..height {
+                    for j in 0..width {
+                        out.push(self.value([x_of(j), y_of(i)]));
+                    }
+                }
+                return out;
+            }
+        };
+        let mut out = vec![0.0f32; width * height];
+        let mut column_factor: Vec<f32> = Vec::with_capacity(width);
+        let mut column_d2: Vec<f32> = Vec::with_capacity(width);
+        for ball in &self.balls {
+            if !(ball.cutoff_d2 > 0.0) {
+                continue;
+            }
+            let center = ball.center;
+            let reach = pad(math::sqrt(ball.cutoff_d2));
+            let Some((j0, j1)) =
+                index_range(center[0] - reach, center[0] + reach, origin[0], step, width)
+            else {
+                continue;
+            };
+            let Some((i0, i1)) = index_range(
+                center[1] - reach,
+                center[1] + reach,
+                origin[1],
+                step,
+                height,
+            ) else {
+                continue;
+            };
+            column_factor.clear();
+            column_d2.clear();
+            for j in j0..=j1 {
+                let dx = x_of(j) - center[0];
+                let dx2 = dx * dx;
+                column_d2.push(dx2);
+                column_factor.push(math::exp(-sharpness * (dx2 * ball.inv_r2)));
+            }
+            for i in i0..=i1 {
+                let dy = y_of(i) - center[1];
+                let dy2 = dy * dy;
+                let row_factor = scale * math::exp(-sharpness * (dy2 * ball.inv_r2));
+                let Some(row) = out.get_mut(i * width + j0..=i * width + j1) else {
+                    continue;
+                };
+                for ((sample, &dx2), &factor) in row.iter_mut().zip(&column_d2).zip(&column_factor)
+                {
+                    // Same expression as `distance2`: (0 + dx²) + dy².
+                    if dx2 + dy2 < ball.cutoff_d2 {
+                        *sample += row_factor * factor;
+                    }
+                }
+            }
+        }
+        for sample in &mut out {
+            *sample = finite_or_zero(*sample);
+        }
+        out
+    }
+}
+
+/// Relative padding of each ball's cutoff box, so rounding in the cell lookup can never drop a
+/// ball the distance test would keep.
+const BOX_PAD: f32 = 1e-4;
+
+impl<const D: usize> Core<D> {
+    /// Builds the grid. Inputs are already validated: finite centres within range, radii in
+    /// range, a valid kernel, `0 < epsilon < 1`, `cell_size` positive and finite if given,
+    /// `balls` non-empty.
+    pub(crate) fn build(
+        balls: &[([f32; D], f32, u32)],
+        kernel: Kernel,
+        epsilon: f32,
+        cell_size: Option<f32>,
+    ) -> Self {
+        let q_cut = kernel.cutoff_q(epsilon);
+        let per_ball_value_error = kernel.value_error(epsilon);
+        let mut value_error = 0.0f32;
+        let mut gradient_error = 0.0f32;
+        let mut compiled = Vec::with_capacity(balls.len());
+        let mut ids = Vec::with_capacity(balls.len());
+        let mut lo = [f32::INFINITY; D];
+        let mut hi = [f32::NEG_INFINITY; D];
+        let mut cutoffs: Vec<f32> = Vec::with_capacity(balls.len());
+        for (index, &(center, radius, id)) in balls.iter().enumerate() {
+            let r2 = radius * radius;
+            let cutoff = radius * math::sqrt(q_cut);
+            compiled.push(Entry {
+                center,
+                inv_r2: 1.0 / r2,
+                cutoff_d2: r2 * q_cut,
+                index: u32::try_from(index).unwrap_or(u32::MAX),
+            });
+            ids.push(id);
+            value_error += per_ball_value_error;
+            gradient_error += kernel.gradient_error(epsilon, radius);
+            for k in 0..D {
+                lo[k] = lo[k].min(center[k] - cutoff);
+                hi[k] = hi[k].max(center[k] + cutoff);
+            }
+            if cutoff > 0.0 {
+                cutoffs.push(cutoff);
+            }
+        }
+        let mut core = Self {
+            kernel,
+            balls: compiled,
+            ids,
+            origin: lo,
+            cell: 1.0,
+            inv_cell: 1.0,
+            dims: [0; D],
+            starts: vec![0],
+            entries: Vec::new(),
+            bounds: (lo, hi),
+            value_error,
+            gradient_error,
+        };
+        if cutoffs.is_empty() {
+            // No ball reaches epsilon anywhere: the culled field is zero everywhere.
+            return core;
+        }
+        cutoffs.sort_by(f32::total_cmp);
+        let median = cutoffs[cutoffs.len() / 2];
+        let padded: Vec<f32> = core
+            .balls
+            .iter()
+            .map(|b| pad(math::sqrt(b.cutoff_d2)))
+            .collect();
+        let mut extent = [0.0f32; D];
+        let mut origin = lo;
+        for k in 0..D {
+            // Grow the box by the padding too.
+            let margin = pad(hi[k] - lo[k]) - (hi[k] - lo[k]) + f32::MIN_POSITIVE;
+            origin[k] = lo[k] - margin;
+            extent[k] = (hi[k] + margin) - origin[k];
+        }
+        let n = balls.len() as f64;
+        let cell_budget = 16.0 * n + 1024.0;
+        let entry_budget = 64.0 * n + 4096.0;
+        let max_extent = extent.iter().fold(0.0f32, |m, &e| m.max(e));
+        let mut cell = cell_size.unwrap_or(median).max(max_extent * 1e-6);
+        let mut dims = [1usize; D];
+        for _ in 0..256 {
+            if cell >= max_extent {
+                cell = max_extent.max(f32::MIN_POSITIVE);
+                dims = [1; D];
+                break;
+            }
+            let mut cells = 1.0f64;
+            for &e in &extent {
+                cells *= f64::from(math::ceil(e / cell)).max(1.0);
+            }
+            if cells <= cell_budget {
+                let mut total = 0.0f64;
+                for (ball, &r) in core.balls.iter().zip(&padded) {
+                    if ball.cutoff_d2 > 0.0 {
+                        let mut covered = 1.0f64;
+                        for _ in 0..D {
+                            covered *= f64::from(math::floor(2.0 * r / cell)) + 2.0;
+                        }
+                        total += covered;
+                    }
+                }
+                if total <= entry_budget {
+                    for k in 0..D {
+                        // `cells <= cell_budget` bounds each factor, so the cast is exact.
+                        dims[k] = (math::ceil(extent[k] / cell) as usize).max(1);
+                    }
+                    break;
+                }
+            }
+            cell *= 2.0;
+        }
+        core.origin = origin;
+        core.cell = cell;
+        core.inv_cell = 1.0 / cell;
+        core.dims = dims;
+        core.fill(&padded);
+        core
+    }
+
+    /// Counting sort of the balls into their cells, in ball order.
+    fn fill(&mut self, padded: &[f32]) {
+        let cells: usize = self.dims.iter().product();
+        let mut counts = vec![0u32; cells + 1];
+        let mut ranges = Vec::with_capacity(self.balls.len());
+        for (ball, &r) in self.balls.iter().zip(padded) {
+            if !(ball.cutoff_d2 > 0.0) {
+                ranges.push(None);
+                continue;
+            }
+            let mut from = [0usize; D];
+            let mut to = [0usize; D];
+            for k in 0..D {
+                from[k] = self.clamp_axis(k, ball.center[k] - r);
+                to[k] = self.clamp_axis(k, ball.center[k] + r);
+            }
+            for_each_cell(from, to, self.dims, |c| counts[c] += 1);
+            ranges.push(Some((from, to)));
+        }
+        let mut starts = Vec::with_capacity(cells + 1);
+        let mut running = 0u32;
+        for &c in &counts[..cells] {
+            starts.push(running);
+            running += c;
+        }
+        starts.push(running);
+        let mut cursor = starts.clone();
+        let empty = Entry {
+            center: [0.0; D],
+            inv_r2: 0.0,
+            cutoff_d2: 0.0,
+            index: 0,
+        };
+        let mut entries = vec![empty; running as usize];
+        for (ball, range) in self.balls.iter().zip(&ranges) {
+            if let Some((from, to)) = *range {
+                for_each_cell(from, to, self.dims, |c| {
+                    if let Some(slot) = cursor.get_mut(c) {
+                        if let Some(entry) = entries.get_mut(*slot as usize) {
+                            *entry = *ball;
+                        }
+                        *slot += 1;
+                    }
+                });
+            }
+        }
+        self.starts = starts;
+        self.entries = entries;
+    }
+
+    /// The cell coordinate of `x` along axis `k`, clamped into the grid.
+    fn clamp_axis(&self, k: usize, x: f32) -> usize {
+        let t = math::floor((x - self.origin[k]) * self.inv_cell);
+        if !(t > 0.0) {
+            0
+        } else {
+            (t as usize).min(self.dims[k].saturating_sub(1))
+        }
+    }
+
+    /// The entries of the cell holding `p`, empty outside the grid (or for a NaN `p`).
+    #[inline]
+    fn nearby(&self, p: &[f32; D]) -> &[Entry<D>] {
+        let mut cell = 0usize;
+        let mut stride = 1usize;
+        for ((&x, &origin), &dim) in p.iter().zip(&self.origin).zip(&self.dims) {
+            let t = (x - origin) * self.inv_cell;
+            // The cell budget keeps `dim` far below 2^24, so `dim as f32` is exact; NaN fails.
+            if !(t >= 0.0 && t < dim as f32) {
+                return &[];
+            }
+            cell += (t as usize).min(dim - 1) * stride;
+            stride *= dim;
+        }
+        match (self.starts.get(cell), self.starts.get(cell + 1)) {
+            (Some(&a), Some(&b)) => self.entries.get(a as usize..b as usize).unwrap_or(&[]),
+            _ => &[],
+        }
+    }
+
+    pub(crate) fn len(&self) -> usize {
+        self.balls.len()
+    }
+
+    pub(crate) fn bounds(&self) -> ([f32; D], [f32; D]) {
+        self.bounds
+    }
+
+    pub(crate) fn value_error(&self) -> f32 {
+        self.value_error
+    }
+
+    pub(crate) fn gradient_error(&self) -> f32 {
+        self.gradient_error
+    }
+
+    pub(crate) fn cell_size(&self) -> f32 {
+        self.cell
+    }
+
+    pub(crate) fn cell_count(&self) -> usize {
+        self.starts.len() - 1
+    }
+
+    pub(crate) fn entry_count(&self) -> usize {
+        self.entries.len()
+    }
+
+    /// The culled sum.
+    pub(crate) fn value(&self, p: [f32; D]) -> f32 {
+        let entries = self.nearby(&p);
+        match self.kernel {
+            Kernel::Exponential { b } => {
+                culled_sum(entries, &p, |q| Kernel::Exponential { b }.value(q))
+            }
+            Kernel::Gauss {
+                strength,
+                sharpness,
+            } => culled_sum(entries, &p, |q| {
+                Kernel::Gauss {
+                    strength,
+                    sharpness,
+                }
+                .value(q)
+            }),
+            Kernel::Wyvill { peak } => {
+                culled_sum(entries, &p, |q| Kernel::Wyvill { peak }.value(q))
+            }
+        }
+    }
+
+    /// The exact sum over every ball, in ball order.
+    pub(crate) fn value_exact(&self, p: [f32; D]) -> f32 {
+        if !p.iter().all(|x| x.is_finite()) {
+            return 0.0;
+        }
+        let mut sum = 0.0;
+        for ball in &self.balls {
+            sum += self.kernel.value(distance2(&p, &ball.center) * ball.inv_r2);
+        }
+        finite_or_zero(sum)
+    }
+
+    /// The culled value and gradient.
+    pub(crate) fn value_and_gradient(&self, p: [f32; D]) -> (f32, [f32; D]) {
+        gradient_sum(self.kernel, self.nearby(&p), &p, true)
+    }
+
+    /// The exact value and gradient over every ball.
+    pub(crate) fn value_and_gradient_exact(&self, p: [f32; D]) -> (f32, [f32; D]) {
+        if !p.iter().all(|x| x.is_finite()) {
+            return (0.0, [0.0; D]);
+        }
+        gradient_sum(self.kernel, &self.balls, &p, false)
+    }
+
+    /// Calls `visit(ball index, contribution)` for every ball within its cutoff of `p`, in ball
+    /// order; returns the sum of the contributions.
+    fn for_each_contribution(&self, p: &[f32; D], mut visit: impl FnMut(u32, f32)) -> f32 {
+        let mut total = 0.0;
+        for e in self.nearby(p) {
+            let d2 = distance2(p, &e.center);
+            if d2 < e.cutoff_d2 {
+                let f = self.kernel.value(d2 * e.inv_r2);
+                if f > 0.0 && f.is_finite() {
+                    total += f;
+                    visit(e.index, f);
+                }
+            }
+        }
+        total
+    }
+
+    pub(crate) fn shares(&self, p: [f32; D], k: usize) -> Shares {
+        let mut per_id: SmallVec<[Share; 16]> = SmallVec::new();
+        if k == 0 {
+            return Shares::new();
+        }
+        self.for_each_contribution(&p, |index, f| {
+            let id = self.ids.get(index as usize).copied().unwrap_or(0);
+            if let Some(s) = per_id.iter_mut().find(|s| s.id == id) {
+                s.weight += f;
+            } else {
+                per_id.push(Share { id, weight: f });
+            }
+        });
+        per_id.sort_by(|a, b| b.weight.total_cmp(&a.weight).then(a.id.cmp(&b.id)));
+        per_id.truncate(k);
+        let total: f32 = per_id.iter().map(|s| s.weight).sum();
+        if !(total > 0.0) || !total.is_finite() {
+            return Shares::new();
+        }
+        let inv = 1.0 / total;
+        per_id
+            .into_iter()
+            .map(|s| Share {
+                id: s.id,
+                weight: s.weight * inv,
+            })
+            .collect()
+    }
+
+    pub(crate) fn blend<T>(&self, p: [f32; D], attributes: &[T]) -> Option<T>
+    where
+        T: Copy + Add<Output = T> + Mul<f32, Output = T>,
+    {
+        let mut acc: Option<T> = None;
+        let total = self.for_each_contribution(&p, |index, f| {
+            if let Some(&a) = attributes.get(index as usize) {
+                acc = Some(match acc {
+                    Some(sum) => sum + a * f,
+                    None => a * f,
+                });
+            }
+        });
+        if !(total > 0.0) || !total.is_finite() {
+            return None;
+        }
+        acc.map(|sum| sum * (1.0 / total))
+    }
+}
+
+/// The grid indices `k` in `0..count` with `lo ≤ origin + step k ≤ hi` (a superset, by a
+/// rounding margin), or `None` if there are none.
+fn index_range(lo: f32, hi: f32, origin: f32, step: f32, count: usize) -> Option<(usize, usize)> {
+    if count == 0 {
+        return None;
+    }
+    let first = math::floor((lo - origin) / step);
+    let last = math::ceil((hi - origin) / step);
+    let max = (count - 1) as f32;
+    if !(last >= 0.0 && first <= max) {
+        return None;
+    }
+    // Clamped into [0, count − 1] before the casts.
+    Some((first.max(0.0) as usize, last.min(max) as usize))
+}
+
+fn pad(r: f32) -> f32 {
+    r * (1.0 + BOX_PAD) + f32::MIN_POSITIVE
+}
+
+#[inline(always)]
+fn distance2<const D: usize>(p: &[f32; D], c: &[f32; D]) -> f32 {
+    let mut d2 = 0.0;
+    for k in 0..D {
+        let d = p[k] - c[k];
+        d2 += d * d;
+    }
+    d2
+}
+
+fn finite_or_zero(x: f32) -> f32 {
+    if x.is_finite() { x } else { 0.0 }
+}
+
+#[inline(always)]
+fn culled_sum<const D: usize>(
+    entries: &[Entry<D>],
+    p: &[f32; D],
+    kernel: impl Fn(f32) -> f32,
+) -> f32 {
+    let mut sum = 0.0;
+    for e in entries {
+        let d2 = distance2(p, &e.center);
+        if d2 < e.cutoff_d2 {
+            sum += kernel(d2 * e.inv_r2);
+        }
+    }
+    finite_or_zero(sum)
+}
+
+fn gradient_sum<const D: usize>(
+    kernel: Kernel,
+    entries: &[Entry<D>],
+    p: &[f32; D],
+    culled: bool,
+) -> (f32, [f32; D]) {
+    let mut value = 0.0;
+    let mut gradient = [0.0f32; D];
+    for e in entries {
+        let mut delta = [0.0f32; D];
+        let mut d2 = 0.0;
+        for k in 0..D {
+            delta[k] = p[k] - e.center[k];
+            d2 += delta[k] * delta[k];
+        }
+        if culled && !(d2 < e.cutoff_d2) {
+            continue;
+        }
+        let (f, slope2) = kernel.value_and_slope(d2 * e.inv_r2);
+        value += f;
+        let scale = slope2 * e.inv_r2;
+        for k in 0..D {
+            gradient[k] += scale * delta[k];
+        }
+    }
+    if value.is_finite() && gradient.iter().all(|g| g.is_finite()) {
+        (value, gradient)
+    } else {
+        (0.0, [0.0; D])
+    }
+}
+
+/// Calls `f` with the flat index of every cell in the inclusive box `from..=to`.
+fn for_each_cell<const D: usize>(
+    from: [usize; D],
+    to: [usize; D],
+    dims: [usize; D],
+    mut f: impl FnMut(usize),
+) {
+    let mut at = from;
+    loop {
+        let mut flat = 0usize;
+        let mut stride = 1usize;
+        for k in 0..D {
+            flat += at[k] * stride;
+            stride *= dims[k];
+        }
+        f(flat);
+        // Odometer increment, axis 0 fastest.
+        let mut k = 0;
+        loop {
+            if k == D {
+                return;
+            }
+            if at[k] < to[k] {
+                at[k] += 1;
+                break;
+            }
+            at[k] = from[k];
+            k += 1;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::Falloff;
+
+    fn scattered(count: usize, spread: f32) -> Vec<([f32; 2], f32, u32)> {
+        (0..count)
+            .map(|i| {
+                let a = i as f32;
+                let x = ((a * 0.618_034).fract() - 0.5) * spread;
+                let y = ((a * 0.414_213_5).fract() - 0.5) * spread;
+                (
+                    [x, y],
+                    2.0 + 10.0 * (a * 0.732_050_8).fract(),
+                    (i % 5) as u32,
+                )
+            })
+            .collect()
+    }
+
+    #[test]
+    fn culled_sum_skips_exactly_the_balls_beyond_their_cutoff() {
+        let balls = scattered(60, 300.0);
+        let kernel = Falloff::SEED.kernel();
+        let core = Core::<2>::build(&balls, kernel, 1e-4, None);
+        for i in 0..2000 {
+            let a = i as f32;
+            let p = [
+                ((a * 0.377).fract() - 0.5) * 400.0,
+                ((a * 0.291).fract() - 0.5) * 400.0,
+            ];
+            // Brute force over the balls within their cutoff, in ball order.
+            let mut expected = 0.0;
+            for ball in &core.balls {
+                let d2 = distance2(&p, &ball.center);
+                if d2 < ball.cutoff_d2 {
+                    expected += kernel.value(d2 * ball.inv_r2);
+                }
+            }
+            assert_eq!(core.value(p).to_bits(), expected.to_bits(), "at {p:?}");
+        }
+    }
+
+    #[test]
+    fn grid_stays_within_its_budgets_for_a_wild_spread() {
+        // Tiny balls a trillion units apart, and a tiny explicit cell size.
+        let balls = [
+            ([-1e11, 0.0], 1e-3, 0),
+            ([1e11, 5.0], 1e-3, 1),
+            ([0.0, 0.0], 1e6, 2),
+        ];
+        for cell in [None, Some(1e-6)] {
+            let core = Core::<2>::build(&balls, Falloff::SEED.kernel(), 1e-4, cell);
+            assert!(core.cell_count() as f64 <= 16.0 * 3.0 + 1024.0);
+            assert!(core.entry_count() as f64 <= 64.0 * 3.0 + 4096.0);
+            assert!(core.value([0.0, 0.0]) > 1.0);
+            assert!(core.value([1e11, 5.0]) > 1.0);
+        }
+    }
+
+    #[test]
+    fn three_d_grid_agrees_with_the_exact_sum() {
+        let balls: Vec<([f32; 3], f32, u32)> = (0..40)
+            .map(|i| {
+                let a = i as f32;
+                (
+                    [
+                        (a * 0.618_034).fract() * 50.0,
+                        (a * 0.414_213_5).fract() * 50.0,
+                        (a * 0.732_050_8).fract() * 50.0,
+                    ],
+                    1.0 + (a * 0.5).fract() * 4.0,
+                    i,
+                )
+            })
+            .collect();
+        let core = Core::<3>::build(&balls, Falloff::SEED.kernel(), 1e-5, None);
+        for i in 0..500 {
+            let a = i as f32;
+            let p = [
+                (a * 0.377).fract() * 60.0 - 5.0,
+                (a * 0.291).fract() * 60.0 - 5.0,
+                (a * 0.123).fract() * 60.0 - 5.0,
+            ];
+            let exact = core.value_exact(p);
+            assert!((core.value(p) - exact).abs() <= core.value_error() + 1e-5 * exact.max(1.0));
+        }
+    }
+
+    #[test]
+    fn balls_weaker_than_epsilon_leave_an_empty_grid() {
+        let weak = Falloff::Blinn {
+            strength: 1e-5,
+            sharpness: 1.0,
+        };
+        let core = Core::<2>::build(&[([0.0, 0.0], 1.0, 0)], weak.kernel(), 1e-4, None);
+        assert_eq!(core.entry_count(), 0);
+        assert_eq!(core.value([0.0, 0.0]), 0.0);
+        assert!(core.value_exact([0.0, 0.0]) <= core.value_error());
+    }
+
+    #[test]
+    fn non_finite_points_are_outside() {
+        let core = Core::<2>::build(&scattered(10, 50.0), Falloff::SEED.kernel(), 1e-4, None);
+        for p in [
+            [f32::NAN, 0.0],
+            [f32::INFINITY, 0.0],
+            [0.0, f32::NEG_INFINITY],
+        ] {
+            assert_eq!(core.value(p), 0.0);
+            assert_eq!(core.value_exact(p), 0.0);
+            assert_eq!(core.value_and_gradient(p), (0.0, [0.0; 2]));
+            assert!(core.shares(p, 4).is_empty());
+        }
+    }
+
+    #[test]
+    fn grid_sampling_sums_the_same_balls_as_point_sampling() {
+        let balls = scattered(40, 150.0);
+        for falloff in [Falloff::SEED, Falloff::BLINN, Falloff::WYVILL] {
+            let core = Core::<2>::build(&balls, falloff.kernel(), 1e-4, None);
+            for (origin, step, width, height) in [
+                ([-90.0, -80.0], 2.5, 70, 64),
+                ([-300.0, 10.0], 7.0, 90, 3),
+                ([0.0, 0.0], 1e3, 1, 1),
+                ([500.0, 500.0], 1.0, 5, 5),
+            ] {
+                let samples = core.sample_grid(origin, step, width, height);
+                assert_eq!(samples.len(), width * height);
+                for i in 0..height {
+                    for j in 0..width {
+                        let p = [origin[0] + step * j as f32, origin[1] + step * i as f32];
+                        let v = core.value(p);
+                        let s = samples[i * width + j];
+                        assert!((s - v).abs() <= 1e-6 * v.max(1.0), "{falloff:?} at {p:?}");
+                        assert_eq!(s == 0.0, v == 0.0);
+                    }
+                }
+            }
+            assert!(core.sample_grid([0.0, 0.0], 1.0, 0, 7).is_empty());
+        }
+    }
+
+    #[test]
+    fn cells_list_balls_in_ball_order() {
+        let core = Core::<2>::build(&scattered(80, 200.0), Falloff::SEED.kernel(), 1e-4, None);
+        for c in 0..core.cell_count() {
+            let list = &core.entries[core.starts[c] as usize..core.starts[c + 1] as usize];
+            assert!(list.windows(2).all(|w| w[0].index < w[1].index));
+        }
+    }
+}

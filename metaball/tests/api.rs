@@ -1,0 +1,426 @@
+//! Integration tests through the public API only.
+
+// Helpers outside `#[test]` functions unwrap too: a failure there is a test failure.
+#![allow(clippy::unwrap_used)]
+
+mod support;
+
+use approx::assert_abs_diff_eq;
+use creature_metaball::glam::{Vec2, Vec3, Vec4};
+use creature_metaball::{
+    Ball2, Ball3, CoverOptions, Falloff, Field2, Field3, FieldOptions, ISO_LEVEL, MetaballError,
+    SEED_BLOBBINESS, cover_radius_factor, cover_segment, cover_segment_with,
+};
+
+use support::reference;
+
+/// Points spread over a box, deterministic.
+fn points(min: Vec2, max: Vec2, count: usize) -> Vec<Vec2> {
+    (0..count)
+        .map(|i| {
+            let a = i as f32;
+            let t = Vec2::new((a * 0.618_034).fract(), (a * 0.414_213_5).fract());
+            min + (max - min) * t
+        })
+        .collect()
+}
+
+#[test]
+fn culled_field_matches_the_seed_reference_within_the_bound() {
+    let balls = reference::creature();
+    assert!((40..=60).contains(&balls.len()), "{}", balls.len());
+    let field = Field2::new(&balls, Falloff::SEED).unwrap();
+    let (min, max) = field.bounds();
+    let mut worst = 0.0f32;
+    for p in points(min - 20.0, max + 20.0, 20_000) {
+        let expected = reference::value(&balls, SEED_BLOBBINESS, p);
+        let error = (field.value(p) - expected).abs();
+        worst = worst.max(error);
+        assert!(
+            error <= field.error_bound() + 2e-6 * expected.max(1.0),
+            "at {p}: {} vs {expected}",
+            field.value(p)
+        );
+        assert_abs_diff_eq!(
+            field.value_exact(p),
+            expected,
+            epsilon = 2e-6 * expected.max(1.0)
+        );
+    }
+    // The bound is honest but loose: far balls contribute far less than epsilon.
+    assert!(worst < field.error_bound(), "{worst}");
+}
+
+#[test]
+fn inside_test_agrees_with_the_reference_away_from_the_iso_line() {
+    let balls = reference::creature();
+    let field = Field2::new(&balls, Falloff::SEED).unwrap();
+    let (min, max) = field.bounds();
+    for p in points(min, max, 20_000) {
+        let exact = reference::value(&balls, SEED_BLOBBINESS, p);
+        if (exact - ISO_LEVEL).abs() > field.error_bound() {
+            assert_eq!(field.contains(p), exact >= ISO_LEVEL, "at {p}");
+        }
+    }
+}
+
+#[test]
+fn gradient_is_the_derivative_of_the_value() {
+    let balls = reference::creature();
+    for falloff in [Falloff::SEED, Falloff::WYVILL, Falloff::BLINN] {
+        let field = Field2::new(&balls, falloff).unwrap();
+        let (min, max) = field.bounds();
+        for p in points(min, max, 2_000) {
+            let h = 1e-2;
+            let numeric = Vec2::new(
+                field.value_exact(p + Vec2::X * h) - field.value_exact(p - Vec2::X * h),
+                field.value_exact(p + Vec2::Y * h) - field.value_exact(p - Vec2::Y * h),
+            ) / (2.0 * h);
+            let analytic = field.gradient_exact(p);
+            let scale = 1e-3 * (1.0 + field.value_exact(p)) + 2e-2 * numeric.length();
+            assert!(
+                (analytic - numeric).length() <= scale,
+                "{falloff:?} at {p}: {analytic} vs {numeric}"
+            );
+            let culled = field.gradient(p);
+            assert!(
+                (culled - analytic).length() <= field.gradient_error_bound() + 1e-5,
+                "{falloff:?} at {p}: {culled} vs {analytic}"
+            );
+        }
+    }
+}
+
+#[test]
+fn shares_reproduce_the_seed_skinning_inside_the_body() {
+    let balls = reference::creature();
+    let field = Field2::new(&balls, Falloff::SEED).unwrap();
+    let (min, max) = field.bounds();
+    let mut compared = 0;
+    for p in points(min, max, 5_000) {
+        if !field.contains(p) {
+            continue;
+        }
+        let expected = reference::shares(&balls, SEED_BLOBBINESS, p, 4);
+        let got = field.shares(p, 4);
+        assert!((got.iter().map(|s| s.weight).sum::<f32>() - 1.0).abs() < 1e-5);
+        // Ids whose weight differs by more than culling can explain must be ranked the same.
+        for (s, &(id, w)) in got.iter().zip(&expected) {
+            if w > 1e-3 {
+                assert_eq!(s.id, id, "at {p}: {got:?} vs {expected:?}");
+                assert!(
+                    (s.weight - w).abs() < 1e-3,
+                    "at {p}: {got:?} vs {expected:?}"
+                );
+            }
+        }
+        compared += 1;
+    }
+    assert!(compared > 500, "{compared}");
+}
+
+#[test]
+fn shares_are_sorted_normalised_and_capped_at_k() {
+    let balls = reference::creature();
+    let field = Field2::new(&balls, Falloff::SEED).unwrap();
+    let p = Vec2::new(20.0, 75.0);
+    for k in 0..8 {
+        let shares = field.shares(p, k);
+        assert!(shares.len() <= k);
+        if k > 0 {
+            assert!(!shares.is_empty());
+            assert_abs_diff_eq!(
+                shares.iter().map(|s| s.weight).sum::<f32>(),
+                1.0,
+                epsilon = 1e-5
+            );
+        }
+        assert!(shares.windows(2).all(|w| w[0].weight >= w[1].weight));
+    }
+    assert!(field.shares(Vec2::splat(1e6), 4).is_empty());
+}
+
+#[test]
+fn blending_interpolates_per_ball_attributes() {
+    let balls = reference::creature();
+    let field = Field2::new(&balls, Falloff::SEED).unwrap();
+    let constant = vec![Vec4::new(0.2, 0.4, 0.6, 0.8); balls.len()];
+    // One-hot per id: the blend of the indicator of id 1 is id 1's share over all ids.
+    let indicator: Vec<f32> = balls.iter().map(|b| f32::from(b.id == 1)).collect();
+    for p in points(Vec2::new(-100.0, -20.0), Vec2::new(100.0, 320.0), 2_000) {
+        match field.blend(p, &constant).unwrap() {
+            Some(c) => assert_abs_diff_eq!(c, constant[0], epsilon = 1e-5),
+            None => assert_eq!(field.value(p), 0.0),
+        }
+        if let Some(w) = field.blend(p, &indicator).unwrap() {
+            let share = field
+                .shares(p, usize::MAX)
+                .iter()
+                .find(|s| s.id == 1)
+                .map_or(0.0, |s| s.weight);
+            assert_abs_diff_eq!(w, share, epsilon = 1e-5);
+        }
+    }
+    assert_eq!(
+        field.blend(Vec2::ZERO, &constant[1..]),
+        Err(MetaballError::WrongLength {
+            what: "attributes",
+            expected: balls.len(),
+            found: balls.len() - 1
+        })
+    );
+}
+
+#[test]
+fn every_falloff_puts_a_lone_ball_iso_line_at_its_documented_radius() {
+    for falloff in [
+        Falloff::SEED,
+        Falloff::WYVILL,
+        Falloff::BLINN,
+        Falloff::Exponential { blobbiness: -3.0 },
+    ] {
+        let ball = Ball2::new(Vec2::new(5.0, -3.0), 12.0, 0);
+        let field = Field2::new(&[ball], falloff).unwrap();
+        let r = falloff.iso_radius(12.0);
+        for angle in 0..16 {
+            let dir = Vec2::from_angle(angle as f32 * 0.39);
+            assert_abs_diff_eq!(
+                field.value(ball.center + dir * r),
+                ISO_LEVEL,
+                epsilon = 1e-5
+            );
+        }
+    }
+}
+
+#[test]
+fn wyvill_culling_is_exact() {
+    let balls = reference::creature();
+    let field = Field2::new(&balls, Falloff::WYVILL).unwrap();
+    assert_eq!(field.error_bound(), 0.0);
+    assert_eq!(field.gradient_error_bound(), 0.0);
+    let (min, max) = field.bounds();
+    for p in points(min, max, 5_000) {
+        assert_abs_diff_eq!(field.value(p), field.value_exact(p), epsilon = 1e-6);
+    }
+}
+
+#[test]
+fn value_is_exactly_zero_outside_the_bounds() {
+    let field = Field2::new(&reference::creature(), Falloff::SEED).unwrap();
+    let (min, max) = field.bounds();
+    for p in [
+        min - 1.0,
+        max + 1.0,
+        Vec2::new(min.x - 0.01, max.y),
+        Vec2::new(1e9, 0.0),
+    ] {
+        assert_eq!(field.value(p), 0.0);
+        assert_eq!(field.gradient(p), Vec2::ZERO);
+    }
+}
+
+#[test]
+fn sample_grid_lays_out_rows_of_columns() {
+    let field = Field2::new(&reference::creature(), Falloff::SEED).unwrap();
+    let origin = Vec2::new(-150.0, -40.0);
+    let samples = field.sample_grid(origin, 5.0, 61, 83).unwrap();
+    assert_eq!(samples.len(), 61 * 83);
+    for row in 0..83 {
+        for column in 0..61 {
+            let p = origin + 5.0 * Vec2::new(column as f32, row as f32);
+            let v = field.value(p);
+            let s = samples[row * 61 + column];
+            // The same balls in the same order; the terms differ only by rounding.
+            assert_abs_diff_eq!(s, v, epsilon = 1e-6 * v.max(1.0));
+            assert_eq!(s == 0.0, v == 0.0, "at {p}");
+        }
+    }
+    assert!(field.sample_grid(origin, 5.0, 0, 10).unwrap().is_empty());
+    assert!(matches!(
+        field.sample_grid(origin, 0.0, 2, 2),
+        Err(MetaballError::NotPositive {
+            what: "grid step",
+            ..
+        })
+    ));
+    assert!(matches!(
+        field.sample_grid(Vec2::NAN, 1.0, 2, 2),
+        Err(MetaballError::NonFinite {
+            what: "grid origin",
+            ..
+        })
+    ));
+    assert!(matches!(
+        field.sample_grid(origin, 1.0, usize::MAX, 2),
+        Err(MetaballError::OutOfRange { .. })
+    ));
+}
+
+#[test]
+fn bad_inputs_are_typed_errors() {
+    let good = Ball2::new(Vec2::ZERO, 1.0, 0);
+    assert_eq!(Field2::new(&[], Falloff::SEED), Err(MetaballError::NoBalls));
+    assert_eq!(
+        Field2::new(
+            &[good, Ball2::new(Vec2::new(f32::NAN, 0.0), 1.0, 0)],
+            Falloff::SEED
+        ),
+        Err(MetaballError::NonFinite {
+            what: "ball center",
+            index: 1
+        })
+    );
+    assert_eq!(
+        Field2::new(
+            &[good, good, Ball2::new(Vec2::ZERO, -2.0, 0)],
+            Falloff::SEED
+        ),
+        Err(MetaballError::NotPositive {
+            what: "ball radius",
+            index: 2,
+            value: -2.0
+        })
+    );
+    assert!(matches!(
+        Field2::new(&[Ball2::new(Vec2::ZERO, f32::INFINITY, 0)], Falloff::SEED),
+        Err(MetaballError::NonFinite {
+            what: "ball radius",
+            ..
+        })
+    ));
+    assert!(matches!(
+        Field2::new(&[good], Falloff::Exponential { blobbiness: 0.0 }),
+        Err(MetaballError::OutOfRange {
+            what: "blobbiness",
+            ..
+        })
+    ));
+    for options in [
+        FieldOptions::DEFAULT.with_epsilon(0.0),
+        FieldOptions::DEFAULT.with_epsilon(1.0),
+        FieldOptions::DEFAULT.with_epsilon(f32::NAN),
+        FieldOptions::DEFAULT.with_cell_size(Some(0.0)),
+        FieldOptions::DEFAULT.with_cell_size(Some(f32::INFINITY)),
+    ] {
+        assert!(
+            Field2::with_options(&[good], &options).is_err(),
+            "{options:?}"
+        );
+    }
+    assert_eq!(Field3::new(&[], Falloff::SEED), Err(MetaballError::NoBalls));
+    assert!(matches!(
+        Field3::new(&[Ball3::new(Vec3::ZERO, 0.0, 0)], Falloff::SEED),
+        Err(MetaballError::NotPositive { index: 0, .. })
+    ));
+}
+
+#[test]
+fn field3_agrees_with_field2_in_the_plane() {
+    let flat = reference::creature();
+    let space: Vec<Ball3> = flat
+        .iter()
+        .map(|b| Ball3::new(b.center.extend(0.0), b.radius, b.id))
+        .collect();
+    let f2 = Field2::new(&flat, Falloff::SEED).unwrap();
+    let f3 = Field3::new(&space, Falloff::SEED).unwrap();
+    let (min, max) = f2.bounds();
+    for p in points(min, max, 3_000) {
+        assert_abs_diff_eq!(
+            f3.value_exact(p.extend(0.0)),
+            f2.value_exact(p),
+            epsilon = 1e-5
+        );
+        assert!((f3.value(p.extend(0.0)) - f2.value_exact(p)).abs() <= f3.error_bound() + 1e-5);
+        let g = f3.gradient_exact(p.extend(0.0));
+        assert_abs_diff_eq!(g.truncate(), f2.gradient_exact(p), epsilon = 1e-5);
+        assert_eq!(g.z, 0.0);
+        // Off the plane the field is smaller.
+        assert!(f3.value_exact(p.extend(5.0)) <= f2.value_exact(p));
+    }
+    let shares = f3.shares(Vec3::new(0.0, 100.0, 0.0), 4);
+    assert_eq!(
+        shares.as_slice(),
+        f2.shares(Vec2::new(0.0, 100.0), 4).as_slice()
+    );
+}
+
+#[test]
+fn same_input_same_bits() {
+    let balls = reference::creature();
+    let a = Field2::new(&balls, Falloff::SEED).unwrap();
+    let b = Field2::new(&balls, Falloff::SEED).unwrap();
+    assert_eq!(a, b);
+    for p in points(Vec2::splat(-100.0), Vec2::splat(300.0), 1_000) {
+        assert_eq!(a.value(p).to_bits(), b.value(p).to_bits());
+    }
+}
+
+/// Measures the iso half-width of a long straight chain, across the chain at `along`.
+fn half_width(field: &Field2, along: f32) -> f32 {
+    let (mut inside, mut outside) = (0.0f32, 100.0f32);
+    for _ in 0..60 {
+        let mid = 0.5 * (inside + outside);
+        if field.value_exact(Vec2::new(along, mid)) >= ISO_LEVEL {
+            inside = mid;
+        } else {
+            outside = mid;
+        }
+    }
+    inside
+}
+
+#[test]
+fn covering_reproduces_the_seed_thickness_table() {
+    // Reference §2.4, on an infinite straight chain: (m, at a ball, at a midpoint) in T.
+    // Equal spacing needs a length that is a multiple of the spacing: 2.97 T / m exactly.
+    let t = 10.0;
+    for (m, at_ball, at_mid) in [
+        (1.0, 1.02, 0.43),
+        (1.2, 0.96, 0.68),
+        (1.4, 1.02, 0.94),
+        (1.6, 1.16, 1.14),
+    ] {
+        let spacing = 2.97 * t / m;
+        let steps = 40;
+        let length = spacing * steps as f32 * 0.9999;
+        let balls = cover_segment(Vec2::ZERO, Vec2::new(length, 0.0), t, m, 0).unwrap();
+        assert_eq!(balls.len(), steps + 1);
+        assert_abs_diff_eq!(balls[0].radius, t * cover_radius_factor(m), epsilon = 1e-5);
+        let field = Field2::new(&balls, Falloff::SEED).unwrap();
+        let centre = balls[steps / 2].center.x;
+        let gap = balls[steps / 2 + 1].center.x - centre;
+        assert_abs_diff_eq!(half_width(&field, centre) / t, at_ball, epsilon = 0.006);
+        assert_abs_diff_eq!(
+            half_width(&field, centre + gap / 2.0) / t,
+            at_mid,
+            epsilon = 0.006
+        );
+    }
+}
+
+#[test]
+fn interior_joints_leave_no_double_ball() {
+    // Two spine segments meeting at a joint, covered the seed's way.
+    let root = Vec2::ZERO;
+    let joint = Vec2::new(0.0, 80.0);
+    let head = Vec2::new(0.0, 150.0);
+    let first = cover_segment(joint, root, 20.0, 1.3, 0).unwrap();
+    let second = cover_segment_with(
+        head,
+        joint,
+        15.0,
+        1.3,
+        1,
+        &CoverOptions::DEFAULT.with_interior_joint(true),
+    )
+    .unwrap();
+    assert_eq!(first[0].center, joint);
+    assert!(second.iter().all(|b| b.center.distance(joint) > 1.0));
+    let mut balls = first;
+    balls.extend(second);
+    let field = Field2::new(&balls, Falloff::SEED).unwrap();
+    for i in 0..=150 {
+        assert!(field.contains(Vec2::new(0.0, i as f32)), "gap at y = {i}");
+    }
+}

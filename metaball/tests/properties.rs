@@ -1,0 +1,331 @@
+//! Property tests of the invariants the crate promises, driven by its public strategies.
+
+use creature_metaball::glam::Vec2;
+use creature_metaball::{
+    CoverOptions, Falloff, Field2, Field3, FieldOptions, ISO_LEVEL, MetaballError, SEED_SPACING,
+    cover_radius_factor, cover_segment_with, strategies,
+};
+use proptest::prelude::*;
+use proptest::test_runner::FileFailurePersistence;
+
+/// Rounding slack for comparing two sums of the same terms in a different grouping.
+fn rounding(exact: f32) -> f32 {
+    2e-6 * exact.max(1.0)
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig {
+        cases: 256,
+        failure_persistence: Some(Box::new(FileFailurePersistence::Direct(
+            "proptest-regressions/properties.txt",
+        ))),
+        ..ProptestConfig::default()
+    })]
+
+    #[test]
+    fn culled_value_is_within_the_documented_bound_of_the_exact_sum(
+        field in strategies::field2(),
+        points in proptest::collection::vec(strategies::vec2_in(250.0), 32),
+    ) {
+        for p in points {
+            let exact = field.value_exact(p);
+            let culled = field.value(p);
+            prop_assert!(
+                (culled - exact).abs() <= field.error_bound() + rounding(exact),
+                "at {}: {} vs {} (bound {})", p, culled, exact, field.error_bound()
+            );
+            prop_assert!(culled >= 0.0 && culled.is_finite());
+        }
+    }
+
+    #[test]
+    fn culled_gradient_is_within_the_documented_bound(
+        field in strategies::field2(),
+        points in proptest::collection::vec(strategies::vec2_in(250.0), 32),
+    ) {
+        for p in points {
+            let exact = field.gradient_exact(p);
+            let culled = field.gradient(p);
+            let slack = 2e-6 * (1.0 + exact.length());
+            prop_assert!(
+                (culled - exact).length() <= field.gradient_error_bound() + slack,
+                "at {}: {} vs {} (bound {})", p, culled, exact, field.gradient_error_bound()
+            );
+            let (v, g) = field.value_and_gradient(p);
+            prop_assert_eq!(v, field.value(p));
+            prop_assert_eq!(g, culled);
+        }
+    }
+
+    #[test]
+    fn creature_fields_are_culled_within_the_bound(
+        balls in strategies::creature_balls(),
+        points in proptest::collection::vec(strategies::vec2_in(400.0), 64),
+    ) {
+        let field = Field2::new(&balls, Falloff::SEED).unwrap();
+        for p in points {
+            let exact = field.value_exact(p);
+            prop_assert!((field.value(p) - exact).abs() <= field.error_bound() + rounding(exact));
+        }
+    }
+
+    #[test]
+    fn culled_3d_value_is_within_the_documented_bound(
+        field in strategies::field3(),
+        points in proptest::collection::vec(strategies::vec3_in(150.0), 32),
+    ) {
+        for p in points {
+            let exact = field.value_exact(p);
+            prop_assert!((field.value(p) - exact).abs() <= field.error_bound() + rounding(exact));
+            let g = (field.gradient(p) - field.gradient_exact(p)).length();
+            prop_assert!(g <= field.gradient_error_bound() + 2e-6 * (1.0 + field.gradient_exact(p).length()));
+        }
+    }
+
+    #[test]
+    fn analytic_gradient_matches_finite_differences(
+        balls in strategies::ball_set2(8),
+        falloff in prop_oneof![Just(Falloff::SEED), Just(Falloff::BLINN)],
+        p in strategies::vec2_in(120.0),
+    ) {
+        let field = Field2::new(&balls, falloff).unwrap();
+        let h = 1e-2;
+        let diff = |a: Vec2, b: Vec2| {
+            ((f64::from(field.value_exact(a)) - f64::from(field.value_exact(b))) / (2.0 * f64::from(h))) as f32
+        };
+        let numeric = Vec2::new(
+            diff(p + Vec2::X * h, p - Vec2::X * h),
+            diff(p + Vec2::Y * h, p - Vec2::Y * h),
+        );
+        let analytic = field.gradient_exact(p);
+        // Curvature bounds the central-difference error by ~h² f''' ≤ value / R³ terms.
+        let min_radius = balls.iter().fold(f32::INFINITY, |m, b| m.min(b.radius));
+        let tolerance = 2e-3 * (1.0 + field.value_exact(p)) * (1.0 + 1.0 / min_radius)
+            + 1e-2 * numeric.length();
+        prop_assert!((analytic - numeric).length() <= tolerance, "{} vs {}", analytic, numeric);
+    }
+
+    #[test]
+    fn outputs_are_finite_even_for_wild_points(
+        field in strategies::field2(),
+        x in prop_oneof![strategies::non_finite_f32(), -1e30f32..1e30],
+        y in prop_oneof![strategies::non_finite_f32(), -1e30f32..1e30],
+    ) {
+        let p = Vec2::new(x, y);
+        prop_assert!(field.value(p).is_finite());
+        prop_assert!(field.value_exact(p).is_finite());
+        prop_assert!(field.gradient(p).is_finite());
+        prop_assert!(field.gradient_exact(p).is_finite());
+        prop_assert!(field.shares(p, 4).iter().all(|s| s.weight.is_finite()));
+        let ones = vec![1.0f32; field.ball_count()];
+        if let Some(v) = field.blend(p, &ones).unwrap() {
+            prop_assert!((v - 1.0).abs() < 1e-5);
+        }
+    }
+
+    #[test]
+    fn the_culled_field_is_zero_outside_its_bounds(
+        field in strategies::field2(),
+        direction in 0.0f32..6.3,
+        beyond in 0.001f32..1000.0,
+    ) {
+        let (min, max) = field.bounds();
+        let centre = (min + max) / 2.0;
+        let half = (max - min) / 2.0;
+        let d = Vec2::from_angle(direction);
+        // Step out of the box along d.
+        let t = (half.x / d.x.abs().max(1e-9)).min(half.y / d.y.abs().max(1e-9));
+        let p = centre + d * (t + beyond);
+        prop_assert_eq!(field.value(p), 0.0);
+    }
+
+    #[test]
+    fn shares_are_sorted_normalised_top_k(
+        field in strategies::field2(),
+        p in strategies::vec2_in(120.0),
+        k in 0usize..6,
+    ) {
+        let shares = field.shares(p, k);
+        prop_assert!(shares.len() <= k);
+        let ids: Vec<u32> = field.balls().iter().map(|b| b.id).collect();
+        for s in &shares {
+            prop_assert!(ids.contains(&s.id));
+            prop_assert!(s.weight > 0.0 && s.weight <= 1.0 + 1e-6);
+        }
+        for w in shares.windows(2) {
+            prop_assert!(w[0].weight > w[1].weight || (w[0].weight == w[1].weight && w[0].id < w[1].id));
+        }
+        if !shares.is_empty() {
+            let sum: f32 = shares.iter().map(|s| s.weight).sum();
+            prop_assert!((sum - 1.0).abs() < 1e-5);
+        } else if k > 0 {
+            prop_assert_eq!(field.value(p), 0.0);
+        }
+        // With every id kept, the shares are the per-id f/D of the culled field.
+        let all = field.shares(p, usize::MAX);
+        let value = field.value(p);
+        for s in &all {
+            let indicator: Vec<f32> = field.balls().iter().map(|b| f32::from(b.id == s.id)).collect();
+            let blended = field.blend(p, &indicator).unwrap().unwrap_or(0.0);
+            prop_assert!((blended - s.weight).abs() < 1e-5, "{} vs {} (D = {})", blended, s.weight, value);
+        }
+    }
+
+    #[test]
+    fn blending_a_constant_gives_the_constant(
+        field in strategies::field2(),
+        p in strategies::vec2_in(120.0),
+        c in strategies::vec3_in(10.0),
+    ) {
+        let attributes = vec![c; field.ball_count()];
+        match field.blend(p, &attributes).unwrap() {
+            Some(v) => prop_assert!((v - c).length() <= 1e-5 * (1.0 + c.length())),
+            None => prop_assert_eq!(field.value(p), 0.0),
+        }
+        prop_assert!(field.blend(p, &attributes[1..]).is_err());
+    }
+
+    #[test]
+    fn covering_follows_the_seed_rules(
+        (from, to, thickness, multiplier, joint) in strategies::segment(),
+        id in any::<u32>(),
+    ) {
+        let options = CoverOptions::DEFAULT.with_interior_joint(joint);
+        let balls = cover_segment_with(from, to, thickness, multiplier, id, &options).unwrap();
+        let length = from.distance(to);
+        let steps = (length / (SEED_SPACING * thickness) * multiplier).ceil() as usize;
+        prop_assert_eq!(balls.len(), steps + 1);
+        prop_assert_eq!(balls[0].center, from);
+        let radius = thickness * cover_radius_factor(multiplier);
+        for b in &balls {
+            prop_assert_eq!(b.radius, radius);
+            prop_assert_eq!(b.id, id);
+        }
+        if steps > 0 {
+            let spacing = length / steps as f32;
+            prop_assert!(spacing <= SEED_SPACING * thickness / multiplier * (1.0 + 1e-5));
+            for w in balls[..steps].windows(2) {
+                prop_assert!((w[0].center.distance(w[1].center) - spacing).abs() <= 1e-3 * (1.0 + spacing));
+            }
+            let last = balls[steps].center;
+            let expected = if joint { to - (to - from) * (0.5 / steps as f32) } else { to };
+            prop_assert!(last.distance(expected) <= 1e-4 * (1.0 + length), "{} vs {}", last, expected);
+        }
+    }
+
+    #[test]
+    fn a_covered_segment_is_connected(
+        (from, to, thickness, multiplier, joint) in strategies::segment(),
+    ) {
+        let options = CoverOptions::DEFAULT.with_interior_joint(joint);
+        let balls = cover_segment_with(from, to, thickness, multiplier, 0, &options).unwrap();
+        let field = Field2::new(&balls, Falloff::SEED).unwrap();
+        // An interior joint's last half step is covered by the parent segment's ball at `to`.
+        let end = if joint { balls[balls.len() - 1].center } else { to };
+        for i in 0..=64 {
+            let p = from.lerp(end, i as f32 / 64.0);
+            prop_assert!(field.value(p) >= ISO_LEVEL, "gap at {}", p);
+        }
+    }
+
+    #[test]
+    fn bad_balls_are_rejected_with_their_index(
+        mut balls in strategies::ball_set2(10),
+        bad in strategies::bad_ball2(),
+        at in any::<prop::sample::Index>(),
+    ) {
+        let index = at.index(balls.len() + 1);
+        balls.insert(index, bad);
+        let error = Field2::new(&balls, Falloff::SEED).unwrap_err();
+        let reported = match error {
+            MetaballError::NonFinite { index, .. }
+            | MetaballError::NotPositive { index, .. }
+            | MetaballError::OutOfRange { index, .. } => index,
+            other => return Err(TestCaseError::fail(format!("unexpected {other:?}"))),
+        };
+        prop_assert_eq!(reported, index);
+        prop_assert!(bad.validate().is_err());
+    }
+
+    #[test]
+    fn bad_3d_balls_are_rejected(bad in strategies::bad_ball3()) {
+        prop_assert!(Field3::new(&[bad], Falloff::SEED).is_err());
+    }
+
+    #[test]
+    fn bad_falloffs_are_rejected(balls in strategies::ball_set2(4), falloff in strategies::bad_falloff()) {
+        prop_assert!(falloff.validate().is_err());
+        prop_assert!(Field2::new(&balls, falloff).is_err());
+        prop_assert!(Field2::with_options(&balls, &FieldOptions::DEFAULT.with_falloff(falloff)).is_err());
+    }
+
+    #[test]
+    fn bad_bone_parameters_are_rejected(
+        (from, to, thickness, multiplier, _) in strategies::segment(),
+        bad_multiplier in strategies::bad_multiplier(),
+        bad_thickness in strategies::bad_thickness(),
+        bad_end in strategies::non_finite_f32(),
+    ) {
+        let options = CoverOptions::DEFAULT;
+        prop_assert!(cover_segment_with(from, to, thickness, bad_multiplier, 0, &options).is_err());
+        prop_assert!(cover_segment_with(from, to, bad_thickness, multiplier, 0, &options).is_err());
+        prop_assert!(cover_segment_with(Vec2::new(bad_end, 0.0), to, thickness, multiplier, 0, &options).is_err());
+    }
+
+    #[test]
+    fn building_twice_gives_the_same_bits(
+        balls in strategies::ball_set2(24),
+        options in strategies::field_options(),
+        p in strategies::vec2_in(150.0),
+    ) {
+        let a = Field2::with_options(&balls, &options).unwrap();
+        let b = Field2::with_options(&balls, &options).unwrap();
+        prop_assert_eq!(a.value(p).to_bits(), b.value(p).to_bits());
+        prop_assert_eq!(a.gradient(p), b.gradient(p));
+    }
+
+    #[test]
+    fn the_cell_size_does_not_change_the_culled_value(
+        balls in strategies::ball_set2(16),
+        cell in 0.5f32..300.0,
+        p in strategies::vec2_in(150.0),
+    ) {
+        let auto = Field2::new(&balls, Falloff::SEED).unwrap();
+        let fixed = Field2::with_options(&balls, &FieldOptions::DEFAULT.with_cell_size(Some(cell))).unwrap();
+        // Both sum the same balls (those within their cutoff) in the same order.
+        prop_assert_eq!(auto.value(p).to_bits(), fixed.value(p).to_bits());
+    }
+
+    #[test]
+    fn grid_samples_agree_with_point_samples(
+        field in strategies::field2(),
+        origin in strategies::vec2_in(150.0),
+        step in 0.5f32..20.0,
+        width in 0usize..24,
+        height in 0usize..24,
+    ) {
+        let samples = field.sample_grid(origin, step, width, height).unwrap();
+        prop_assert_eq!(samples.len(), width * height);
+        for row in 0..height {
+            for column in 0..width {
+                let p = origin + step * Vec2::new(column as f32, row as f32);
+                let v = field.value(p);
+                let s = samples[row * width + column];
+                prop_assert!((s - v).abs() <= 1e-6 * v.max(1.0), "at {}: {} vs {}", p, s, v);
+                prop_assert_eq!(s == 0.0, v == 0.0);
+            }
+        }
+    }
+
+    #[test]
+    fn a_lone_ball_meets_the_iso_level_at_its_iso_radius(
+        ball in strategies::ball2(),
+        falloff in strategies::falloff(),
+        angle in 0.0f32..6.3,
+    ) {
+        let field = Field2::new(&[ball], falloff).unwrap();
+        let r = falloff.iso_radius(ball.radius);
+        let p = ball.center + Vec2::from_angle(angle) * r;
+        prop_assert!((field.value(p) - ISO_LEVEL).abs() < 1e-4, "{}", field.value(p));
+    }
+}

@@ -77,8 +77,9 @@ impl Default for InverseOptions {
 pub const MAX_FOLD_SAMPLES: usize = 256;
 
 impl Lattice {
-    /// The Jacobian `∂deform/∂p` at world point `p`: the identity for an undeformed lattice, and
-    /// outside the lattice under [`OutsidePolicy::Unchanged`].
+    /// The Jacobian `∂deform/∂p` at world point `p`: the identity for an undeformed lattice,
+    /// outside the lattice under [`OutsidePolicy::Unchanged`], and at a non-finite `p` (which
+    /// [`Lattice::deform`] passes through unchanged).
     ///
     /// ```
     /// use creature_ffd::{glam::{Mat3, Vec3}, Lattice};
@@ -96,6 +97,9 @@ impl Lattice {
     /// ```
     #[must_use]
     pub fn jacobian(&self, p: Vec3) -> Mat3 {
+        if !p.is_finite() {
+            return Mat3::IDENTITY;
+        }
         let local = self.local_coords(p);
         if self.outside_policy() == OutsidePolicy::Unchanged && !is_inside(local) {
             return Mat3::IDENTITY;
@@ -165,13 +169,13 @@ impl Lattice {
         if !p.is_finite() {
             return Err(FfdError::NonFinite {
                 what: "point",
-                index: 0,
+                index: None,
             });
         }
         if !normal.is_finite() {
             return Err(FfdError::NonFinite {
                 what: "normal",
-                index: 0,
+                index: None,
             });
         }
         let j = self.jacobian(p);
@@ -276,13 +280,13 @@ impl Lattice {
         if !q.is_finite() {
             return Err(FfdError::NonFinite {
                 what: "point",
-                index: 0,
+                index: None,
             });
         }
         if !options.tolerance.is_finite() {
             return Err(FfdError::NonFinite {
                 what: "tolerance",
-                index: 0,
+                index: None,
             });
         }
         if !self.is_deformed() {

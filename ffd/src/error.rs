@@ -11,12 +11,14 @@ use glam::Vec3;
 #[derive(Debug, Clone, PartialEq)]
 #[non_exhaustive]
 pub enum FfdError {
-    /// A float input (origin, axis, point, scale, gap, padding) was NaN or infinite.
+    /// A float input (origin, axis, point, normal, scale, offset, gap, tolerance) was NaN or
+    /// infinite.
     NonFinite {
         /// Which input, e.g. `"origin"`, `"axis"`, `"point"`, `"control point"`.
         what: &'static str,
-        /// Position of the value in its list (axis number, point index), 0 for single values.
-        index: usize,
+        /// Position of the value in its list (axis number, point index), `None` for a single
+        /// value.
+        index: Option<usize>,
     },
     /// A lattice needs at least one division along every axis.
     ZeroDivisions {
@@ -56,15 +58,23 @@ pub enum FfdError {
     },
     /// [`Lattice::around`](crate::Lattice::around) needs at least one point.
     NoPoints,
-    /// A value that must be positive (or, for padding, non-negative) was not.
+    /// A scale factor or gap that must be greater than zero was not.
     NotPositive {
-        /// Which input, e.g. `"scale"`, `"gap"`, `"padding"`, `"samples per axis"`.
+        /// Which input: `"scale"` (the index is the axis) or `"gap"` (the index is the gap's).
         what: &'static str,
         /// Position of the value in its list, 0 for single values.
         index: usize,
         /// The value given.
         value: f32,
     },
+    /// [`Lattice::around`](crate::Lattice::around) was given a negative or non-finite padding.
+    InvalidPadding {
+        /// The padding given.
+        value: f32,
+    },
+    /// [`Lattice::around`](crate::Lattice::around)'s points, with their padding, span more than
+    /// `f32` can represent.
+    TooLarge,
     /// A list had the wrong length.
     WrongLength {
         /// Which list, e.g. `"gaps"`.
@@ -101,11 +111,12 @@ pub enum FfdError {
 impl fmt::Display for FfdError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match *self {
-            Self::NonFinite { what, index } => {
-                write!(
-                    f,
-                    "{what} {index} is NaN or infinite: pass finite coordinates"
-                )
+            Self::NonFinite {
+                what,
+                index: Some(index),
+            } => write!(f, "{what} {index} is NaN or infinite: pass finite values"),
+            Self::NonFinite { what, index: None } => {
+                write!(f, "{what} is NaN or infinite: pass finite values")
             }
             Self::ZeroDivisions { axis } => write!(
                 f,
@@ -138,12 +149,18 @@ impl fmt::Display for FfdError {
             ),
             Self::NoPoints => write!(f, "no points were given: pass at least one point"),
             Self::NotPositive { what, index, value } => {
-                if what == "padding" {
-                    write!(f, "padding is {value}: pass a padding of zero or more")
-                } else {
-                    write!(f, "{what} {index} is {value}: it must be greater than zero")
-                }
+                write!(f, "{what} {index} is {value}: it must be greater than zero")
             }
+            Self::InvalidPadding { value } => {
+                write!(
+                    f,
+                    "padding is {value}: pass a finite padding of zero or more"
+                )
+            }
+            Self::TooLarge => write!(
+                f,
+                "the points and padding span more than f32 can represent: scale or recentre them"
+            ),
             Self::WrongLength {
                 what,
                 expected,
@@ -185,13 +202,20 @@ mod tests {
     fn messages_say_what_to_fix() {
         let msg = FfdError::ZeroDivisions { axis: 2 }.to_string();
         assert!(msg.contains("at least 1"), "{msg}");
-        let msg = FfdError::NotPositive {
-            what: "padding",
-            index: 0,
-            value: -1.0,
+        let msg = FfdError::InvalidPadding { value: -1.0 }.to_string();
+        assert!(msg.contains("zero or more"), "{msg}");
+        let msg = FfdError::NonFinite {
+            what: "origin",
+            index: None,
         }
         .to_string();
-        assert!(msg.contains("zero or more"), "{msg}");
+        assert_eq!(msg, "origin is NaN or infinite: pass finite values");
+        let msg = FfdError::NonFinite {
+            what: "point",
+            index: Some(3),
+        }
+        .to_string();
+        assert_eq!(msg, "point 3 is NaN or infinite: pass finite values");
         let msg = FfdError::SliceOutOfRange {
             axis: 2,
             slice: 11,

@@ -126,14 +126,14 @@ impl Lattice {
         if !origin.is_finite() {
             return Err(FfdError::NonFinite {
                 what: "origin",
-                index: 0,
+                index: None,
             });
         }
         for (index, axis) in axes.iter().enumerate() {
             if !axis.is_finite() {
                 return Err(FfdError::NonFinite {
                     what: "axis",
-                    index,
+                    index: Some(index),
                 });
             }
         }
@@ -197,7 +197,8 @@ impl Lattice {
     ///
     /// # Errors
     /// [`FfdError::NoPoints`] for an empty slice, [`FfdError::NonFinite`] naming the first
-    /// non-finite point, [`FfdError::NotPositive`] for a negative or non-finite padding, and the
+    /// non-finite point, [`FfdError::InvalidPadding`] for a negative or non-finite padding,
+    /// [`FfdError::TooLarge`] when the padded box overflows `f32`, and the
     /// errors of [`Lattice::new`] (a flat box is [`FfdError::DegenerateAxes`]).
     ///
     /// ```
@@ -210,15 +211,14 @@ impl Lattice {
     /// ```
     pub fn around(points: &[Vec3], divisions: [usize; 3], padding: f32) -> Result<Self, FfdError> {
         if !(padding >= 0.0) || !padding.is_finite() {
-            return Err(FfdError::NotPositive {
-                what: "padding",
-                index: 0,
-                value: padding,
-            });
+            return Err(FfdError::InvalidPadding { value: padding });
         }
         let (min, max) = bounds(points)?;
         let min = min - Vec3::splat(padding);
         let extent = max + Vec3::splat(padding) - min;
+        if !min.is_finite() || !extent.is_finite() {
+            return Err(FfdError::TooLarge);
+        }
         Self::new(
             min,
             [
@@ -311,7 +311,7 @@ impl Lattice {
         if !p.is_finite() {
             return Err(FfdError::NonFinite {
                 what: "control point",
-                index: idx,
+                index: Some(idx),
             });
         }
         self.write(idx, index, p);
@@ -376,9 +376,11 @@ impl Lattice {
     /// The deformed position of `p`: the trivariate Bernstein sum over the control points.
     ///
     /// Points outside the lattice follow the [`OutsidePolicy`]. An undeformed lattice returns
-    /// `p` exactly. A non-finite `p` is returned unchanged, and with
-    /// [`OutsidePolicy::Extrapolate`] a point very far outside can overflow to infinity: use
-    /// [`Lattice::try_deform`] to have both reported as errors.
+    /// `p` exactly. A non-finite `p` is returned unchanged. With [`OutsidePolicy::Extrapolate`], a
+    /// point so far outside that the Bernstein polynomial overflows `f32` (local coordinates
+    /// beyond roughly ±10^(38/degree)) comes back non-finite (NaN or infinite): use
+    /// [`Lattice::try_deform`] to have both cases reported as errors, or
+    /// [`OutsidePolicy::Unchanged`].
     #[must_use]
     #[inline]
     pub fn deform(&self, p: Vec3) -> Vec3 {
@@ -400,7 +402,7 @@ impl Lattice {
         if !p.is_finite() {
             return Err(FfdError::NonFinite {
                 what: "point",
-                index: 0,
+                index: None,
             });
         }
         let q = self.deform(p);
@@ -450,7 +452,7 @@ impl Lattice {
         if let Some(index) = points.iter().position(|p| !p.is_finite()) {
             return Err(FfdError::NonFinite {
                 what: "point",
-                index,
+                index: Some(index),
             });
         }
         for (index, p) in points.iter_mut().enumerate() {
@@ -608,7 +610,7 @@ fn bounds(points: &[Vec3]) -> Result<(Vec3, Vec3), FfdError> {
         if !p.is_finite() {
             return Err(FfdError::NonFinite {
                 what: "point",
-                index,
+                index: Some(index),
             });
         }
         min = min.min(*p);
@@ -654,14 +656,14 @@ mod tests {
             Lattice::new(Vec3::NAN, axes, [1, 1, 1]),
             Err(FfdError::NonFinite {
                 what: "origin",
-                index: 0
+                index: None
             })
         );
         assert_eq!(
             Lattice::new(Vec3::ZERO, [Vec3::X, Vec3::INFINITY, Vec3::Z], [1, 1, 1]),
             Err(FfdError::NonFinite {
                 what: "axis",
-                index: 1
+                index: Some(1)
             })
         );
         assert_eq!(
@@ -687,6 +689,19 @@ mod tests {
     }
 
     #[test]
+    fn around_points_spanning_more_than_f32_is_an_error() {
+        let far = [Vec3::splat(-3e38), Vec3::splat(3e38)];
+        assert_eq!(
+            Lattice::around(&far, [1, 1, 1], 0.0),
+            Err(FfdError::TooLarge)
+        );
+        assert_eq!(
+            Lattice::around(&[Vec3::ZERO], [1, 1, 1], f32::MAX),
+            Err(FfdError::TooLarge)
+        );
+    }
+
+    #[test]
     fn huge_axes_overflowing_the_volume_are_degenerate_not_nan() {
         let big = Vec3::splat(f32::MAX);
         let result = Lattice::new(Vec3::ZERO, [big, big * Vec3::Y, big * Vec3::Z], [1, 1, 1]);
@@ -703,12 +718,12 @@ mod tests {
             Lattice::around(&[Vec3::ZERO, Vec3::NAN], [1, 1, 1], 0.0),
             Err(FfdError::NonFinite {
                 what: "point",
-                index: 1
+                index: Some(1)
             })
         );
         assert!(matches!(
             Lattice::around(&[Vec3::ZERO], [1, 1, 1], -1.0),
-            Err(FfdError::NotPositive { .. })
+            Err(FfdError::InvalidPadding { .. })
         ));
         assert!(matches!(
             Lattice::around(&[Vec3::ZERO, Vec3::X], [1, 1, 1], 0.0),
@@ -781,7 +796,7 @@ mod tests {
             lattice.try_deform_in_place(&mut pts),
             Err(FfdError::NonFinite {
                 what: "point",
-                index: 1
+                index: Some(1)
             })
         );
         assert_eq!(pts[0], Vec3::ZERO);

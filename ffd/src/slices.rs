@@ -96,7 +96,7 @@ impl Lattice {
         if !scale.is_finite() {
             return Err(FfdError::NonFinite {
                 what: "scale",
-                index: 0,
+                index: None,
             });
         }
         for (index, factor) in scale.to_array().into_iter().enumerate() {
@@ -135,7 +135,7 @@ impl Lattice {
         if !offset.is_finite() {
             return Err(FfdError::NonFinite {
                 what: "offset",
-                index: 0,
+                index: None,
             });
         }
         self.update_slice(axis, slice, |p| p + offset)
@@ -173,7 +173,10 @@ impl Lattice {
         }
         for (index, &gap) in gaps.iter().enumerate() {
             if !gap.is_finite() {
-                return Err(FfdError::NonFinite { what: "gap", index });
+                return Err(FfdError::NonFinite {
+                    what: "gap",
+                    index: Some(index),
+                });
             }
             if !(gap > 0.0) {
                 return Err(FfdError::NotPositive {
@@ -231,7 +234,7 @@ impl Lattice {
             if !p.is_finite() {
                 return Err(FfdError::NonFinite {
                     what: "control point",
-                    index: idx,
+                    index: Some(idx),
                 });
             }
             updates.push((idx, index, p));
@@ -324,7 +327,7 @@ mod tests {
         gaps[4] = f32::NAN;
         assert!(matches!(
             lattice.distribute_slices(Axis::U, &gaps),
-            Err(FfdError::NonFinite { index: 4, .. })
+            Err(FfdError::NonFinite { index: Some(4), .. })
         ));
     }
 

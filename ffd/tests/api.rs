@@ -183,3 +183,44 @@ fn errors_describe_the_fix() {
     let boxed: Box<dyn core::error::Error> = Box::new(err);
     assert!(!boxed.to_string().is_empty());
 }
+
+/// Regression: a property once compared `deform` at a lattice corner *in world space* with the
+/// corner's control point and failed by 8e-4 on a lattice 0.23 long and 54 wide, 16 units from
+/// the origin. The Bernstein sum was right; the world-to-local round trip of a badly
+/// conditioned frame was not exact (s off by ~1e-5, amplified by control points moved tens of
+/// units). Corners are exact in local coordinates, and the world-space error stays within the
+/// frame's conditioning.
+#[test]
+fn regression_thin_lattice_corner_is_exact_in_local_coordinates() {
+    let axes = [
+        Vec3::new(-0.070_951_715, 0.126_406_12, -0.174_403_95),
+        Vec3::new(-3.539_714_3, -53.389_41, -8.700_844),
+        Vec3::new(-15.342_998_5, -1.762_149_9, 5.907_195_6),
+    ];
+    let origin = Vec3::new(0.0, 0.0, -16.347_67);
+    let mut lattice = Lattice::new(origin, axes, [5, 1, 2]).unwrap();
+    let cells = [axes[0] / 5.0, axes[1], axes[2] / 2.0];
+    let mut n = 0.0f32;
+    for k in 0..=2 {
+        for j in 0..=1 {
+            for i in 0..=5 {
+                n += 1.0;
+                let shift = cells[0] * (0.3 * (n * 1.7).sin())
+                    + cells[1] * (0.3 * (n * 2.3).cos())
+                    + cells[2] * (0.3 * (n * 0.9).sin());
+                let p = lattice.control_point([i, j, k]).unwrap();
+                lattice.set_control_point([i, j, k], p + shift).unwrap();
+            }
+        }
+    }
+    let corner = lattice.control_point([0, 1, 2]).unwrap();
+    let local = Vec3::new(0.0, 1.0, 1.0);
+    let diagonal = axes.iter().map(|a| a.length()).sum::<f32>();
+    assert!(lattice.deform_local(local).distance(corner) <= 1e-6 * diagonal);
+    // Through world space the frame's conditioning shows, but stays small.
+    let world = lattice.deform(lattice.world_coords(local));
+    assert!(
+        world.distance(corner) <= 1e-4 * diagonal,
+        "{world} vs {corner}"
+    );
+}

@@ -16,6 +16,9 @@ pub const MAX_DIVISIONS: usize = 32;
 /// Layers of at most this many control points take the precomputed-weights path.
 const SMALL_LAYER: usize = 9;
 
+/// Lattices with at most this many slices along U (and small layers) take the fast path.
+const SMALL_DEPTH: usize = 16;
+
 /// Smallest accepted `|S · (T × U)| / (|S| |T| |U|)`: below it the lattice counts as flat.
 pub const MIN_VOLUME_RATIO: f32 = 1e-6;
 
@@ -491,12 +494,12 @@ impl Lattice {
         let row = l + 1;
         let layer = row * (m + 1);
         let mut out = [Vec3A::ZERO; N];
-        if layer <= SMALL_LAYER {
+        if layer <= SMALL_LAYER && n < SMALL_DEPTH {
             // Common case (the body's 3×3 cross-sections): weigh each layer with the products
             // B_i(s) B_j(t), splatted once and reused by every layer, then sum the layers with
             // B_k(u).
             let mut weights = [[Vec3A::ZERO; SMALL_LAYER]; N];
-            let mut bu = [[0.0f32; MAX_DIVISIONS + 1]; N];
+            let mut bu = [[0.0f32; SMALL_DEPTH]; N];
             for q in 0..N {
                 let mut bs = [0.0f32; SMALL_LAYER];
                 let mut bt = [0.0f32; SMALL_LAYER];

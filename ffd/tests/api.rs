@@ -224,3 +224,46 @@ fn regression_thin_lattice_corner_is_exact_in_local_coordinates() {
         "{world} vs {corner}"
     );
 }
+
+/// Lattices too deep (17+ slices) or too wide (layers over 9 points) for the fast kernel take
+/// the general one; both must match the plain sum.
+#[test]
+fn general_kernel_agrees_with_the_reference() {
+    for divisions in [[2, 2, 20], [4, 4, 3], [1, 9, 2]] {
+        let mut lattice = Lattice::new(
+            Vec3::new(1.0, 2.0, -3.0),
+            [Vec3::X * 2.0, Vec3::Y * 1.5, Vec3::Z * 5.0],
+            divisions,
+        )
+        .unwrap();
+        let [l, m, n] = divisions;
+        let mut seed = 0.0f32;
+        for k in 0..=n {
+            for j in 0..=m {
+                for i in 0..=l {
+                    seed += 1.0;
+                    let p = lattice.control_point([i, j, k]).unwrap();
+                    let wobble =
+                        Vec3::new((seed * 1.1).sin(), (seed * 0.7).cos(), (seed * 1.9).sin());
+                    lattice
+                        .set_control_point([i, j, k], p + wobble * 0.1)
+                        .unwrap();
+                }
+            }
+        }
+        let points = sample_points(&lattice, 64);
+        let mut batch = points.clone();
+        lattice.deform_in_place(&mut batch);
+        for (p, q) in points.iter().zip(&batch) {
+            let expected = reference::deform(
+                lattice.origin(),
+                lattice.axes(),
+                lattice.divisions(),
+                lattice.control_points(),
+                *p,
+            );
+            assert_abs_diff_eq!(*q, expected, epsilon = 1e-4);
+            assert_eq!(lattice.deform(*p), *q);
+        }
+    }
+}

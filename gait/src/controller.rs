@@ -1,0 +1,1255 @@
+//! The [`Controller`]: per-leg stepping state and the five layers (action, sequencing,
+//! reaction, intent, follow-through), updated together.
+
+use alloc::vec::Vec;
+
+use glam::{Mat3A, Quat, Vec2, Vec3};
+
+use crate::error::{GaitError, finite, finite3, in_range};
+use crate::ground::Ground;
+use crate::ik::{TwoBone, solve_finite, solve_two_bone};
+use crate::leg::{Chain, Layout, Leg, LimbKind, Pose, layout};
+use crate::math::{
+    abs, atan2, ceil, clamp_sym, cos, floor_non_negative, quat_yxz, sin_turns, smoothing, sqrt,
+};
+use crate::metrics::{GaitMetrics, support_margin};
+use crate::options::GaitOptions;
+
+/// Largest accepted coordinate of the body's position, metres.
+pub const MAX_COORDINATE: f32 = 1.0e6;
+/// Largest accepted linear speed, metres per second.
+pub const MAX_SPEED: f32 = 1.0e4;
+/// Largest accepted angular speed, radians per second.
+pub const MAX_ANGULAR_SPEED: f32 = 1.0e3;
+/// Largest accepted time step, seconds.
+pub const MAX_TIME_STEP: f32 = 1.0e3;
+
+/// Chains are integrated in sub-steps of at most this many seconds…
+const CHAIN_SUBSTEP: f32 = 1.0 / 120.0;
+/// …and at most this many sub-steps per update (longer updates are simulated as this long).
+const MAX_CHAIN_SUBSTEPS: u32 = 64;
+
+/// The state and read-out of one leg (or arm).
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
+pub struct LegState {
+    /// The foot's position in world space (procedural, before blending).
+    pub foot: Vec3,
+    /// Ground normal under the foot (world), +Y for arms and legs without ground.
+    pub normal: Vec3,
+    /// Whether the foot stands still on the ground (grounded and not stepping). Arms are
+    /// "planted" while they are not stepping (they hold their place in the air).
+    pub planted: bool,
+    /// Whether the ground ray under the rest position hit.
+    pub grounded: bool,
+    /// Whether the leg is in a step.
+    pub stepping: bool,
+    /// Progress of the current (or last) step, `0..=1`.
+    pub progress: f32,
+    /// Where the current (or last) step started, world.
+    pub step_start: Vec3,
+    /// The current (or last) step's target, world; kept current while the body moves.
+    pub step_target: Vec3,
+    /// The rest position projected onto the ground (the ray hit), world; for arms, the rest
+    /// position itself.
+    pub anchor: Vec3,
+    /// Steps taken since the controller was created.
+    pub steps: u32,
+    /// Of those, escape steps (taken outside the group's turn).
+    pub escapes: u32,
+    /// Hip roll (radians, about the body's forward axis): positive when this foot is higher
+    /// than its partner's, so this side's hip rises (3D seed). 0 without a partner.
+    pub hip_roll: f32,
+    /// The solved leg (hip, knee, foot and segment rotations, world), after the body's reaction
+    /// and the blend weight.
+    pub joints: TwoBone,
+    prev_anchor: Vec3,
+    prev_foot: Vec3,
+    prev_planted: bool,
+    swing_length: f32,
+    lift: f32,
+    escaping: bool,
+}
+
+impl LegState {
+    fn new(foot: Vec3) -> Self {
+        Self {
+            foot,
+            normal: Vec3::Y,
+            planted: false,
+            grounded: false,
+            stepping: false,
+            progress: 1.0,
+            step_start: foot,
+            step_target: foot,
+            anchor: foot,
+            steps: 0,
+            escapes: 0,
+            hip_roll: 0.0,
+            joints: solve_two_bone(foot, foot, 0.0, 0.0, Vec3::Z),
+            prev_anchor: foot,
+            prev_foot: foot,
+            prev_planted: false,
+            swing_length: 1.0,
+            lift: 0.0,
+            escaping: false,
+        }
+    }
+
+    /// Whether the current step is an escape step.
+    #[must_use]
+    pub const fn is_escaping(&self) -> bool {
+        self.stepping && self.escaping
+    }
+}
+
+/// The body's reaction to its legs, relative to the driving pose (after the blend weight).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BodyReaction {
+    /// Offset to add to the body's position (world): the bob plus idle breathing, along +Y.
+    pub offset: Vec3,
+    /// Rotation to apply after the body's rotation (body space): sway (yaw), pitch and roll.
+    pub rotation: Quat,
+    /// The bob alone, metres (before blending).
+    pub bob: f32,
+    /// Sway angle about the body's up axis, radians (before blending).
+    pub yaw: f32,
+    /// Pitch about the body's left (+X) axis, radians (before blending).
+    pub pitch: f32,
+    /// Roll about the body's forward (+Z) axis, radians (before blending).
+    pub roll: f32,
+}
+
+impl BodyReaction {
+    const NEUTRAL: Self = Self {
+        offset: Vec3::ZERO,
+        rotation: Quat::IDENTITY,
+        bob: 0.0,
+        yaw: 0.0,
+        pitch: 0.0,
+        roll: 0.0,
+    };
+}
+
+/// The head's smoothed look-at (intent layer).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Look {
+    /// Rotation of the head in body space (after blending): +Z turned toward where the body
+    /// turns, or toward the look target.
+    pub rotation: Quat,
+    /// The point the head looks at, world.
+    pub target: Vec3,
+    /// Smoothed yaw, radians (before blending).
+    pub yaw: f32,
+    /// Smoothed pitch, radians, positive up (before blending).
+    pub pitch: f32,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+struct ChainState {
+    positions: Vec<Vec3>,
+    velocities: Vec<Vec3>,
+    output: Vec<Vec3>,
+    /// The rest joints of the current update (reused storage: no allocation per update).
+    rest: Vec<Vec3>,
+}
+
+/// The gait controller: give it legs once, then call [`update`](Self::update) every frame
+/// with the body's pose and motion; read the feet, joints, body reaction, head and chains.
+///
+/// ```
+/// use creature_gait::{Controller, GaitOptions, Leg, Plane, Pose, glam::Vec3};
+///
+/// let legs = [
+///     Leg::new(Vec3::new(0.2, 0.9, 0.0), Vec3::new(0.25, 0.0, 0.0), 0.5, 0.5),
+///     Leg::new(Vec3::new(-0.2, 0.9, 0.0), Vec3::new(-0.25, 0.0, 0.0), 0.5, 0.5),
+/// ];
+/// let mut biped = Controller::new(&legs, &GaitOptions::DEFAULT)?;
+/// let ground = Plane::GROUND;
+/// let velocity = Vec3::new(0.0, 0.0, 1.0);
+/// for frame in 0..120 {
+///     let pose = Pose::new(velocity * (frame as f32 / 60.0), Default::default());
+///     biped.update(1.0 / 60.0, pose, velocity, Vec3::ZERO, &ground)?;
+/// }
+/// assert!(biped.leg_states().iter().all(|leg| leg.steps > 0));
+/// assert!(biped.metrics().max_skate <= 1e-6);
+/// # Ok::<(), creature_gait::GaitError>(())
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct Controller {
+    legs: Vec<Leg>,
+    options: GaitOptions,
+    layout: Layout,
+    states: Vec<LegState>,
+    chains: Vec<Chain>,
+    chain_states: Vec<ChainState>,
+    initialized: bool,
+    active_group: u8,
+    turn_taken: bool,
+    mean_size: f32,
+    swing_fraction: f32,
+    pose: Pose,
+    reaction: BodyReaction,
+    look: Look,
+    look_target: Option<Vec3>,
+    head: Vec3,
+    idle_phase: f32,
+    blend: f32,
+    blend_target: f32,
+    blend_rate: f32,
+    metrics: GaitMetrics,
+    wants: Vec<u8>,
+    motion: Vec<Vec3>,
+    support: Vec<Vec2>,
+    hull: Vec<Vec2>,
+    // Per-update scratch and per-leg invariants, so an update does no allocation and does not
+    // recompute what the legs and options fix.
+    /// Each leg's rest position in world space, this update.
+    rest_world: Vec<Vec3>,
+    /// Each leg's hip-roll lever: the hips' X distance to its partner (or a floor).
+    hip_width: Vec<f32>,
+    has_arms: bool,
+    /// `cos(max_turn_angle)`: the turning-in-place check without `atan2`.
+    cos_turn: f32,
+    /// The `dt` the smoothing factors below were computed for (−1: none yet).
+    smoothing_dt: f32,
+    react_k: f32,
+    look_k: f32,
+}
+
+const WANT: u8 = 1;
+const ESCAPE: u8 = 2;
+
+impl Controller {
+    /// A controller for `legs` (any number ≥ 1, arms included) with `options`. The feet are
+    /// placed on the ground at the first [`update`](Self::update) (or by
+    /// [`reset`](Self::reset)).
+    ///
+    /// # Errors
+    /// [`GaitError::NoLegs`], the first leg's error from [`Leg::validate`],
+    /// [`GaitError::MixedGroups`], or the options' error from [`GaitOptions::validate`].
+    pub fn new(legs: &[Leg], options: &GaitOptions) -> Result<Self, GaitError> {
+        if legs.is_empty() {
+            return Err(GaitError::NoLegs);
+        }
+        for (i, leg) in legs.iter().enumerate() {
+            leg.validate(i)?;
+        }
+        options.validate()?;
+        let layout = layout(legs)?;
+        let mean_size = legs.iter().map(|l| l.size).sum::<f32>() / legs.len() as f32;
+        let swing_fraction = 1.0 / f32::from(layout.group_count.max(2));
+        let hip_width = legs
+            .iter()
+            .enumerate()
+            .map(|(i, a)| match layout.partner[i].and_then(|j| legs.get(j)) {
+                Some(b) => abs(a.hip.x - b.hip.x).max(1e-3 * a.size),
+                None => 0.0,
+            })
+            .collect();
+        Ok(Self {
+            legs: legs.to_vec(),
+            options: *options,
+            layout,
+            states: legs.iter().map(|l| LegState::new(l.rest)).collect(),
+            chains: Vec::new(),
+            chain_states: Vec::new(),
+            initialized: false,
+            active_group: 0,
+            turn_taken: false,
+            mean_size,
+            swing_fraction,
+            pose: Pose::IDENTITY,
+            reaction: BodyReaction::NEUTRAL,
+            look: Look {
+                rotation: Quat::IDENTITY,
+                target: Vec3::Z,
+                yaw: 0.0,
+                pitch: 0.0,
+            },
+            look_target: None,
+            head: Vec3::ZERO,
+            idle_phase: 0.0,
+            blend: 1.0,
+            blend_target: 1.0,
+            blend_rate: 0.0,
+            metrics: GaitMetrics::default(),
+            wants: alloc::vec![0; legs.len()],
+            motion: alloc::vec![Vec3::ZERO; legs.len()],
+            support: Vec::with_capacity(legs.len()),
+            hull: Vec::with_capacity(legs.len() + 1),
+            rest_world: legs.iter().map(|l| l.rest).collect(),
+            hip_width,
+            has_arms: legs.iter().any(|l| l.kind == LimbKind::Arm),
+            cos_turn: cos(options.max_turn_angle),
+            smoothing_dt: -1.0,
+            react_k: 0.0,
+            look_k: 0.0,
+        })
+    }
+
+    /// Adds a follow-through chain (tail, fin, wing trailing bones, dangling leg) and returns
+    /// its index. Its joints start at rest at the next update.
+    ///
+    /// # Errors
+    /// The chain's error from [`Chain::validate`].
+    pub fn add_chain(&mut self, chain: Chain) -> Result<usize, GaitError> {
+        chain.validate(self.chains.len())?;
+        let mut rest = Vec::with_capacity(chain.segments + 1);
+        chain_rest(&chain, &self.pose, 0.0, &mut rest);
+        self.chains.push(chain);
+        self.chain_states.push(ChainState {
+            velocities: alloc::vec![Vec3::ZERO; rest.len()],
+            output: rest.clone(),
+            positions: rest.clone(),
+            rest,
+        });
+        if self.initialized {
+            // Start the new chain at rest on the current pose.
+            let i = self.chains.len() - 1;
+            self.reset_chain(i);
+        }
+        Ok(self.chains.len() - 1)
+    }
+
+    /// Sets the head's position in body space (the look-at's origin). Default zero.
+    ///
+    /// # Errors
+    /// [`GaitError::NonFinite`] for a non-finite position.
+    pub fn set_head(&mut self, head: Vec3) -> Result<(), GaitError> {
+        finite3(head, "head", 0)?;
+        self.head = head;
+        Ok(())
+    }
+
+    /// Makes the head look at a world point (`Some`) or where the body turns (`None`,
+    /// default). The gaze is smoothed and limited by the options either way.
+    ///
+    /// # Errors
+    /// [`GaitError::NonFinite`] for a non-finite point.
+    pub fn set_look_target(&mut self, target: Option<Vec3>) -> Result<(), GaitError> {
+        if let Some(t) = target {
+            finite3(t, "look target", 0)?;
+        }
+        self.look_target = target;
+        Ok(())
+    }
+
+    /// Sets the procedural layer's blend weight at once: 1 (default) is fully procedural,
+    /// 0 is the plain rest pose (feet at their rest positions, no reaction, head forward,
+    /// chains rigid), ready for an authored animation to take over.
+    ///
+    /// # Errors
+    /// [`GaitError::OutOfRange`] outside `[0, 1]`.
+    pub fn set_blend(&mut self, weight: f32) -> Result<(), GaitError> {
+        in_range(weight, "blend weight", 0.0, 1.0)?;
+        self.blend = weight;
+        self.blend_target = weight;
+        self.blend_rate = 0.0;
+        Ok(())
+    }
+
+    /// Ramps the blend weight toward `weight` over the following updates, at the rate of
+    /// [`GaitOptions::blend_time`] for a full 0 → 1 change (instantly when that is 0).
+    ///
+    /// # Errors
+    /// [`GaitError::OutOfRange`] outside `[0, 1]`.
+    pub fn blend_to(&mut self, weight: f32) -> Result<(), GaitError> {
+        in_range(weight, "blend weight", 0.0, 1.0)?;
+        self.blend_target = weight;
+        if self.options.blend_time <= 0.0 {
+            self.blend = weight;
+            self.blend_rate = 0.0;
+        } else {
+            self.blend_rate = 1.0 / self.options.blend_time;
+        }
+        Ok(())
+    }
+
+    /// Places every foot on the ground under its rest position, ends all steps, puts chains
+    /// at rest and clears the reaction and the head: a fresh start at `pose`.
+    ///
+    /// # Errors
+    /// As [`update`](Self::update) for a bad pose.
+    pub fn reset<G: Ground + ?Sized>(&mut self, pose: Pose, ground: &G) -> Result<(), GaitError> {
+        let pose = validate_pose(pose)?;
+        self.pose = pose;
+        let rotation = Mat3A::from_quat(pose.rotation);
+        for i in 0..self.legs.len() {
+            let leg = self.legs[i];
+            let rest_world = rotation * leg.rest + pose.translation;
+            self.rest_world[i] = rest_world;
+            let (anchor, normal, grounded) = cast_anchor(&leg, rest_world, &self.options, ground);
+            let state = &mut self.states[i];
+            *state = LegState::new(anchor);
+            state.anchor = anchor;
+            state.prev_anchor = anchor;
+            state.normal = normal;
+            state.grounded = grounded;
+            state.planted = grounded || leg.kind == LimbKind::Arm;
+            state.prev_planted = state.planted;
+        }
+        for i in 0..self.chains.len() {
+            self.reset_chain(i);
+        }
+        self.reaction = BodyReaction::NEUTRAL;
+        self.look = Look {
+            rotation: Quat::IDENTITY,
+            target: pose.transform_point(self.head + Vec3::Z * self.mean_size * 2.0),
+            yaw: 0.0,
+            pitch: 0.0,
+        };
+        self.active_group = 0;
+        self.turn_taken = false;
+        self.initialized = true;
+        self.solve_joints();
+        self.metrics = GaitMetrics::default();
+        self.measure(&pose);
+        Ok(())
+    }
+
+    /// Advances the controller by `dt` seconds (fixed or variable; 0 is allowed) with the body
+    /// at `pose`, moving at `velocity` (world, m/s) and turning at `angular_velocity` (world,
+    /// rad/s), over `ground`. The same sequence of inputs gives the same state, bit for bit.
+    ///
+    /// Per leg: a ray is cast down from above the rest position; a planted foot that strays
+    /// beyond its reach (or turns too far from its rest direction) steps, if its group has the
+    /// turn and its opposite is planted, or at once past the escape distance; a stepping foot
+    /// progresses with the motion of its rest position (or the fixed settle rate, whichever is
+    /// faster) toward a target kept ahead of the rest position along the motion. Then the
+    /// body's reaction, the head's look-at, the chains and the leg IK are updated.
+    ///
+    /// # Errors
+    /// [`GaitError::NonFinite`] for a non-finite `dt`, pose, velocity or angular velocity,
+    /// [`GaitError::NegativeTimeStep`], [`GaitError::OutOfRange`] beyond [`MAX_TIME_STEP`],
+    /// [`MAX_COORDINATE`], [`MAX_SPEED`] or [`MAX_ANGULAR_SPEED`], and
+    /// [`GaitError::ZeroVector`] for a zero rotation quaternion. On error nothing changes.
+    pub fn update<G: Ground + ?Sized>(
+        &mut self,
+        dt: f32,
+        pose: Pose,
+        velocity: Vec3,
+        angular_velocity: Vec3,
+        ground: &G,
+    ) -> Result<(), GaitError> {
+        finite(dt, "dt", 0)?;
+        if dt < 0.0 {
+            return Err(GaitError::NegativeTimeStep { dt });
+        }
+        in_range(dt, "dt", 0.0, MAX_TIME_STEP)?;
+        let pose = validate_pose(pose)?;
+        finite3(velocity, "velocity", 0)?;
+        finite3(angular_velocity, "angular velocity", 0)?;
+        in_range(velocity.length(), "speed", 0.0, MAX_SPEED)?;
+        in_range(
+            angular_velocity.length(),
+            "angular speed",
+            0.0,
+            MAX_ANGULAR_SPEED,
+        )?;
+        if !self.initialized {
+            self.reset(pose, ground)?;
+        }
+        self.pose = pose;
+
+        // Blend ramp.
+        if self.blend_rate > 0.0 {
+            let step = self.blend_rate * dt;
+            if abs(self.blend_target - self.blend) <= step {
+                self.blend = self.blend_target;
+                self.blend_rate = 0.0;
+            } else if self.blend_target > self.blend {
+                self.blend += step;
+            } else {
+                self.blend -= step;
+            }
+        }
+        self.idle_phase += dt * self.options.breathe_rate;
+        self.idle_phase -= floor_non_negative(self.idle_phase);
+        if dt != self.smoothing_dt {
+            self.smoothing_dt = dt;
+            self.react_k = smoothing(dt, self.options.reaction_time);
+            self.look_k = smoothing(dt, self.options.look_time);
+        }
+
+        self.action(dt, &pose, velocity, angular_velocity, ground);
+        self.react(&pose);
+        self.intend(&pose, angular_velocity);
+        for i in 0..self.chains.len() {
+            self.follow(i, dt, &pose, angular_velocity);
+        }
+        self.solve_joints();
+        self.measure(&pose);
+        Ok(())
+    }
+
+    // ----- action: stepping -------------------------------------------------------------------
+
+    fn action<G: Ground + ?Sized>(
+        &mut self,
+        dt: f32,
+        pose: &Pose,
+        velocity: Vec3,
+        angular_velocity: Vec3,
+        ground: &G,
+    ) {
+        let o = &self.options;
+        let forward = horizontal(pose.rotation * Vec3::Z)
+            .try_normalize()
+            .unwrap_or(Vec3::Z);
+        let body = pose.translation;
+        let rotation = Mat3A::from_quat(pose.rotation);
+        let speed_factor = o.speed_multiplier.max(1.0);
+        let arm_idle = if self.has_arms {
+            sin_turns(self.idle_phase)
+        } else {
+            0.0
+        };
+
+        // Is the body still? (Every rest position slower than the threshold.)
+        let still_limit = o.still_speed * self.mean_size;
+        let mut still = true;
+
+        // 1. Anchors, and progress of the steps under way.
+        let mut steps_started = 0usize;
+        let mut escapes_started = 0usize;
+        for (i, leg) in self.legs.iter().enumerate() {
+            let rest_world = rotation * leg.rest + body;
+            let (anchor, normal, grounded) = cast_anchor(leg, rest_world, o, ground);
+            let motion = horizontal(velocity + angular_velocity.cross(rest_world - body));
+            if still && motion.length() > still_limit {
+                still = false;
+            }
+            let (Some(state), Some(rest_slot), Some(motion_slot), Some(want)) = (
+                self.states.get_mut(i),
+                self.rest_world.get_mut(i),
+                self.motion.get_mut(i),
+                self.wants.get_mut(i),
+            ) else {
+                continue;
+            };
+            *rest_slot = rest_world;
+            *motion_slot = motion;
+            state.prev_foot = state.foot;
+            state.prev_planted = state.planted;
+            state.prev_anchor = state.anchor;
+            state.anchor = anchor;
+            let was_grounded = state.grounded;
+            state.grounded = grounded;
+            if leg.kind == LimbKind::Leg && !grounded {
+                // Nothing under the leg: it dangles at its rest position.
+                state.foot = anchor;
+                state.normal = Vec3::Y;
+                state.stepping = false;
+                state.planted = false;
+                state.progress = 1.0;
+                continue;
+            }
+            if state.stepping {
+                let (target, target_normal) = step_target(
+                    leg,
+                    o,
+                    anchor,
+                    normal,
+                    motion,
+                    forward,
+                    rest_world.y,
+                    ground,
+                );
+                state.step_target = target;
+                let moved = horizontal(anchor - state.prev_anchor).length();
+                let by_motion = moved / state.swing_length.max(1e-6);
+                state.progress = (state.progress + by_motion.max(o.settle_rate * dt)).min(1.0);
+                if state.progress >= 1.0 {
+                    state.foot = target;
+                    state.normal = target_normal;
+                    state.stepping = false;
+                    state.escaping = false;
+                    state.planted = true;
+                } else {
+                    let lift = o.height_curve.evaluate(state.progress) * state.lift;
+                    state.foot = state.step_start.lerp(target, state.progress) + Vec3::Y * lift;
+                    state.normal = target_normal;
+                }
+            } else if leg.kind == LimbKind::Arm {
+                // Arms hold their place in XZ and follow the body's height, idling gently.
+                state.foot.y = anchor.y + arm_idle * o.arm_idle_amplitude * leg.size;
+            } else if !was_grounded {
+                // Ground came back under a dangling leg: force a step onto it.
+                *want = WANT | ESCAPE;
+                continue;
+            }
+            *want = 0;
+        }
+
+        // 2. Which planted legs want to step.
+        for (((leg, state), want), motion) in self
+            .legs
+            .iter()
+            .zip(&self.states)
+            .zip(&mut self.wants)
+            .zip(&self.motion)
+        {
+            if state.stepping || (leg.kind == LimbKind::Leg && !state.grounded) {
+                *want = 0;
+                continue;
+            }
+            if *want != 0 {
+                continue; // forced above
+            }
+            let stray = horizontal(state.foot - state.anchor);
+            let distance = stray.length();
+            let d = if distance > 1e-9 {
+                stray.dot(forward) / distance
+            } else {
+                0.0
+            };
+            let allowed = o.reach.evaluate(d) * leg.size;
+            let mut flags = if distance > allowed { WANT } else { 0 };
+            // Turning (in place): the foot's direction from the body has turned too far from the
+            // rest direction. Only for a foot that trails its rest position's motion: one that
+            // landed ahead (at the overshoot) is left to the reach, or it would step again at
+            // once. |atan2(cross, dot)| > max_turn_angle ⟺
+            // dot < cos(max_turn_angle) · |(cross, dot)|, without the arctangent.
+            if flags == 0 && distance > 0.1 * allowed && stray.dot(*motion) < 0.0 {
+                let from_body = horizontal(state.foot - body);
+                let rest_dir = horizontal(state.anchor - body);
+                let tiny = 1e-6 * leg.size * leg.size;
+                if from_body.length_squared() > tiny && rest_dir.length_squared() > tiny {
+                    let cross = from_body.cross(rest_dir).y;
+                    let dot = from_body.dot(rest_dir);
+                    if dot < self.cos_turn * sqrt(cross * cross + dot * dot) {
+                        flags = WANT;
+                    }
+                }
+            }
+            if flags == 0 && still && distance > o.settle_distance * leg.size {
+                flags = WANT;
+            }
+            if distance > o.escape_factor * allowed {
+                flags |= ESCAPE;
+            }
+            *want = flags;
+        }
+
+        // 3. Sequencing: the active group keeps the turn while any of its legs steps.
+        let count = self.layout.group_count.max(1);
+        let active = self.active_group;
+        let mut group_stepping = false;
+        let mut group_wants = false;
+        for (((leg, state), want), group) in self
+            .legs
+            .iter()
+            .zip(&self.states)
+            .zip(&self.wants)
+            .zip(&self.layout.groups)
+        {
+            if leg.kind == LimbKind::Leg && *group == active {
+                group_stepping |= state.stepping;
+                group_wants |= want & WANT != 0;
+            }
+        }
+        if !group_stepping && (self.turn_taken || !group_wants) {
+            self.active_group = (active + 1) % count;
+            self.turn_taken = false;
+        }
+        let active = self.active_group;
+
+        // 4. Start the steps that are allowed. Once the active group moves, its other legs that
+        //    trail behind their rest position by more than `group_join` of their reach join it,
+        //    so a group steps together instead of leaving a leg to wait a whole cycle. Feet
+        //    that are ahead (just landed) never join: they would step again at once.
+        let mut group_moves = false;
+        for (((leg, state), want), group) in self
+            .legs
+            .iter()
+            .zip(&self.states)
+            .zip(&self.wants)
+            .zip(&self.layout.groups)
+        {
+            if leg.kind == LimbKind::Leg && *group == active {
+                group_moves |= state.stepping || want & WANT != 0;
+            }
+        }
+        if group_moves {
+            for ((((leg, state), want), group), motion) in self
+                .legs
+                .iter()
+                .zip(&self.states)
+                .zip(&mut self.wants)
+                .zip(&self.layout.groups)
+                .zip(&self.motion)
+            {
+                if leg.kind != LimbKind::Leg
+                    || *group != active
+                    || state.stepping
+                    || !state.grounded
+                    || *want != 0
+                {
+                    continue;
+                }
+                let stray = horizontal(state.foot - state.anchor);
+                let trailing = stray.dot(*motion) < 0.0;
+                if !trailing {
+                    continue;
+                }
+                let distance = stray.length();
+                let d = if distance > 1e-9 {
+                    stray.dot(forward) / distance
+                } else {
+                    0.0
+                };
+                if distance > o.group_join * o.reach.evaluate(d) * leg.size {
+                    *want = WANT;
+                }
+            }
+        }
+        for i in 0..self.legs.len() {
+            let flags = self.wants[i];
+            if flags == 0 {
+                continue;
+            }
+            let leg = &self.legs[i];
+            let sequenced = leg.kind == LimbKind::Leg;
+            let opposite_busy = self.layout.opposite[i]
+                .and_then(|j| self.states.get(j))
+                .is_some_and(|s| s.stepping);
+            let in_turn = !sequenced || (self.layout.groups[i] == active && !opposite_busy);
+            let escape = sequenced && !in_turn && flags & ESCAPE != 0;
+            if !(escape || (flags & WANT != 0 && in_turn)) {
+                continue;
+            }
+            let state = &mut self.states[i];
+            let (target, target_normal) = step_target(
+                leg,
+                o,
+                state.anchor,
+                state.normal,
+                self.motion[i],
+                forward,
+                self.rest_world[i].y,
+                ground,
+            );
+            state.stepping = true;
+            state.planted = false;
+            state.escaping = escape;
+            state.progress = 0.0;
+            state.step_start = state.foot;
+            state.step_target = target;
+            state.normal = target_normal;
+            state.lift = o.step_height * leg.size * speed_factor;
+            state.swing_length = horizontal(target - state.foot)
+                .length()
+                .max(0.05 * leg.size)
+                * self.swing_fraction;
+            state.steps = state.steps.saturating_add(1);
+            if sequenced {
+                steps_started += 1;
+                if escape {
+                    state.escapes = state.escapes.saturating_add(1);
+                    escapes_started += 1;
+                } else {
+                    self.turn_taken = true;
+                }
+            }
+        }
+        self.metrics.steps_started = steps_started;
+        self.metrics.escapes_started = escapes_started;
+    }
+
+    // ----- reaction ---------------------------------------------------------------------------
+
+    fn react(&mut self, pose: &Pose) {
+        let o = &self.options;
+        // Bob: the feet's mean height offset from rest. Sway: their mean top-view angle offset
+        // about the body's origin (Trifox). Pitch and roll: the slopes of the height offsets
+        // along the body's forward and left axes (a least-squares fit), so the body leans with
+        // lifted feet and with the ground, without a bias from feet trailing behind.
+        let mut count = 0usize;
+        let (mut height, mut yaw) = (0.0f32, 0.0f32);
+        let (mut ez, mut zz, mut ex, mut xx) = (0.0f32, 0.0f32, 0.0f32, 0.0f32);
+        let mut centre = Vec2::ZERO;
+        for (leg, state) in self.legs.iter().zip(&self.states) {
+            if leg.kind == LimbKind::Leg && state.grounded {
+                count += 1;
+                centre += Vec2::new(leg.rest.x, leg.rest.z);
+            }
+        }
+        if count > 0 {
+            centre /= count as f32;
+        }
+        let inverse = Mat3A::from_quat(pose.rotation).transpose();
+        for ((leg, state), rest_world) in self.legs.iter().zip(&self.states).zip(&self.rest_world) {
+            if leg.kind != LimbKind::Leg || !state.grounded {
+                continue;
+            }
+            let e = state.foot.y - rest_world.y;
+            height += e;
+            // The angle from the rest direction to the foot's, seen from above about the body's
+            // origin (angles measured from +Z toward +X): one arctangent of cross and dot.
+            let local = inverse * (state.foot - pose.translation);
+            let rest = leg.rest;
+            let cross = rest.z * local.x - rest.x * local.z;
+            let dot = rest.z * local.z + rest.x * local.x;
+            yaw += atan2(cross, dot);
+            let (x, z) = (rest.x - centre.x, rest.z - centre.y);
+            ex += e * x;
+            xx += x * x;
+            ez += e * z;
+            zz += z * z;
+        }
+        let slope = |num: f32, den: f32| if den > 1e-12 { atan2(num, den) } else { 0.0 };
+        let (pitch, roll) = (-slope(ez, zz), slope(ex, xx));
+        let k = self.react_k;
+        let r = &mut self.reaction;
+        let (bob_t, yaw_t, pitch_t, roll_t) = if count == 0 {
+            (0.0, 0.0, 0.0, 0.0)
+        } else {
+            let n = count as f32;
+            let bob_limit = o.bob_limit * self.mean_size;
+            (
+                clamp_sym(o.bob_gain * height / n, bob_limit),
+                clamp_sym(o.sway_gain * yaw / n, o.sway_limit),
+                clamp_sym(o.sway_gain * pitch, o.sway_limit),
+                clamp_sym(o.sway_gain * roll, o.sway_limit),
+            )
+        };
+        r.bob = clamp_sym(r.bob + (bob_t - r.bob) * k, o.bob_limit * self.mean_size);
+        r.yaw = clamp_sym(r.yaw + (yaw_t - r.yaw) * k, o.sway_limit);
+        r.pitch = clamp_sym(r.pitch + (pitch_t - r.pitch) * k, o.sway_limit);
+        r.roll = clamp_sym(r.roll + (roll_t - r.roll) * k, o.sway_limit);
+        let breathe = o.breathe_amplitude * self.mean_size * sin_turns(self.idle_phase);
+        let w = self.blend;
+        r.offset = Vec3::Y * ((r.bob + breathe) * w);
+        r.rotation = quat_yxz(r.yaw * w, r.pitch * w, r.roll * w);
+
+        // Hip roll: the height difference between a foot and its partner (3D seed). A pair
+        // with the same lever rolls by opposite angles: one arctangent per pair.
+        for i in 0..self.legs.len() {
+            let roll = match self.layout.partner[i] {
+                Some(j) if self.states[i].grounded && self.states[j].grounded => {
+                    if j < i && self.hip_width[j] == self.hip_width[i] {
+                        self.states[i].hip_roll = -self.states[j].hip_roll;
+                        continue;
+                    }
+                    let da = self.states[i].foot.y - self.rest_world[i].y;
+                    let db = self.states[j].foot.y - self.rest_world[j].y;
+                    clamp_sym(
+                        o.hip_roll_gain * atan2(da - db, self.hip_width[i]),
+                        o.hip_roll_limit,
+                    )
+                }
+                _ => 0.0,
+            };
+            self.states[i].hip_roll = roll * self.blend;
+        }
+    }
+
+    // ----- intent -----------------------------------------------------------------------------
+
+    fn intend(&mut self, pose: &Pose, angular_velocity: Vec3) {
+        let o = &self.options;
+        let (yaw_t, pitch_t) = match self.look_target {
+            Some(target) => {
+                let local = pose.inverse_transform_point(target) - self.head;
+                let flat = Vec2::new(local.x, local.z).length();
+                if local.length_squared() > 1e-12 {
+                    (atan2(local.x, local.z), atan2(local.y, flat))
+                } else {
+                    (0.0, o.look_pitch)
+                }
+            }
+            None => (angular_velocity.y * o.look_ahead, o.look_pitch),
+        };
+        let yaw_t = clamp_sym(yaw_t, o.look_limit);
+        let pitch_t = clamp_sym(pitch_t, o.look_limit);
+        let k = self.look_k;
+        let look = &mut self.look;
+        look.yaw = clamp_sym(look.yaw + (yaw_t - look.yaw) * k, o.look_limit);
+        look.pitch = clamp_sym(look.pitch + (pitch_t - look.pitch) * k, o.look_limit);
+        let full = quat_yxz(look.yaw, -look.pitch, 0.0);
+        look.rotation = if self.blend == 1.0 {
+            full.normalize()
+        } else {
+            Quat::IDENTITY.slerp(full, self.blend).normalize()
+        };
+        look.target = pose.transform_point(self.head + full * Vec3::Z * (2.0 * self.mean_size));
+    }
+
+    // ----- follow-through ---------------------------------------------------------------------
+
+    fn reset_chain(&mut self, i: usize) {
+        let Some(chain) = self.chains.get(i) else {
+            return;
+        };
+        if let Some(s) = self.chain_states.get_mut(i) {
+            chain_rest(chain, &self.pose, 0.0, &mut s.rest);
+            s.velocities.iter_mut().for_each(|v| *v = Vec3::ZERO);
+            s.output.clone_from(&s.rest);
+            s.positions.clone_from(&s.rest);
+        }
+    }
+
+    fn follow(&mut self, i: usize, dt: f32, pose: &Pose, angular_velocity: Vec3) {
+        let (Some(chain), Some(state)) = (self.chains.get(i), self.chain_states.get_mut(i)) else {
+            return;
+        };
+        chain_rest(
+            chain,
+            pose,
+            angular_velocity.y * chain.turn_bend,
+            &mut state.rest,
+        );
+        let rest = &state.rest;
+        let rate = (2.0 * sqrt(chain.stiffness) + chain.damping).max(1.0 / CHAIN_SUBSTEP);
+        let substeps = (ceil(dt * rate) as u32).clamp(1, MAX_CHAIN_SUBSTEPS);
+        let h = (dt / substeps as f32).min(1.0 / rate);
+        let len = chain.segment_length;
+        if dt > 0.0 {
+            for _ in 0..substeps {
+                if let Some(root) = state.positions.first_mut() {
+                    *root = rest[0];
+                }
+                for k in 1..state.positions.len() {
+                    let x = state.positions[k];
+                    let v = state.velocities[k];
+                    let accel = (rest[k] - x) * chain.stiffness - v * chain.damping
+                        + Vec3::NEG_Y * chain.gravity;
+                    let v = v + accel * h;
+                    let moved = x + v * h;
+                    // Constant segment length: project onto the sphere around the parent.
+                    let parent = state.positions[k - 1];
+                    let dir = (moved - parent)
+                        .try_normalize()
+                        .unwrap_or_else(|| (rest[k] - rest[k - 1]).normalize_or(Vec3::NEG_Z));
+                    let fixed = parent + dir * len;
+                    state.velocities[k] = (fixed - x) / h;
+                    state.positions[k] = fixed;
+                }
+            }
+        } else if let Some(root) = state.positions.first_mut() {
+            *root = rest[0];
+            for k in 1..state.positions.len() {
+                let parent = state.positions[k - 1];
+                let dir = (state.positions[k] - parent).normalize_or(Vec3::NEG_Z);
+                state.positions[k] = parent + dir * len;
+            }
+        }
+        if !state.positions.iter().all(|p| p.is_finite())
+            || !state.velocities.iter().all(|v| v.is_finite())
+        {
+            state.positions.clone_from(rest);
+            state.velocities.iter_mut().for_each(|v| *v = Vec3::ZERO);
+        }
+        let w = self.blend;
+        for (out, (p, r)) in state
+            .output
+            .iter_mut()
+            .zip(state.positions.iter().zip(rest))
+        {
+            *out = r.lerp(*p, w);
+        }
+    }
+
+    // ----- IK and metrics ---------------------------------------------------------------------
+
+    fn solve_joints(&mut self) {
+        let w = self.blend;
+        let reacted = self.reacted_pose();
+        let rotation = Mat3A::from_quat(reacted.rotation);
+        for ((leg, state), rest) in self
+            .legs
+            .iter()
+            .zip(self.states.iter_mut())
+            .zip(&self.rest_world)
+        {
+            let hip = rotation * leg.hip + reacted.translation;
+            let pole = rotation * leg.pole;
+            let foot = if w == 1.0 {
+                state.foot
+            } else {
+                rest.lerp(state.foot, w)
+            };
+            state.joints = solve_finite(hip, foot, leg.upper, leg.lower, pole);
+        }
+    }
+
+    fn measure(&mut self, pose: &Pose) {
+        let mut skate = 0.0f32;
+        let mut over = 0.0f32;
+        let mut in_air = 0usize;
+        self.support.clear();
+        for (leg, state) in self.legs.iter().zip(&self.states) {
+            if leg.kind != LimbKind::Leg {
+                continue;
+            }
+            // Squared distances: the square root (monotonic) is taken of the largest only.
+            if state.prev_planted && state.planted {
+                skate = skate.max(state.foot.distance_squared(state.prev_foot));
+            }
+            if state.stepping || !state.grounded {
+                in_air += 1;
+            } else {
+                self.support.push(Vec2::new(state.foot.x, state.foot.z));
+                let reach = leg.length();
+                let d2 = state.foot.distance_squared(state.joints.root);
+                if d2 > reach * reach {
+                    over = over.max(sqrt(d2) - reach);
+                }
+            }
+        }
+        let skate = sqrt(skate);
+        let com = pose.transform_point(self.options.centre_of_mass);
+        self.metrics.max_overstretch = over.max(0.0);
+        self.metrics.legs_in_air = in_air;
+        self.metrics.stability_margin =
+            support_margin(&mut self.support, &mut self.hull, Vec2::new(com.x, com.z));
+        self.metrics.max_skate = skate;
+    }
+}
+
+/// Read-outs.
+impl Controller {
+    /// The legs, as given.
+    #[must_use]
+    pub fn legs(&self) -> &[Leg] {
+        &self.legs
+    }
+
+    /// The options, as given.
+    #[must_use]
+    pub const fn options(&self) -> &GaitOptions {
+        &self.options
+    }
+
+    /// Every leg's state (foot, planted, step, joints), in the order of the legs.
+    #[must_use]
+    pub fn leg_states(&self) -> &[LegState] {
+        &self.states
+    }
+
+    /// One leg's state.
+    ///
+    /// # Errors
+    /// [`GaitError::IndexOutOfRange`] for a leg that does not exist.
+    pub fn leg_state(&self, leg: usize) -> Result<&LegState, GaitError> {
+        self.states.get(leg).ok_or(GaitError::IndexOutOfRange {
+            what: "leg",
+            index: leg,
+            len: self.states.len(),
+        })
+    }
+
+    /// Each leg's group (consecutive from 0; derived from the layout unless the legs set it;
+    /// arms get 0 and are not sequenced).
+    #[must_use]
+    pub fn groups(&self) -> &[u8] {
+        &self.layout.groups
+    }
+
+    /// How many groups take turns.
+    #[must_use]
+    pub const fn group_count(&self) -> u8 {
+        self.layout.group_count
+    }
+
+    /// The group whose turn it is.
+    #[must_use]
+    pub const fn active_group(&self) -> u8 {
+        self.active_group
+    }
+
+    /// The leg that must be planted before `leg` may step (the 3D seed's opposite-foot
+    /// reference, derived only when groups are derived), or `None`.
+    #[must_use]
+    pub fn opposite(&self, leg: usize) -> Option<usize> {
+        self.layout.opposite.get(leg).copied().flatten()
+    }
+
+    /// The other leg of `leg`'s left/right pair, or `None`.
+    #[must_use]
+    pub fn partner(&self, leg: usize) -> Option<usize> {
+        self.layout.partner.get(leg).copied().flatten()
+    }
+
+    /// The body's reaction (bob and breathing offset, sway/pitch/roll rotation).
+    #[must_use]
+    pub const fn body(&self) -> &BodyReaction {
+        &self.reaction
+    }
+
+    /// The body's pose with the reaction applied: where to draw the body.
+    #[must_use]
+    pub fn reacted_pose(&self) -> Pose {
+        Pose::new(
+            self.pose.translation + self.reaction.offset,
+            (self.pose.rotation * self.reaction.rotation).normalize(),
+        )
+    }
+
+    /// The head's look-at.
+    #[must_use]
+    pub const fn look(&self) -> &Look {
+        &self.look
+    }
+
+    /// How many chains there are.
+    #[must_use]
+    pub fn chain_count(&self) -> usize {
+        self.chains.len()
+    }
+
+    /// A chain's joint positions (world, root first, `segments + 1` of them), after blending.
+    ///
+    /// # Errors
+    /// [`GaitError::IndexOutOfRange`] for a chain that does not exist.
+    pub fn chain(&self, chain: usize) -> Result<&[Vec3], GaitError> {
+        self.chain_states
+            .get(chain)
+            .map(|s| s.output.as_slice())
+            .ok_or(GaitError::IndexOutOfRange {
+                what: "chain",
+                index: chain,
+                len: self.chain_states.len(),
+            })
+    }
+
+    /// The current blend weight of the procedural layer.
+    #[must_use]
+    pub const fn blend(&self) -> f32 {
+        self.blend
+    }
+
+    /// The figures measured by the last update.
+    #[must_use]
+    pub const fn metrics(&self) -> &GaitMetrics {
+        &self.metrics
+    }
+
+    /// Whether every leg stands on the ground (no step under way, every ray hit).
+    #[must_use]
+    pub fn all_planted(&self) -> bool {
+        self.legs
+            .iter()
+            .zip(&self.states)
+            .all(|(leg, s)| leg.kind != LimbKind::Leg || (s.planted && s.grounded))
+    }
+}
+
+fn horizontal(v: Vec3) -> Vec3 {
+    Vec3::new(v.x, 0.0, v.z)
+}
+
+fn validate_pose(pose: Pose) -> Result<Pose, GaitError> {
+    finite3(pose.translation, "pose translation", 0)?;
+    if !pose.rotation.is_finite() {
+        return Err(GaitError::NonFinite {
+            what: "pose rotation",
+            index: 0,
+        });
+    }
+    let t = pose.translation.abs().max_element();
+    in_range(t, "pose coordinate", 0.0, MAX_COORDINATE)?;
+    let len = pose.rotation.length();
+    if !(len > 1e-6) {
+        return Err(GaitError::ZeroVector {
+            what: "pose rotation",
+            index: 0,
+        });
+    }
+    Ok(Pose::new(pose.translation, pose.rotation / len))
+}
+
+/// The ray hit under a leg's rest position (`rest_world`): `(point, normal, grounded)`; arms
+/// and misses give the rest position itself.
+#[inline]
+fn cast_anchor<G: Ground + ?Sized>(
+    leg: &Leg,
+    rest_world: Vec3,
+    o: &GaitOptions,
+    ground: &G,
+) -> (Vec3, Vec3, bool) {
+    if leg.kind == LimbKind::Arm {
+        return (rest_world, Vec3::Y, true);
+    }
+    match cast_down(ground, rest_world, leg.size, o) {
+        Some((point, normal)) => (point, normal, true),
+        None => (rest_world, Vec3::Y, false),
+    }
+}
+
+/// A ray straight down from above `point`: `(hit point, unit normal)` or `None`; hits with
+/// non-finite fields are ignored.
+#[inline]
+fn cast_down<G: Ground + ?Sized>(
+    ground: &G,
+    point: Vec3,
+    size: f32,
+    o: &GaitOptions,
+) -> Option<(Vec3, Vec3)> {
+    let above = o.cast_height * size;
+    let origin = point + Vec3::Y * above;
+    let hit = ground.cast_down(origin, above + o.cast_depth * size)?;
+    if !hit.is_valid() {
+        return None;
+    }
+    // Unit normals (as `HeightField` and `Plane` give) are kept; others are normalised.
+    let n = hit.normal;
+    let normal = if abs(n.length_squared() - 1.0) <= 1e-6 {
+        n
+    } else {
+        n.normalize_or(Vec3::Y)
+    };
+    Some((hit.point, normal))
+}
+
+/// Where a step should land: ahead of the anchor along the anchor's horizontal `motion`, by the
+/// reach in that direction × overshoot (ramped in with speed, × the speed multiplier, capped at
+/// the reach), projected onto the ground from `rest_y` (the rest position's height) or the
+/// anchor, whichever is higher.
+#[allow(clippy::too_many_arguments)]
+#[inline]
+fn step_target<G: Ground + ?Sized>(
+    leg: &Leg,
+    o: &GaitOptions,
+    anchor: Vec3,
+    anchor_normal: Vec3,
+    motion: Vec3,
+    forward: Vec3,
+    rest_y: f32,
+    ground: &G,
+) -> (Vec3, Vec3) {
+    let speed = motion.length();
+    let mut target = anchor;
+    if speed > 1e-6 {
+        let dir = motion / speed;
+        let reach = o.reach.evaluate(dir.dot(forward)) * leg.size;
+        let ramp = (speed / (o.overshoot_speed * leg.size)).min(1.0);
+        let length = (reach * o.overshoot * ramp * o.speed_multiplier.max(1.0)).min(reach);
+        target += dir * length;
+    }
+    if leg.kind == LimbKind::Arm {
+        return (target, Vec3::Y);
+    }
+    if target == anchor {
+        return (anchor, anchor_normal);
+    }
+    // Cast from the rest height so steep ground ahead is found from above.
+    let probe = Vec3::new(target.x, rest_y.max(anchor.y), target.z);
+    match cast_down(ground, probe, leg.size, o) {
+        Some(hit) => hit,
+        None => (anchor, anchor_normal),
+    }
+}
+
+/// A chain's rest joints in world space, its direction turned by `yaw` about the body's up,
+/// written into `out` (reused storage).
+fn chain_rest(chain: &Chain, pose: &Pose, yaw: f32, out: &mut Vec<Vec3>) {
+    let yaw = clamp_sym(yaw, core::f32::consts::FRAC_PI_2);
+    let dir = quat_yxz(yaw, 0.0, 0.0) * chain.direction.normalize_or(Vec3::NEG_Z);
+    out.clear();
+    out.extend(
+        (0..=chain.segments)
+            .map(|k| pose.transform_point(chain.root + dir * (chain.segment_length * k as f32))),
+    );
+}

@@ -1,0 +1,749 @@
+//! Grounds the feet stand on: the [`Ground`] trait (a ray cast) and its implementations
+//! [`Plane`], [`HeightField`] and [`FnGround`] (any closure).
+
+use alloc::vec::Vec;
+
+use glam::{Vec2, Vec3};
+
+use crate::error::{GaitError, finite, finite3, positive};
+use crate::math::{abs, sqrt};
+
+/// Where a ray met the ground.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RayHit {
+    /// The hit point, in world space (metres).
+    pub point: Vec3,
+    /// The ground's unit normal at the hit point, pointing out of the ground.
+    pub normal: Vec3,
+    /// Distance from the ray's origin to the hit point, along the (unit) direction.
+    pub distance: f32,
+}
+
+impl RayHit {
+    /// True when every field is finite and the normal has a length (a hit the controller can use).
+    #[must_use]
+    pub fn is_valid(&self) -> bool {
+        self.point.is_finite()
+            && self.normal.is_finite()
+            && self.distance.is_finite()
+            && self.normal.length_squared() > 1e-12
+    }
+}
+
+/// Anything feet can stand on: a ray cast.
+///
+/// The controller casts rays straight down (world −Y) from above each leg's rest position and
+/// step target. Implementations report the first place where the ray enters the ground
+/// *from above* (crossing the surface against its normal) within `max_distance`; a ray that
+/// starts inside the ground reports no hit until it comes out and crosses the surface again.
+/// Hits with non-finite fields are ignored by the controller.
+///
+/// ```
+/// use creature_gait::{Ground, Plane, glam::Vec3};
+///
+/// let floor = Plane::horizontal(0.5);
+/// let hit = floor.cast_ray(Vec3::new(1.0, 2.0, 3.0), Vec3::NEG_Y, 10.0).unwrap();
+/// assert_eq!(hit.point, Vec3::new(1.0, 0.5, 3.0));
+/// assert_eq!(hit.distance, 1.5);
+/// ```
+pub trait Ground {
+    /// Casts a ray from `origin` along the unit vector `direction`, at most `max_distance` far.
+    fn cast_ray(&self, origin: Vec3, direction: Vec3, max_distance: f32) -> Option<RayHit>;
+
+    /// Casts a ray straight down (world −Y) from `origin`, at most `max_distance` far: the
+    /// only query the controller makes. The default calls
+    /// [`cast_ray`](Self::cast_ray)`(origin, Vec3::NEG_Y, max_distance)`; override it when
+    /// vertical rays have a cheaper answer (as [`HeightField`] does: one bilinear lookup).
+    /// An override must return what `cast_ray` would.
+    #[inline]
+    fn cast_down(&self, origin: Vec3, max_distance: f32) -> Option<RayHit> {
+        self.cast_ray(origin, Vec3::NEG_Y, max_distance)
+    }
+}
+
+impl<G: Ground + ?Sized> Ground for &G {
+    #[inline]
+    fn cast_ray(&self, origin: Vec3, direction: Vec3, max_distance: f32) -> Option<RayHit> {
+        (**self).cast_ray(origin, direction, max_distance)
+    }
+
+    #[inline]
+    fn cast_down(&self, origin: Vec3, max_distance: f32) -> Option<RayHit> {
+        (**self).cast_down(origin, max_distance)
+    }
+}
+
+/// Any closure `Fn(origin, direction, max_distance) -> Option<RayHit>` as a ground: the way to
+/// plug in an engine's physics ray cast.
+///
+/// ```
+/// use creature_gait::{FnGround, Ground, RayHit, glam::Vec3};
+///
+/// // A floor at y = 0 that only exists for x > 0.
+/// let half = FnGround(|origin: Vec3, direction: Vec3, max: f32| {
+///     if origin.x <= 0.0 || direction.y >= 0.0 || origin.y < 0.0 {
+///         return None;
+///     }
+///     let distance = origin.y / -direction.y;
+///     (distance <= max).then(|| RayHit {
+///         point: origin + direction * distance,
+///         normal: Vec3::Y,
+///         distance,
+///     })
+/// });
+/// assert!(half.cast_ray(Vec3::new(1.0, 1.0, 0.0), Vec3::NEG_Y, 5.0).is_some());
+/// assert!(half.cast_ray(Vec3::new(-1.0, 1.0, 0.0), Vec3::NEG_Y, 5.0).is_none());
+/// ```
+#[derive(Debug, Clone, Copy)]
+pub struct FnGround<F>(pub F);
+
+impl<F: Fn(Vec3, Vec3, f32) -> Option<RayHit>> Ground for FnGround<F> {
+    #[inline]
+    fn cast_ray(&self, origin: Vec3, direction: Vec3, max_distance: f32) -> Option<RayHit> {
+        (self.0)(origin, direction, max_distance)
+    }
+}
+
+/// An infinite plane: the set of points `p` with `(p − point) · normal = 0`, solid below.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Plane {
+    point: Vec3,
+    normal: Vec3,
+}
+
+impl Plane {
+    /// The horizontal plane `y = 0`, normal +Y.
+    pub const GROUND: Self = Self {
+        point: Vec3::ZERO,
+        normal: Vec3::Y,
+    };
+
+    /// A plane through `point` with the given normal (normalised here).
+    ///
+    /// # Errors
+    /// [`GaitError::NonFinite`] for a non-finite input, [`GaitError::ZeroVector`] for a zero
+    /// normal.
+    pub fn new(point: Vec3, normal: Vec3) -> Result<Self, GaitError> {
+        finite3(point, "plane point", 0)?;
+        finite3(normal, "plane normal", 0)?;
+        let normal = normal.try_normalize().ok_or(GaitError::ZeroVector {
+            what: "plane normal",
+            index: 0,
+        })?;
+        Ok(Self { point, normal })
+    }
+
+    /// The horizontal plane `y = height`. A non-finite height gives `y = 0`.
+    #[must_use]
+    pub fn horizontal(height: f32) -> Self {
+        let height = if height.is_finite() { height } else { 0.0 };
+        Self {
+            point: Vec3::new(0.0, height, 0.0),
+            normal: Vec3::Y,
+        }
+    }
+
+    /// A point on the plane.
+    #[must_use]
+    pub const fn point(&self) -> Vec3 {
+        self.point
+    }
+
+    /// The plane's unit normal.
+    #[must_use]
+    pub const fn normal(&self) -> Vec3 {
+        self.normal
+    }
+}
+
+impl Default for Plane {
+    fn default() -> Self {
+        Self::GROUND
+    }
+}
+
+impl Ground for Plane {
+    fn cast_ray(&self, origin: Vec3, direction: Vec3, max_distance: f32) -> Option<RayHit> {
+        let denom = direction.dot(self.normal);
+        if !(denom < -1e-12) {
+            return None; // parallel, leaving, or NaN
+        }
+        let distance = (self.point - origin).dot(self.normal) / denom;
+        if !(distance >= 0.0 && distance <= max_distance) {
+            return None;
+        }
+        // Vertical rays onto a horizontal plane land exactly on its height.
+        let mut point = origin + direction * distance;
+        if self.normal == Vec3::Y && direction.x == 0.0 && direction.z == 0.0 {
+            point.y = self.point.y;
+        }
+        Some(RayHit {
+            point,
+            normal: self.normal,
+            distance,
+        })
+    }
+}
+
+/// A regular grid of heights over the XZ plane, bilinear between samples.
+///
+/// Sample `(i, j)` sits at `x = origin.x + i · cell`, `z = origin.y + j · cell` with height
+/// `heights[j · columns + i]`. Outside the grid there is no ground (rays miss). Ray casts are
+/// exact: the ray walks the cells it crosses (a 2D DDA) and, in each, solves the quadratic
+/// where it meets the bilinear patch; a vertical ray returns the bilinear height itself.
+///
+/// ```
+/// use creature_gait::{Ground, HeightField, glam::{Vec2, Vec3}};
+///
+/// // 3 × 2 samples, 1 m apart, rising along X.
+/// let field = HeightField::new(Vec2::ZERO, 1.0, 3, 2, vec![0.0, 1.0, 2.0, 0.0, 1.0, 2.0])?;
+/// assert_eq!(field.height(0.5, 0.5), Some(0.5));
+/// let hit = field.cast_ray(Vec3::new(1.5, 5.0, 0.5), Vec3::NEG_Y, 10.0).unwrap();
+/// assert_eq!(hit.point.y, 1.5);
+/// # Ok::<(), creature_gait::GaitError>(())
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct HeightField {
+    origin: Vec2,
+    cell: f32,
+    columns: usize,
+    rows: usize,
+    heights: Vec<f32>,
+    /// `1 / cell`, so a lookup multiplies instead of dividing.
+    inv_cell: f32,
+}
+
+impl HeightField {
+    /// A height field with `columns × rows` samples (X fastest), `cell` metres apart, its first
+    /// sample at `(origin.x, origin.y)` in world XZ.
+    ///
+    /// # Errors
+    /// [`GaitError::GridTooSmall`] for fewer than 2 × 2 samples, [`GaitError::WrongLength`]
+    /// when `heights.len() != columns · rows`, [`GaitError::NotPositive`] for a cell size that
+    /// is not positive, [`GaitError::NonFinite`] for a non-finite origin or height.
+    pub fn new(
+        origin: Vec2,
+        cell: f32,
+        columns: usize,
+        rows: usize,
+        heights: Vec<f32>,
+    ) -> Result<Self, GaitError> {
+        if columns < 2 || rows < 2 {
+            return Err(GaitError::GridTooSmall { columns, rows });
+        }
+        let expected = columns
+            .checked_mul(rows)
+            .ok_or(GaitError::GridTooSmall { columns, rows })?;
+        if heights.len() != expected {
+            return Err(GaitError::WrongLength {
+                what: "heights",
+                expected,
+                found: heights.len(),
+            });
+        }
+        if !origin.is_finite() {
+            return Err(GaitError::NonFinite {
+                what: "height field origin",
+                index: 0,
+            });
+        }
+        positive(cell, "cell size", 0)?;
+        for (index, &h) in heights.iter().enumerate() {
+            finite(h, "height", index)?;
+        }
+        // The far corner must be representable.
+        let extent =
+            origin + Vec2::splat(cell) * Vec2::new((columns - 1) as f32, (rows - 1) as f32);
+        if !extent.is_finite() {
+            return Err(GaitError::NonFinite {
+                what: "height field extent",
+                index: 0,
+            });
+        }
+        Ok(Self {
+            origin,
+            cell,
+            columns,
+            rows,
+            heights,
+            inv_cell: 1.0 / cell,
+        })
+    }
+
+    /// A height field sampled from `height(x, z)` on the grid. Non-finite samples are an error.
+    ///
+    /// # Errors
+    /// As [`HeightField::new`].
+    pub fn from_fn(
+        origin: Vec2,
+        cell: f32,
+        columns: usize,
+        rows: usize,
+        height: impl Fn(f32, f32) -> f32,
+    ) -> Result<Self, GaitError> {
+        let mut heights = Vec::with_capacity(columns.saturating_mul(rows).min(1 << 24));
+        for j in 0..rows {
+            for i in 0..columns {
+                heights.push(height(
+                    origin.x + i as f32 * cell,
+                    origin.y + j as f32 * cell,
+                ));
+            }
+        }
+        Self::new(origin, cell, columns, rows, heights)
+    }
+
+    /// World XZ of sample `(0, 0)`.
+    #[must_use]
+    pub const fn origin(&self) -> Vec2 {
+        self.origin
+    }
+
+    /// Distance between neighbouring samples, in metres.
+    #[must_use]
+    pub const fn cell(&self) -> f32 {
+        self.cell
+    }
+
+    /// Samples along X.
+    #[must_use]
+    pub const fn columns(&self) -> usize {
+        self.columns
+    }
+
+    /// Samples along Z.
+    #[must_use]
+    pub const fn rows(&self) -> usize {
+        self.rows
+    }
+
+    /// The samples, X fastest.
+    #[must_use]
+    pub fn heights(&self) -> &[f32] {
+        &self.heights
+    }
+
+    /// World XZ of the far corner (sample `(columns − 1, rows − 1)`).
+    #[must_use]
+    pub fn max_corner(&self) -> Vec2 {
+        self.origin
+            + Vec2::new(
+                (self.columns - 1) as f32 * self.cell,
+                (self.rows - 1) as f32 * self.cell,
+            )
+    }
+
+    #[inline]
+    fn sample(&self, i: usize, j: usize) -> f32 {
+        self.heights
+            .get(j * self.columns + i)
+            .copied()
+            .unwrap_or(0.0)
+    }
+
+    /// The cell holding grid coordinates `(gx, gz)` (in cells from the origin) and the local
+    /// coordinates inside it, or `None` outside the grid.
+    #[inline]
+    fn locate(&self, x: f32, z: f32) -> Option<(usize, usize, f32, f32)> {
+        let gx = (x - self.origin.x) * self.inv_cell;
+        let gz = (z - self.origin.y) * self.inv_cell;
+        let max_x = (self.columns - 1) as f32;
+        let max_z = (self.rows - 1) as f32;
+        if !(gx >= 0.0 && gx <= max_x && gz >= 0.0 && gz <= max_z) {
+            return None;
+        }
+        // Non-negative here, so truncation is the floor (no libm call).
+        let i = (gx as usize).min(self.columns - 2);
+        let j = (gz as usize).min(self.rows - 2);
+        Some((i, j, gx - i as f32, gz - j as f32))
+    }
+
+    /// Bilinear coefficients `[a, b, c, d]` of cell `(i, j)`: `h = a + b u + c v + d u v`.
+    #[inline]
+    fn patch(&self, i: usize, j: usize) -> [f32; 4] {
+        // Two rows of two samples: two bounds checks (never failing for a located cell).
+        let k = j * self.columns + i;
+        let (h00, h10) = match self.heights.get(k..k + 2) {
+            Some(&[a, b]) => (a, b),
+            _ => (self.sample(i, j), self.sample(i + 1, j)),
+        };
+        let k = k + self.columns;
+        let (h01, h11) = match self.heights.get(k..k + 2) {
+            Some(&[a, b]) => (a, b),
+            _ => (self.sample(i, j + 1), self.sample(i + 1, j + 1)),
+        };
+        [h00, h10 - h00, h01 - h00, h00 - h10 - h01 + h11]
+    }
+
+    /// The bilinear height at world `(x, z)`, or `None` outside the grid.
+    #[must_use]
+    pub fn height(&self, x: f32, z: f32) -> Option<f32> {
+        let (i, j, u, v) = self.locate(x, z)?;
+        let [a, b, c, d] = self.patch(i, j);
+        Some(a + b * u + c * v + d * u * v)
+    }
+
+    /// The unit surface normal at world `(x, z)`, or `None` outside the grid.
+    #[must_use]
+    pub fn normal(&self, x: f32, z: f32) -> Option<Vec3> {
+        let (i, j, u, v) = self.locate(x, z)?;
+        Some(self.patch_normal(i, j, u, v))
+    }
+
+    #[inline]
+    fn patch_normal(&self, i: usize, j: usize, u: f32, v: f32) -> Vec3 {
+        self.patch_normal_of(self.patch(i, j), u, v)
+    }
+
+    #[inline]
+    fn patch_normal_of(&self, [_, b, c, d]: [f32; 4], u: f32, v: f32) -> Vec3 {
+        let dx = (b + d * v) * self.inv_cell;
+        let dz = (c + d * u) * self.inv_cell;
+        // (−dx, 1, −dz) normalised; its length is at least 1, so only overflow needs care.
+        let len2 = 1.0 + dx * dx + dz * dz;
+        if len2.is_finite() {
+            let inv = 1.0 / sqrt(len2);
+            Vec3::new(-dx * inv, inv, -dz * inv)
+        } else {
+            Vec3::new(-dx, 1.0, -dz).normalize_or(Vec3::Y)
+        }
+    }
+
+    /// A vertical ray down from `origin` at speed `down` (> 0) per unit of distance: the
+    /// bilinear height under it and the patch's normal.
+    #[inline]
+    fn vertical(&self, origin: Vec3, down: f32, max_distance: f32) -> Option<RayHit> {
+        let (i, j, u, v) = self.locate(origin.x, origin.z)?;
+        let patch = self.patch(i, j);
+        let [a, b, c, d] = patch;
+        let h = a + b * u + c * v + d * u * v;
+        if origin.y < h {
+            return None;
+        }
+        let distance = (origin.y - h) / down;
+        if !(distance <= max_distance) {
+            return None;
+        }
+        Some(RayHit {
+            point: Vec3::new(origin.x, h, origin.z),
+            normal: self.patch_normal_of(patch, u, v),
+            distance,
+        })
+    }
+
+    /// The first downward crossing of the ray with cell `(i, j)`'s patch for `t` in
+    /// `[t0, t1]`.
+    fn cross_cell(
+        &self,
+        i: usize,
+        j: usize,
+        origin: Vec3,
+        direction: Vec3,
+        t0: f32,
+        t1: f32,
+    ) -> Option<f32> {
+        let [a, b, c, d] = self.patch(i, j);
+        // Re-base at the cell entry for conditioning: s = t − t0.
+        let p = origin + direction * t0;
+        let u0 = (p.x - self.origin.x) / self.cell - i as f32;
+        let v0 = (p.z - self.origin.y) / self.cell - j as f32;
+        let du = direction.x / self.cell;
+        let dv = direction.z / self.cell;
+        // f(s) = ray height − surface height = k0 + k1 s + k2 s².
+        let k0 = p.y - (a + b * u0 + c * v0 + d * u0 * v0);
+        let k1 = direction.y - (b * du + c * dv + d * (u0 * dv + v0 * du));
+        let k2 = -d * du * dv;
+        let len = t1 - t0;
+        let slope = |s: f32| k1 + 2.0 * k2 * s;
+        let accept = |s: f32| s >= 0.0 && s <= len && slope(s) < 0.0;
+        let scale = abs(k1) + abs(k0) / len.max(1e-12);
+        if abs(k2) * len <= 1e-7 * scale.max(1e-30) {
+            // Linear.
+            if k1 == 0.0 {
+                return None;
+            }
+            let s = -k0 / k1;
+            return accept(s).then_some(t0 + s);
+        }
+        let disc = k1 * k1 - 4.0 * k2 * k0;
+        if disc < 0.0 {
+            return None;
+        }
+        let root = sqrt(disc);
+        let q = -0.5 * (k1 + if k1 >= 0.0 { root } else { -root });
+        let (mut r1, mut r2) = if q == 0.0 {
+            (0.0, 0.0)
+        } else {
+            (q / k2, k0 / q)
+        };
+        if r1 > r2 {
+            core::mem::swap(&mut r1, &mut r2);
+        }
+        if accept(r1) {
+            Some(t0 + r1)
+        } else if accept(r2) {
+            Some(t0 + r2)
+        } else {
+            None
+        }
+    }
+}
+
+impl Ground for HeightField {
+    /// One bilinear lookup (no march): the same hit as `cast_ray` straight down.
+    #[inline]
+    fn cast_down(&self, origin: Vec3, max_distance: f32) -> Option<RayHit> {
+        if !(origin.is_finite() && max_distance >= 0.0) {
+            return None;
+        }
+        self.vertical(origin, 1.0, max_distance)
+    }
+
+    fn cast_ray(&self, origin: Vec3, direction: Vec3, max_distance: f32) -> Option<RayHit> {
+        if !(origin.is_finite() && direction.is_finite() && max_distance >= 0.0) {
+            return None;
+        }
+        if direction.x == 0.0 && direction.z == 0.0 {
+            // Vertical: the bilinear height itself.
+            if !(direction.y < 0.0) {
+                return None;
+            }
+            return self.vertical(origin, -direction.y, max_distance);
+        }
+        // Clip the ray against the grid's XZ box (slabs).
+        let lo = self.origin;
+        let hi = self.max_corner();
+        let mut t_in = 0.0f32;
+        let mut t_out = max_distance;
+        for (o, dir, min, max) in [
+            (origin.x, direction.x, lo.x, hi.x),
+            (origin.z, direction.z, lo.y, hi.y),
+        ] {
+            if dir == 0.0 {
+                if o < min || o > max {
+                    return None;
+                }
+            } else {
+                let a = (min - o) / dir;
+                let b = (max - o) / dir;
+                t_in = t_in.max(a.min(b));
+                t_out = t_out.min(a.max(b));
+            }
+        }
+        if !(t_in <= t_out) {
+            return None;
+        }
+        // 2D DDA through the cells from t_in to t_out.
+        let start = origin + direction * t_in;
+        let gx = ((start.x - lo.x) / self.cell).clamp(0.0, (self.columns - 1) as f32);
+        let gz = ((start.z - lo.y) / self.cell).clamp(0.0, (self.rows - 1) as f32);
+        let mut i = (gx as usize).min(self.columns - 2);
+        let mut j = (gz as usize).min(self.rows - 2);
+        let step_i: isize = if direction.x > 0.0 { 1 } else { -1 };
+        let step_j: isize = if direction.z > 0.0 { 1 } else { -1 };
+        let boundary = |index: usize, step: isize, o: f32, dir: f32, lo: f32| -> f32 {
+            if dir == 0.0 {
+                return f32::INFINITY;
+            }
+            let edge = if step > 0 { index + 1 } else { index };
+            (lo + edge as f32 * self.cell - o) / dir
+        };
+        let mut t = t_in;
+        let max_steps = self.columns + self.rows + 2;
+        for _ in 0..max_steps {
+            let next_x = boundary(i, step_i, origin.x, direction.x, lo.x);
+            let next_z = boundary(j, step_j, origin.z, direction.z, lo.y);
+            let t_next = next_x.min(next_z).min(t_out).max(t);
+            if let Some(hit_t) = self.cross_cell(i, j, origin, direction, t, t_next) {
+                let point = origin + direction * hit_t;
+                let (u, v) = (
+                    ((point.x - lo.x) / self.cell - i as f32).clamp(0.0, 1.0),
+                    ((point.z - lo.y) / self.cell - j as f32).clamp(0.0, 1.0),
+                );
+                return Some(RayHit {
+                    point,
+                    normal: self.patch_normal(i, j, u, v),
+                    distance: hit_t,
+                });
+            }
+            if t_next >= t_out {
+                return None;
+            }
+            t = t_next;
+            if next_x <= next_z {
+                let ni = i as isize + step_i;
+                if ni < 0 || ni as usize > self.columns - 2 {
+                    return None;
+                }
+                i = ni as usize;
+            } else {
+                let nj = j as isize + step_j;
+                if nj < 0 || nj as usize > self.rows - 2 {
+                    return None;
+                }
+                j = nj as usize;
+            }
+        }
+        None
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use alloc::vec;
+
+    use super::*;
+
+    fn bumpy() -> HeightField {
+        HeightField::from_fn(Vec2::new(-5.0, -5.0), 0.5, 21, 21, |x, z| {
+            0.3 * crate::math::sin(x * 1.3) * crate::math::cos(z * 0.9) + 0.05 * x
+        })
+        .unwrap()
+    }
+
+    #[test]
+    fn plane_hits_from_above_only() {
+        let plane = Plane::horizontal(1.0);
+        let hit = plane
+            .cast_ray(Vec3::new(0.0, 3.0, 0.0), Vec3::NEG_Y, 5.0)
+            .unwrap();
+        assert_eq!(hit.point.y, 1.0);
+        assert_eq!(hit.distance, 2.0);
+        assert!(
+            plane
+                .cast_ray(Vec3::new(0.0, 0.0, 0.0), Vec3::NEG_Y, 5.0)
+                .is_none()
+        );
+        assert!(
+            plane
+                .cast_ray(Vec3::new(0.0, 3.0, 0.0), Vec3::Y, 5.0)
+                .is_none()
+        );
+        assert!(
+            plane
+                .cast_ray(Vec3::new(0.0, 3.0, 0.0), Vec3::NEG_Y, 1.0)
+                .is_none()
+        );
+        assert!(Plane::new(Vec3::ZERO, Vec3::ZERO).is_err());
+    }
+
+    #[test]
+    fn tilted_plane_hit_lies_on_plane() {
+        let plane = Plane::new(Vec3::new(0.0, 1.0, 0.0), Vec3::new(0.3, 1.0, -0.2)).unwrap();
+        let hit = plane
+            .cast_ray(
+                Vec3::new(2.0, 10.0, -1.0),
+                Vec3::new(0.1, -1.0, 0.2).normalize(),
+                50.0,
+            )
+            .unwrap();
+        assert!((hit.point - plane.point()).dot(plane.normal()).abs() < 1e-5);
+    }
+
+    #[test]
+    fn height_field_rejects_bad_grids() {
+        assert_eq!(
+            HeightField::new(Vec2::ZERO, 1.0, 1, 3, vec![0.0; 3]),
+            Err(GaitError::GridTooSmall {
+                columns: 1,
+                rows: 3
+            })
+        );
+        assert!(matches!(
+            HeightField::new(Vec2::ZERO, 1.0, 2, 2, vec![0.0; 3]),
+            Err(GaitError::WrongLength { .. })
+        ));
+        assert!(matches!(
+            HeightField::new(Vec2::ZERO, 0.0, 2, 2, vec![0.0; 4]),
+            Err(GaitError::NotPositive { .. })
+        ));
+        assert!(matches!(
+            HeightField::new(Vec2::ZERO, 1.0, 2, 2, vec![0.0, f32::NAN, 0.0, 0.0]),
+            Err(GaitError::NonFinite { index: 1, .. })
+        ));
+    }
+
+    #[test]
+    fn bilinear_height_matches_samples_and_midpoints() {
+        let f = HeightField::new(Vec2::ZERO, 2.0, 2, 2, vec![0.0, 1.0, 2.0, 5.0]).unwrap();
+        assert_eq!(f.height(0.0, 0.0), Some(0.0));
+        assert_eq!(f.height(2.0, 2.0), Some(5.0));
+        assert_eq!(f.height(1.0, 1.0), Some(2.0));
+        assert_eq!(f.height(2.1, 1.0), None);
+    }
+
+    #[test]
+    fn vertical_ray_returns_the_bilinear_height() {
+        let f = bumpy();
+        for k in 0..50 {
+            let x = -4.9 + k as f32 * 0.19;
+            let z = 4.7 - k as f32 * 0.17;
+            let hit = f.cast_ray(Vec3::new(x, 5.0, z), Vec3::NEG_Y, 20.0).unwrap();
+            assert_eq!(hit.point.y, f.height(x, z).unwrap());
+            assert_eq!((hit.point.x, hit.point.z), (x, z));
+        }
+    }
+
+    #[test]
+    fn slanted_rays_land_on_the_surface() {
+        let f = bumpy();
+        let mut hits = 0;
+        for k in 0..200 {
+            let a = k as f32 * 0.37;
+            let origin = Vec3::new(
+                -4.0 + (k % 17) as f32 * 0.5,
+                3.0,
+                -4.0 + (k % 13) as f32 * 0.6,
+            );
+            let direction = Vec3::new(crate::math::cos(a), -1.5, crate::math::sin(a)).normalize();
+            if let Some(hit) = f.cast_ray(origin, direction, 20.0) {
+                hits += 1;
+                let h = f.height(hit.point.x, hit.point.z).unwrap();
+                assert!((hit.point.y - h).abs() < 1e-4, "{} vs {h}", hit.point.y);
+                assert!((origin + direction * hit.distance).distance(hit.point) < 1e-4);
+                // Nothing above the surface was skipped: sample the ray before the hit.
+                for q in 1..40 {
+                    let p = origin + direction * (hit.distance * q as f32 / 40.0 - 1e-3);
+                    if let Some(h) = f.height(p.x, p.z) {
+                        assert!(p.y >= h - 1e-3, "ray passed below the surface at {p}");
+                    }
+                }
+            }
+        }
+        assert!(hits > 150, "{hits}");
+    }
+
+    #[test]
+    fn rays_outside_or_below_miss() {
+        let f = bumpy();
+        assert!(
+            f.cast_ray(Vec3::new(50.0, 5.0, 0.0), Vec3::NEG_Y, 20.0)
+                .is_none()
+        );
+        assert!(
+            f.cast_ray(Vec3::new(0.0, -5.0, 0.0), Vec3::NEG_Y, 20.0)
+                .is_none()
+        );
+        assert!(
+            f.cast_ray(Vec3::new(0.0, 5.0, 0.0), Vec3::NEG_Y, 1.0)
+                .is_none()
+        );
+        assert!(
+            f.cast_ray(Vec3::new(0.0, 5.0, 0.0), Vec3::Y, 10.0)
+                .is_none()
+        );
+    }
+
+    #[test]
+    fn ray_from_outside_the_grid_enters_it() {
+        let f = HeightField::new(Vec2::ZERO, 1.0, 3, 3, vec![0.0; 9]).unwrap();
+        let hit = f
+            .cast_ray(
+                Vec3::new(-1.0, 1.0, 1.0),
+                Vec3::new(1.0, -0.5, 0.0).normalize(),
+                10.0,
+            )
+            .unwrap();
+        assert!((hit.point - Vec3::new(1.0, 0.0, 1.0)).length() < 1e-5);
+    }
+}

@@ -1,0 +1,262 @@
+//! Property tests of the invariants the crate promises, driven by its public strategies.
+
+use creature_gait::glam::{Quat, Vec3};
+use creature_gait::strategies::{self, MotionStep};
+use creature_gait::{
+    Controller, GaitOptions, Ground, HeightField, Leg, Plane, Pose, Side, solve_two_bone,
+};
+use proptest::prelude::*;
+use proptest::test_runner::FileFailurePersistence;
+
+fn config(cases: u32) -> ProptestConfig {
+    ProptestConfig {
+        cases,
+        failure_persistence: Some(Box::new(FileFailurePersistence::Direct(
+            "proptest-regressions/properties.txt",
+        ))),
+        ..ProptestConfig::default()
+    }
+}
+
+/// Drives a controller through a motion sequence over `ground`, riding at `ride` above the
+/// ground under the body; checks finiteness, skate, ground contact and boundedness every frame.
+fn soak(
+    legs: &[Leg],
+    ground: &(impl Ground + ?Sized),
+    height: impl Fn(f32, f32) -> Option<f32>,
+    motion: &[MotionStep],
+) -> Result<f32, TestCaseError> {
+    let mut c = Controller::new(legs, &GaitOptions::DEFAULT)
+        .map_err(|e| TestCaseError::fail(e.to_string()))?;
+    c.add_chain(creature_gait::Chain::new(
+        Vec3::new(0.0, 0.0, -1.0),
+        Vec3::NEG_Z,
+        6,
+        0.2,
+    ))
+    .map_err(|e| TestCaseError::fail(e.to_string()))?;
+    let ride = legs.iter().map(|l| -l.rest.y).fold(0.0, f32::max);
+    let reach = legs.iter().map(|l| l.length()).fold(0.0, f32::max);
+    let (mut position, mut yaw, mut seconds) = (Vec3::ZERO, 0.0f32, 0.0f32);
+    for step in motion {
+        for _ in 0..step.frames {
+            let rotation = Quat::from_rotation_y(yaw);
+            let velocity = rotation * Vec3::new(step.strafe, 0.0, step.speed);
+            position += velocity * step.dt;
+            // Stay on the ground's patch: bounce back toward the centre.
+            if position.length() > 12.0 {
+                position *= 0.5;
+            }
+            yaw += step.yaw_rate * step.dt;
+            seconds += step.dt;
+            let y = height(position.x, position.z).unwrap_or(0.0) + ride;
+            let pose = Pose::new(Vec3::new(position.x, y, position.z), rotation);
+            c.update(step.dt, pose, velocity, Vec3::Y * step.yaw_rate, ground)
+                .map_err(|e| TestCaseError::fail(e.to_string()))?;
+            prop_assert!(c.metrics().max_skate <= 1e-4);
+            for s in c.leg_states() {
+                prop_assert!(s.foot.is_finite() && s.joints.middle.is_finite());
+                prop_assert!(s.progress >= 0.0 && s.progress <= 1.0);
+                if s.planted
+                    && let Some(h) = height(s.foot.x, s.foot.z)
+                {
+                    prop_assert!((s.foot.y - h).abs() <= 1e-3, "foot off the ground");
+                }
+                // Bounded: no foot is left far behind (teleports aside, the escape
+                // distance keeps it close).
+                prop_assert!(s.foot.distance(pose.translation) <= 10.0 * reach + 30.0);
+            }
+            prop_assert!(c.body().offset.is_finite() && c.body().rotation.is_finite());
+            prop_assert!(c.look().rotation.is_finite());
+            for p in c.chain(0).map_err(|e| TestCaseError::fail(e.to_string()))? {
+                prop_assert!(p.is_finite());
+            }
+        }
+    }
+    Ok(seconds)
+}
+
+proptest! {
+    #![proptest_config(config(24))]
+
+    #[test]
+    fn random_motion_on_a_plane_stays_finite_grounded_and_skate_free(
+        legs in strategies::leg_layout(),
+        motion in strategies::motion_sequence(40),
+    ) {
+        soak(&legs, &Plane::GROUND, |_, _| Some(0.0), &motion)?;
+    }
+
+    #[test]
+    fn random_motion_on_a_height_field_stays_finite_grounded_and_skate_free(
+        legs in strategies::leg_layout(),
+        field in strategies::height_field(0.4),
+        motion in strategies::motion_sequence(40),
+    ) {
+        soak(&legs, &field, |x, z| field.height(x, z), &motion)?;
+    }
+}
+
+proptest! {
+    #![proptest_config(config(4))]
+
+    /// Many simulated minutes: four cases of 80 steps of up to 2 s each.
+    #[test]
+    fn minutes_of_random_motion_stay_finite_and_bounded(
+        legs in strategies::leg_layout(),
+        motion in strategies::motion_sequence(80),
+    ) {
+        let field = HeightField::from_fn(
+            creature_gait::glam::Vec2::splat(-20.0), 1.0, 41, 41,
+            |x, z| 0.2 * (x * 0.5).sin() + 0.15 * (z * 0.3).cos(),
+        ).map_err(|e| TestCaseError::fail(e.to_string()))?;
+        soak(&legs, &field, |x, z| field.height(x, z), &motion)?;
+    }
+}
+
+proptest! {
+    #![proptest_config(config(512))]
+
+    #[test]
+    fn ik_reaches_or_fully_extends_and_keeps_lengths(
+        (root, target, upper, lower, pole) in strategies::two_bone(),
+    ) {
+        let s = solve_two_bone(root, target, upper, lower, pole);
+        let scale = upper + lower + root.length() + target.length();
+        prop_assert!((s.middle.distance(root) - upper).abs() <= 1e-5 * scale);
+        prop_assert!((s.end.distance(s.middle) - lower).abs() <= 1e-5 * scale);
+        let d = root.distance(target);
+        let dir = (target - root) / d;
+        if d <= upper + lower && d >= (upper - lower).abs() {
+            prop_assert!(s.end.distance(target) <= 1e-5 * scale);
+        } else {
+            let clamped = d.clamp((upper - lower).abs(), upper + lower);
+            prop_assert!(s.end.distance(root + dir * clamped) <= 1e-5 * scale);
+        }
+        // The knee is on the pole's side of the chain.
+        let off = s.middle - root;
+        let across = off - dir * off.dot(dir);
+        prop_assert!(across.dot(pole) >= -1e-4 * scale);
+    }
+
+    #[test]
+    fn vertical_casts_on_a_height_field_return_its_height(
+        field in strategies::height_field(1.0),
+        x in -20.0f32..20.0,
+        z in -20.0f32..20.0,
+    ) {
+        let hit = field.cast_ray(Vec3::new(x, 10.0, z), Vec3::NEG_Y, 30.0);
+        let h = field.height(x, z);
+        prop_assert_eq!(hit.map(|h| h.point.y), h);
+    }
+
+    #[test]
+    fn slanted_casts_land_on_the_surface(
+        field in strategies::height_field(1.0),
+        origin in strategies::vec3_in(15.0),
+        direction in strategies::vec3_in(1.0),
+    ) {
+        let origin = Vec3::new(origin.x, 3.0 + origin.y.abs(), origin.z);
+        let direction = Vec3::new(direction.x, -0.2 - direction.y.abs(), direction.z).normalize();
+        if let Some(hit) = field.cast_ray(origin, direction, 100.0) {
+            let h = field.height(hit.point.x, hit.point.z);
+            prop_assert!(h.is_some());
+            prop_assert!((hit.point.y - h.unwrap_or(0.0)).abs() <= 1e-3);
+            prop_assert!(hit.normal.is_normalized());
+        }
+    }
+
+    #[test]
+    fn bad_legs_are_rejected(leg in strategies::bad_leg()) {
+        prop_assert!(leg.validate(0).is_err());
+        prop_assert!(Controller::new(&[leg], &GaitOptions::DEFAULT).is_err());
+    }
+
+    #[test]
+    fn bad_motion_is_rejected_without_change(
+        legs in strategies::leg_layout(),
+        dt in strategies::bad_time_step(),
+        bad in strategies::non_finite_vec3(),
+    ) {
+        let mut c = Controller::new(&legs, &GaitOptions::DEFAULT)
+            .map_err(|e| TestCaseError::fail(e.to_string()))?;
+        let pose = Pose::new(Vec3::new(0.0, 1.0, 0.0), Quat::IDENTITY);
+        c.update(0.01, pose, Vec3::ZERO, Vec3::ZERO, &Plane::GROUND)
+            .map_err(|e| TestCaseError::fail(e.to_string()))?;
+        let before = c.clone();
+        prop_assert!(c.update(dt, pose, Vec3::ZERO, Vec3::ZERO, &Plane::GROUND).is_err());
+        prop_assert!(c.update(0.01, pose, bad, Vec3::ZERO, &Plane::GROUND).is_err());
+        prop_assert!(c.update(0.01, pose, Vec3::ZERO, bad, &Plane::GROUND).is_err());
+        prop_assert!(c.update(0.01, Pose::new(bad, Quat::IDENTITY), Vec3::ZERO, Vec3::ZERO, &Plane::GROUND).is_err());
+        prop_assert_eq!(c, before);
+    }
+}
+
+proptest! {
+    #![proptest_config(config(256))]
+
+    /// Flier motions: finite for any time and speed, within their amplitudes, periodic.
+    #[test]
+    fn flapping_is_finite_bounded_and_periodic(
+        p in strategies::flap_params(),
+        t in -100.0f32..100.0,
+        speed in -50.0f32..50.0,
+    ) {
+        prop_assert!(p.validate().is_ok());
+        let angle = p.wing_angle(t);
+        let bob = p.body_bob(t, speed);
+        prop_assert!(angle.is_finite() && bob.is_finite());
+        prop_assert!(angle.abs() <= p.bias.abs() + p.amplitude + 1e-5);
+        prop_assert!(bob.abs() <= p.bob + 1e-6);
+        for side in [Side::Left, Side::Right] {
+            prop_assert!(p.wing_rotation(t, side).is_normalized());
+        }
+        // One period later (f32 rounding of f·t aside): the same angle.
+        let later = p.wing_angle(t + 1.0 / p.frequency);
+        let slack = 2e-6 * (p.frequency * t.abs() + 1.0) * 6.3 * p.amplitude + 1e-5;
+        prop_assert!((later - angle).abs() <= slack, "{angle} vs {later}");
+        // Non-finite time or speed gives a finite (idle) answer.
+        prop_assert!(p.wing_angle(f32::NAN).is_finite());
+        prop_assert!(p.body_bob(f32::INFINITY, f32::NAN).is_finite());
+    }
+
+    /// Swimmer motions: finite, within `max_yaw` (and the idle amplitude when still),
+    /// periodic while swimming.
+    #[test]
+    fn swimming_is_finite_bounded_and_periodic(
+        p in strategies::swim_params(),
+        t in -100.0f32..100.0,
+        speed in -20.0f32..20.0,
+        u in -0.5f32..1.5,
+    ) {
+        prop_assert!(p.validate().is_ok());
+        let yaw = p.bone_yaw(t, speed, u);
+        prop_assert!(yaw.is_finite() && yaw.abs() <= p.max_yaw() + 1e-5);
+        prop_assert!(p.bone_yaw(t, 0.0, u).abs() <= p.idle_amplitude + 1e-6);
+        let fast = p.full_speed;
+        let now = p.bone_yaw(t, fast, u);
+        let later = p.bone_yaw(t + 1.0 / p.frequency, fast, u);
+        let slack = 2e-6 * (p.frequency * t.abs() + 10.0) * 6.3 * p.max_yaw() + 1e-5;
+        prop_assert!((later - now).abs() <= slack, "{now} vs {later}");
+        prop_assert!(p.bone_yaw(f32::NAN, f32::NAN, f32::NAN).is_finite());
+        let mut yaws = [0.0f32; 7];
+        p.bone_yaws(t, speed, &mut yaws);
+        prop_assert!(yaws.iter().all(|y| y.is_finite() && y.abs() <= p.max_yaw() + 1e-5));
+    }
+
+    /// `Ground::cast_down` (the controller's only query) returns what `cast_ray` straight down
+    /// does, for the height field's override and the trait's default alike.
+    #[test]
+    fn cast_down_matches_a_vertical_cast_ray(
+        field in strategies::height_field(0.5),
+        x in -25.0f32..25.0,
+        z in -25.0f32..25.0,
+        y in -2.0f32..3.0,
+        max in 0.0f32..5.0,
+    ) {
+        let origin = Vec3::new(x, y, z);
+        prop_assert_eq!(field.cast_down(origin, max), field.cast_ray(origin, Vec3::NEG_Y, max));
+        let plane = Plane::horizontal(0.3);
+        prop_assert_eq!(plane.cast_down(origin, max), plane.cast_ray(origin, Vec3::NEG_Y, max));
+    }
+}

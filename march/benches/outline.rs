@@ -1,0 +1,161 @@
+//! Outlining a 50-ball creature-like field on a 256×256 grid (issue 3's outline bench):
+//! `trace` against `march_grid` against the `contour` crate (contour-rs), at the same
+//! resolution on the same field.
+//!
+//! The field is `creature-metaball`'s culled `Field2` (the seed's falloff) over the layout of
+//! `tests/support`'s seed-style skeleton, as the `creature` facade will build it. The grid is
+//! sampled once, outside the timed code, with `Field2::sample_grid`.
+//!
+//! - `march_grid`, `contour_rs_contours` (`ContourBuilder::contours`, smoothed: linear
+//!   interpolation like ours, holes assigned to their polygons like ours; the crate's `f32`
+//!   feature is off, so it reads `f64` samples, converted outside the timed code),
+//!   `contour_rs_lines` (`ContourBuilder::lines`: rings only) and the plain
+//!   `reference_marching_squares` of `tests/support/reference.rs` all read the pre-sampled
+//!   grid.
+//! - `trace_field` calls `Field2::value` itself, only along the outline (and the nodes a hole
+//!   scan needs); `trace_grid_lookup` reads the pre-sampled grid instead, to separate the
+//!   following from the sampling. Both trace on the grid's own nodes (same step, same origin).
+//! - `sample_grid_then_march_grid` and `sample_grid_then_contour_rs` are the full-grid
+//!   pipelines `trace_field` replaces.
+//!
+//! Run: `cargo bench -p creature-march --bench outline`
+
+// Setup outside the timed code may fail loudly: a broken input is a broken bench.
+#![allow(clippy::expect_used)]
+
+extern crate alloc;
+
+use core::hint::black_box;
+
+use contour::ContourBuilder;
+use creature_march::glam::Vec2;
+use creature_march::{MarchOptions, march_grid, trace, trace_with};
+use creature_metaball::{Ball2, Falloff, Field2};
+use criterion::{Criterion, criterion_group, criterion_main};
+
+#[path = "../tests/support/mod.rs"]
+mod support;
+
+const SIZE: usize = 256;
+
+/// A creature with about 50 balls, its culled field, and the grid that covers it: origin node
+/// (in steps) and step.
+fn inputs() -> (support::Balls, Field2, (i32, i32), f32) {
+    let mut seed = 1;
+    let balls = loop {
+        let b = support::creature(seed);
+        if (45..=55).contains(&b.0.len()) {
+            break b;
+        }
+        seed += 1;
+    };
+    let metaballs: Vec<Ball2> = balls
+        .0
+        .iter()
+        .enumerate()
+        .map(|(i, &(c, r))| Ball2::new(c, r, i as u32))
+        .collect();
+    let field = Field2::new(&metaballs, Falloff::SEED).expect("valid balls");
+    let centres = balls.centres();
+    let lo = centres.iter().fold(Vec2::MAX, |a, &c| a.min(c)) - Vec2::splat(60.0);
+    let hi = centres.iter().fold(Vec2::MIN, |a, &c| a.max(c)) + Vec2::splat(60.0);
+    let step = (hi - lo).max_element() / (SIZE - 1) as f32;
+    let origin = ((lo.x / step).floor() as i32, (lo.y / step).floor() as i32);
+    (balls, field, origin, step)
+}
+
+fn bench(c: &mut Criterion) {
+    let (balls, field, origin, step) = inputs();
+    let corner = Vec2::new(origin.0 as f32, origin.1 as f32) * step;
+    let sample = |f: &Field2| {
+        f.sample_grid(corner, step, SIZE, SIZE)
+            .expect("a valid grid")
+    };
+    let values = sample(&field);
+    let values64: Vec<f64> = values.iter().map(|&v| f64::from(v)).collect();
+    let hints = balls.centres();
+    let culled = |p: Vec2| field.value(p);
+    // Nodes sit on the grid's samples; rounding by truncation (no libm call).
+    let lookup = |p: Vec2| {
+        let x = p.x / step - origin.0 as f32 + 0.5;
+        let y = p.y / step - origin.1 as f32 + 0.5;
+        if !(x >= 0.0 && y >= 0.0 && x < SIZE as f32 && y < SIZE as f32) {
+            return f32::NEG_INFINITY;
+        }
+        values[y as usize * SIZE + x as usize]
+    };
+    let builder = ContourBuilder::new(SIZE, SIZE, true);
+
+    // The same outline, four ways.
+    let grid = march_grid(&values, SIZE, SIZE, 1.0).expect("valid grid");
+    let looked_up = trace(lookup, &hints, step, 1.0).expect("valid trace");
+    let traced = trace(culled, &hints, step, 1.0).expect("valid trace");
+    let theirs = builder
+        .contours(&values64, &[1.0])
+        .expect("valid contour-rs grid");
+    let polygons = &theirs[0].geometry().0;
+    let their_rings = polygons.len() + polygons.iter().map(|p| p.interiors().len()).sum::<usize>();
+    let their_points: usize = polygons
+        .iter()
+        .map(|p| {
+            p.exterior().0.len() - 1 + p.interiors().iter().map(|r| r.0.len() - 1).sum::<usize>()
+        })
+        .sum();
+    assert_eq!(grid.len(), looked_up.len(), "same rings");
+    assert_eq!(grid.len(), traced.len(), "same rings");
+    assert_eq!(grid.len(), their_rings, "same rings as contour-rs");
+    let points =
+        |rings: &[creature_march::Ring]| rings.iter().map(|r| r.points.len()).sum::<usize>();
+    eprintln!(
+        "{} balls, step {step:.3}, {} rings; outline points: march_grid {}, trace {}, contour-rs {}",
+        balls.0.len(),
+        grid.len(),
+        points(&grid),
+        points(&traced),
+        their_points,
+    );
+
+    let mut group = c.benchmark_group("outline_256x256_50_balls");
+    group.sample_size(20);
+    group.bench_function("march_grid", |b| {
+        b.iter(|| march_grid(black_box(&values), SIZE, SIZE, 1.0));
+    });
+    group.bench_function("contour_rs_contours", |b| {
+        b.iter(|| builder.contours(black_box(&values64), &[1.0]));
+    });
+    group.bench_function("contour_rs_lines", |b| {
+        b.iter(|| builder.lines(black_box(&values64), &[1.0]));
+    });
+    group.bench_function("reference_marching_squares", |b| {
+        b.iter(|| support::reference::contours(black_box(&values), SIZE, SIZE, 1.0));
+    });
+    group.bench_function("trace_field", |b| {
+        b.iter(|| trace(culled, black_box(&hints), step, 1.0));
+    });
+    let no_holes = MarchOptions::DEFAULT.with_holes(false);
+    group.bench_function("trace_field_no_hole_scan", |b| {
+        b.iter(|| trace_with(culled, black_box(&hints), step, 1.0, &no_holes));
+    });
+    group.bench_function("trace_grid_lookup", |b| {
+        b.iter(|| trace(lookup, black_box(&hints), step, 1.0));
+    });
+    group.bench_function("sample_grid_then_march_grid", |b| {
+        b.iter(|| {
+            let v = sample(black_box(&field));
+            march_grid(&v, SIZE, SIZE, 1.0)
+        });
+    });
+    group.bench_function("sample_grid_then_contour_rs", |b| {
+        b.iter(|| {
+            let v: Vec<f64> = sample(black_box(&field))
+                .into_iter()
+                .map(f64::from)
+                .collect();
+            builder.contours(&v, &[1.0])
+        });
+    });
+    group.finish();
+}
+
+criterion_group!(benches, bench);
+criterion_main!(benches);

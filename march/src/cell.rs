@@ -1,0 +1,126 @@
+//! The marching-squares cell rule shared by the grid and the trace.
+//!
+//! Corners are numbered counter-clockwise from the bottom left (y up): `c0` = (i, j),
+//! `c1` = (i+1, j), `c2` = (i+1, j+1), `c3` = (i, j+1). Edge `k` runs from `c_k` to
+//! `c_(k+1)`: 0 bottom, 1 right, 2 top, 3 left. A contour segment enters a cell through an
+//! edge whose counter-clockwise walk goes from an inside corner to an outside one, and leaves
+//! through an edge going from outside to inside; so the inside is always on the segment's
+//! left, and outer rings come out counter-clockwise.
+
+/// The corner offsets of a cell, in corner order.
+pub(crate) const CORNERS: [(i32, i32); 4] = [(0, 0), (1, 0), (1, 1), (0, 1)];
+
+/// The offset to the neighbouring cell across each edge.
+pub(crate) const ACROSS: [(i32, i32); 4] = [(0, -1), (1, 0), (0, 1), (-1, 0)];
+
+/// Whether a sample counts as inside: `v >= iso`; NaN is outside.
+#[inline]
+pub(crate) fn is_inside(v: f32, iso: f32) -> bool {
+    v >= iso
+}
+
+/// The edge through which the segment that entered through in→out edge `k` leaves, for a cell
+/// whose inside corners are the bits of `mask` (bit `k` = corner `k`). `joined` settles a
+/// saddle: `true` joins the two inside corners.
+#[inline]
+pub(crate) fn exit_edge(mask: u8, k: usize, joined: impl FnOnce() -> bool) -> usize {
+    if mask == 0b0101 || mask == 0b1010 {
+        return if joined() { (k + 1) & 3 } else { (k + 3) & 3 };
+    }
+    let inside = |c: usize| mask & (1 << (c & 3)) != 0;
+    for d in 1..4 {
+        let e = (k + d) & 3;
+        if !inside(e) && inside(e + 1) {
+            return e;
+        }
+    }
+    // Unreachable for a mask with an in→out edge: it also has an out→in edge.
+    (k + 3) & 3
+}
+
+/// Where along an edge from an inside sample to an outside one the contour crosses, as a
+/// fraction from the inside end: linear interpolation, or the midpoint when either sample is
+/// not finite.
+#[inline]
+pub(crate) fn crossing(v_in: f32, v_out: f32, iso: f32) -> f32 {
+    if !(v_in.is_finite() && v_out.is_finite()) {
+        return 0.5;
+    }
+    // In f64, so that differences of large samples cannot overflow.
+    let (v_in, v_out, iso) = (f64::from(v_in), f64::from(v_out), f64::from(iso));
+    let t = (iso - v_in) / (v_out - v_in);
+    if t.is_finite() {
+        t.clamp(0.0, 1.0) as f32
+    } else {
+        0.5
+    }
+}
+
+/// The asymptotic decider: whether the bilinear interpolant of a saddle cell is inside at its
+/// saddle point. `values` are in corner order. Non-finite corners split the saddle.
+pub(crate) fn asymptotic_joined(values: [f32; 4], iso: f32) -> bool {
+    if !values.iter().all(|v| v.is_finite()) {
+        return false;
+    }
+    let [a, b, c, d] = values.map(|v| f64::from(v) - f64::from(iso));
+    let denominator = a + c - b - d;
+    if denominator == 0.0 {
+        return false;
+    }
+    (a * c - b * d) / denominator >= 0.0
+}
+
+/// The mean-of-corners centre rule for a grid's saddle. Non-finite corners split the saddle.
+pub(crate) fn mean_joined(values: [f32; 4], iso: f32) -> bool {
+    if !values.iter().all(|v| v.is_finite()) {
+        return false;
+    }
+    let mean = values.iter().map(|&v| f64::from(v)).sum::<f64>() * 0.25;
+    mean >= f64::from(iso)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn single_inside_corner_cuts_it_off() {
+        // Only c0 inside: enter through the bottom (in→out), leave through the left.
+        assert_eq!(exit_edge(0b0001, 0, || unreachable!()), 3);
+        // Only c1 outside: enter bottom (c0 in → c1 out), leave right (c1 out → c2 in).
+        assert_eq!(exit_edge(0b1101, 0, || unreachable!()), 1);
+        // Bottom half inside: enter right (c1 in → c2 out), leave left (c3 out → c0 in).
+        assert_eq!(exit_edge(0b0011, 1, || unreachable!()), 3);
+    }
+
+    #[test]
+    fn saddles_follow_the_decision() {
+        assert_eq!(exit_edge(0b0101, 0, || true), 1);
+        assert_eq!(exit_edge(0b0101, 0, || false), 3);
+        assert_eq!(exit_edge(0b1010, 1, || true), 2);
+        assert_eq!(exit_edge(0b1010, 1, || false), 0);
+    }
+
+    #[test]
+    fn crossing_interpolates_and_guards() {
+        assert_eq!(crossing(2.0, 0.0, 1.0), 0.5);
+        assert_eq!(crossing(1.0, 0.0, 1.0), 0.0);
+        assert_eq!(crossing(f32::INFINITY, 0.0, 1.0), 0.5);
+        assert_eq!(crossing(2.0, f32::NAN, 1.0), 0.5);
+        assert_eq!(crossing(f32::MAX, -f32::MAX, 0.0), 0.5);
+    }
+
+    #[test]
+    fn deciders() {
+        // Strong inside diagonal: joined by both rules.
+        assert!(asymptotic_joined([3.0, 0.0, 3.0, 0.0], 1.0));
+        assert!(mean_joined([3.0, 0.0, 3.0, 0.0], 1.0));
+        // Weak inside diagonal: split by both.
+        assert!(!asymptotic_joined([1.1, 0.0, 1.1, 0.0], 1.0));
+        assert!(!mean_joined([1.1, 0.0, 1.1, 0.0], 1.0));
+        // They differ: the mean is 1.5025 ≥ 1 but the bilinear saddle is below the iso-level.
+        assert!(mean_joined([4.0, 0.5, 1.01, 0.5], 1.0));
+        assert!(!asymptotic_joined([4.0, 0.5, 1.01, 0.5], 1.0));
+        assert!(!mean_joined([f32::NAN, 0.0, 3.0, 0.0], 1.0));
+    }
+}

@@ -1,0 +1,37 @@
+#![doc = include_str!("../README.md")]
+#![no_std]
+#![cfg_attr(docsrs, feature(doc_cfg))]
+#![doc(test(attr(deny(warnings))))]
+
+extern crate alloc;
+#[cfg(feature = "std")]
+extern crate std;
+
+#[cfg(not(any(feature = "std", feature = "libm")))]
+compile_error!(
+    "creature-march needs its `std` feature (default) or its `libm` feature for float math"
+);
+
+mod cell;
+mod error;
+mod grid;
+#[cfg(feature = "mesh")]
+mod mesh;
+mod options;
+mod ring;
+#[cfg(feature = "proptest")]
+#[cfg_attr(docsrs, doc(cfg(feature = "proptest")))]
+pub mod strategies;
+mod trace;
+
+pub use error::MarchError;
+pub use grid::{MAX_GRID_SAMPLES, march_grid, march_grid_with};
+#[cfg(feature = "mesh")]
+#[cfg_attr(docsrs, doc(cfg(feature = "mesh")))]
+pub use mesh::{Mesh2, MeshOptions, MeshQuality, triangulate};
+pub use options::{MAX_CELLS, MAX_GRID_COORDINATE, MarchOptions, Saddle};
+pub use ring::{Ring, validate_rings};
+pub use trace::{trace, trace_with};
+
+/// The `glam` version this crate's signatures use.
+pub use glam;

@@ -1,0 +1,897 @@
+//! Contour following: sample the field lazily, only along (and, for holes, inside) outlines.
+
+use alloc::vec::Vec;
+
+use glam::Vec2;
+
+use crate::cell::{self, ACROSS, CORNERS};
+use crate::options::MAX_GRID_COORDINATE;
+use crate::{MarchError, MarchOptions, Ring, Saddle};
+
+/// Every component of `field ≥ iso` that contains a hint, outlined by contour-following
+/// marching squares, with the default [`MarchOptions`].
+///
+/// The field is sampled on the square grid of nodes `step × (i, j)` for integers `i, j`
+/// (anchored at the origin), and only where needed, each node once:
+///
+/// 1. For each hint in order that is not already inside a traced component (judged exactly,
+///    without sampling, at the grid node nearest to it: the innermost traced ring enclosing
+///    that node is an outer ring) and is inside (`field(hint) >= iso`), take the nearest
+///    inside node of the cell containing it and walk up its column to the first crossing, as
+///    the seed does from its top-most ball.
+/// 2. Follow the contour cell by cell from that crossing until it closes (the inside on the
+///    left); a saddle cell is settled by [`MarchOptions::saddle`] (by default by sampling the
+///    cell centre). If the ring is a hole of the hint's component, keep walking up until its
+///    outer ring is found.
+/// 3. With [`MarchOptions::holes`] (the default), scan the nodes each new outer ring encloses
+///    and trace every hole (and island in a hole) they reveal.
+///
+/// Samples are cached in dense 8 × 8 tiles of nodes (a hash table finds the tiles), so the
+/// field is called once per node and once per saddle centre, plus once per hint and
+/// [`MarchOptions::refine_steps`] times per ring point.
+///
+/// So unlike the seed, which traces only the component above its top-most ball, every
+/// component holding a hint is found: pass every ball centre as a hint. Features smaller than a
+/// cell (no inside node in the hint's cell) are not resolved, as in [`march_grid`](crate::march_grid).
+/// NaN samples are outside. The rings are those [`march_grid`](crate::march_grid) gives on the
+/// same samples (in world units): outer rings counter-clockwise, holes clockwise with their
+/// parent set, near-duplicate points welded.
+///
+/// # Errors
+///
+/// [`MarchError::NonFinite`] for a non-finite `iso`, `step` or hint,
+/// [`MarchError::NotPositive`] for `step <= 0`, [`MarchError::TooFar`] for a hint more than
+/// [`MAX_GRID_COORDINATE`] steps from the origin, and [`MarchError::BudgetExceeded`] when the
+/// walks and traces visit more than [`MarchOptions::max_cells`] cells (for instance when the
+/// field stays inside all the way up from a hint): it never loops forever.
+///
+/// ```
+/// use creature_march::{glam::Vec2, trace};
+///
+/// // Two separate discs of radius 10: the seed would outline only one of them.
+/// let centres = [Vec2::new(-30.0, 0.0), Vec2::new(30.0, 5.0)];
+/// let field = |p: Vec2| {
+///     centres.iter().map(|c| 100.0 / (1.0 + p.distance_squared(*c))).sum::<f32>()
+/// };
+/// // field = 1 at a distance of about 10 from a lone centre.
+/// let rings = trace(field, &centres, 1.0, 1.0)?;
+/// assert_eq!(rings.len(), 2);
+/// for (ring, centre) in rings.iter().zip(centres) {
+///     assert!(!ring.hole && ring.signed_area() > 0.0);
+///     assert!(ring.contains(centre));
+/// }
+/// # Ok::<(), creature_march::MarchError>(())
+/// ```
+pub fn trace(
+    field: impl Fn(Vec2) -> f32,
+    hints: &[Vec2],
+    step: f32,
+    iso: f32,
+) -> Result<Vec<Ring>, MarchError> {
+    trace_with(field, hints, step, iso, &MarchOptions::DEFAULT)
+}
+
+/// [`trace`] with explicit options.
+///
+/// # Errors
+///
+/// As [`trace`], plus [`MarchError::OutOfRange`] for invalid options.
+///
+/// ```
+/// use creature_march::{glam::Vec2, trace_with, MarchOptions};
+///
+/// let disc = |p: Vec2| 1.0 - p.length() / 10.0; // inside within radius 10
+/// let coarse = trace_with(disc, &[Vec2::ZERO], 2.5, 0.0, &MarchOptions::DEFAULT)?;
+/// let refined = trace_with(
+///     disc,
+///     &[Vec2::ZERO],
+///     2.5,
+///     0.0,
+///     &MarchOptions::DEFAULT.with_refine_steps(4),
+/// )?;
+/// // Refined crossings sit on the circle itself.
+/// let worst = |rings: &[creature_march::Ring]| {
+///     rings[0].points.iter().map(|p| (p.length() - 10.0).abs()).fold(0.0, f32::max)
+/// };
+/// assert!(worst(&refined) < 1e-4);
+/// assert!(worst(&refined) <= worst(&coarse));
+/// # Ok::<(), creature_march::MarchError>(())
+/// ```
+pub fn trace_with(
+    field: impl Fn(Vec2) -> f32,
+    hints: &[Vec2],
+    step: f32,
+    iso: f32,
+    options: &MarchOptions,
+) -> Result<Vec<Ring>, MarchError> {
+    options.validate()?;
+    if !iso.is_finite() {
+        return Err(MarchError::NonFinite {
+            what: "iso",
+            index: 0,
+        });
+    }
+    if !step.is_finite() {
+        return Err(MarchError::NonFinite {
+            what: "step",
+            index: 0,
+        });
+    }
+    if !(step > 0.0) {
+        return Err(MarchError::NotPositive {
+            what: "step",
+            value: step,
+        });
+    }
+    for (index, h) in hints.iter().enumerate() {
+        if !h.is_finite() {
+            return Err(MarchError::NonFinite {
+                what: "hint",
+                index,
+            });
+        }
+        let steps = (*h / step).abs().max_element();
+        if !(steps <= MAX_GRID_COORDINATE) {
+            return Err(MarchError::TooFar {
+                index,
+                steps,
+                max: MAX_GRID_COORDINATE,
+            });
+        }
+    }
+    let mut tracer = Tracer {
+        field: &field,
+        step,
+        iso,
+        options,
+        nodes: Nodes::new(),
+        centres: Table::with_slots(16),
+        cells: 0,
+        rings: Vec::new(),
+        scanned: 0,
+    };
+    for (index, &hint) in hints.iter().enumerate() {
+        tracer.outline_hint(index, hint)?;
+        if options.holes {
+            tracer.scan_pending()?;
+        }
+    }
+    let raw = tracer.rings.into_iter().map(|r| r.points).collect();
+    let weld = options.weld * step;
+    Ok(crate::ring::finish(raw, weld))
+}
+
+/// A ring while tracing.
+struct Traced {
+    /// Points in world units.
+    points: Vec<Vec2>,
+    /// The vertical grid edges it crosses, as `(column, lower row)`, sorted.
+    verticals: Vec<(i32, i32)>,
+    /// Counter-clockwise: an outer ring.
+    outer: bool,
+    /// Bounding box of `points`.
+    lo: Vec2,
+    hi: Vec2,
+    /// Found by a hole scan (so its inside has been scanned already).
+    nested: bool,
+}
+
+impl Traced {
+    /// Whether the ring encloses grid node `(x, y)`, by the parity of its crossings above the
+    /// node on the node's column: exact, no floating point.
+    fn encloses(&self, x: i32, y: i32) -> bool {
+        let start = self.verticals.partition_point(|&e| e < (x, y));
+        let end = self.verticals.partition_point(|&e| e < (x, i32::MAX));
+        (end - start) % 2 == 1
+    }
+}
+
+struct Tracer<'a, F> {
+    field: &'a F,
+    step: f32,
+    iso: f32,
+    options: &'a MarchOptions,
+    /// Node samples and the ring crossing each vertical edge, in tiles.
+    nodes: Nodes,
+    /// Saddle cell centre samples, keyed by cell.
+    centres: Table<f32>,
+    cells: usize,
+    rings: Vec<Traced>,
+    /// Rings before this index have had their hole scan (or need none).
+    scanned: usize,
+}
+
+impl<F: Fn(Vec2) -> f32> Tracer<'_, F> {
+    fn tick(&mut self, hint: usize) -> Result<(), MarchError> {
+        self.cells += 1;
+        if self.cells > self.options.max_cells {
+            return Err(MarchError::BudgetExceeded {
+                hint,
+                cells: self.cells - 1,
+            });
+        }
+        Ok(())
+    }
+
+    /// The sample at node `(i, j)`, taken on first use.
+    #[inline]
+    fn node(&mut self, i: i32, j: i32) -> f32 {
+        let (tile, slot) = self.nodes.locate(i, j);
+        let field = self.field;
+        let step = self.step;
+        self.nodes
+            .value_or(tile, slot, || field(Vec2::new(i as f32, j as f32) * step))
+    }
+
+    #[inline]
+    fn inside(&mut self, i: i32, j: i32) -> bool {
+        let v = self.node(i, j);
+        cell::is_inside(v, self.iso)
+    }
+
+    /// Whether grid node `(x, y)` is already known to be inside a traced component: the
+    /// innermost traced ring enclosing it is an outer ring. Exact (crossing parity), no
+    /// sampling.
+    fn covered(&self, x: i32, y: i32) -> bool {
+        let p = Vec2::new(x as f32, y as f32) * self.step;
+        let mut best: Option<(bool, f32)> = None;
+        for ring in &self.rings {
+            if p.cmplt(ring.lo).any() || p.cmpgt(ring.hi).any() {
+                continue;
+            }
+            let size = (ring.hi - ring.lo).element_product();
+            if best.is_some_and(|(_, s)| s <= size) {
+                continue;
+            }
+            if ring.encloses(x, y) {
+                best = Some((ring.outer, size));
+            }
+        }
+        best.is_some_and(|(outer, _)| outer)
+    }
+
+    fn outline_hint(&mut self, index: usize, hint: Vec2) -> Result<(), MarchError> {
+        // The corners of the cell holding the hint, nearest first.
+        let g = hint / self.step;
+        let floor = g.floor();
+        let base = (floor.x as i32, floor.y as i32);
+        let mut corners = CORNERS.map(|(di, dj)| {
+            let (i, j) = (base.0 + di, base.1 + dj);
+            (Vec2::new(i as f32, j as f32).distance_squared(g), (i, j))
+        });
+        // A stable insertion sort of four: ties keep the corner order.
+        for n in 1..corners.len() {
+            let mut m = n;
+            while m > 0 && corners[m].0.total_cmp(&corners[m - 1].0).is_lt() {
+                corners.swap(m, m - 1);
+                m -= 1;
+            }
+        }
+        let corners = corners.map(|(_, c)| c);
+        // Already outlined: the nearest node lies in a traced component (what the walk below
+        // would find, without sampling).
+        if self.covered(corners[0].0, corners[0].1) {
+            return Ok(());
+        }
+        if !cell::is_inside((self.field)(hint), self.iso) {
+            return Ok(());
+        }
+        let mut start = None;
+        for (i, j) in corners {
+            if self.inside(i, j) {
+                start = Some((i, j));
+                break;
+            }
+        }
+        let Some((x, y0)) = start else {
+            return Ok(());
+        };
+        // Walk up the column, tracing every crossing not traced yet, until an outer ring
+        // enclosing the start node turns up.
+        let mut y = y0;
+        let mut below = true;
+        loop {
+            self.tick(index)?;
+            let above = self.inside(x, y + 1);
+            if above != below {
+                let ring = match self.nodes.vertical(x, y) {
+                    Some(r) => r as usize,
+                    None if below => self.trace_ring((x - 1, y), 1, index, false)?,
+                    None => self.trace_ring((x, y), 3, index, false)?,
+                };
+                if self
+                    .rings
+                    .get(ring)
+                    .is_some_and(|r| r.outer && r.encloses(x, y0))
+                {
+                    return Ok(());
+                }
+            }
+            below = above;
+            y += 1;
+        }
+    }
+
+    /// Scans the nodes enclosed by every outer ring not scanned yet, tracing each crossing
+    /// that is not part of a known ring.
+    fn scan_pending(&mut self) -> Result<(), MarchError> {
+        while self.scanned < self.rings.len() {
+            let r = self.scanned;
+            self.scanned += 1;
+            if !self.rings[r].outer || self.rings[r].nested {
+                continue;
+            }
+            let verticals = self.rings[r].verticals.clone();
+            for pair in verticals.chunks_exact(2) {
+                let ((x, bottom), (x2, top)) = (pair[0], pair[1]);
+                if x != x2 {
+                    // Crossings come in pairs per column for a closed ring; skip defensively.
+                    continue;
+                }
+                self.scan_column(x, bottom, top)?;
+            }
+        }
+        Ok(())
+    }
+
+    /// Scans nodes `bottom + 1 ..= top` of column `x` (enclosed by a ring), tracing every
+    /// crossing between two of them that no ring has crossed yet. Runs tile by tile, reading
+    /// the samples straight from each tile.
+    fn scan_column(&mut self, x: i32, bottom: i32, top: i32) -> Result<(), MarchError> {
+        let field = self.field;
+        let (step, iso) = (self.step, self.iso);
+        let mut below = self.inside(x, bottom + 1);
+        let mut y = bottom + 1;
+        while y < top {
+            // Nodes y + 1 ..= last lie in one tile.
+            let (tile, _) = self.nodes.locate(x, y + 1);
+            let last = ((y + 1) | TILE_MASK).min(top);
+            for up in y + 1..=last {
+                self.tick(usize::MAX)?;
+                let v = self.nodes.value_or(tile, Nodes::slot(x, up), || {
+                    field(Vec2::new(x as f32, up as f32) * step)
+                });
+                let above = cell::is_inside(v, iso);
+                if above != below && self.nodes.vertical(x, up - 1).is_none() {
+                    if below {
+                        self.trace_ring((x - 1, up - 1), 1, usize::MAX, true)?;
+                    } else {
+                        self.trace_ring((x, up - 1), 3, usize::MAX, true)?;
+                    }
+                }
+                below = above;
+            }
+            y = last;
+        }
+        Ok(())
+    }
+
+    fn joined(&mut self, i: i32, j: i32, values: [f32; 4]) -> bool {
+        match self.options.saddle {
+            Saddle::Centre => {
+                let v = match self.centres.get((i, j)) {
+                    Some(v) => v,
+                    None => {
+                        let p = (Vec2::new(i as f32, j as f32) + 0.5) * self.step;
+                        let v = (self.field)(p);
+                        self.centres.insert((i, j), v);
+                        v
+                    }
+                };
+                cell::is_inside(v, self.iso)
+            }
+            Saddle::Asymptotic => cell::asymptotic_joined(values, self.iso),
+        }
+    }
+
+    /// Follows the contour entering cell `start` through its in→out edge `k` until it closes.
+    /// Returns the new ring's index.
+    fn trace_ring(
+        &mut self,
+        start: (i32, i32),
+        k: usize,
+        hint: usize,
+        nested: bool,
+    ) -> Result<usize, MarchError> {
+        let id = self.rings.len();
+        let mut points = Vec::new();
+        let mut verticals = Vec::new();
+        let start_k = k;
+        let (mut ci, mut cj, mut k) = (start.0, start.1, k);
+        // Corner samples of the current cell; after the first cell, the two on the entry edge
+        // are carried over from the previous cell.
+        let mut values = [0.0f32; 4];
+        let mut carried = false;
+        loop {
+            self.tick(hint)?;
+            let mut mask = 0u8;
+            for (c, (di, dj)) in CORNERS.into_iter().enumerate() {
+                if !(carried && (c == k || c == (k + 1) & 3)) {
+                    values[c] = self.node(ci + di, cj + dj);
+                }
+                mask |= u8::from(cell::is_inside(values[c], self.iso)) << c;
+            }
+            let (a, b) = (CORNERS[k], CORNERS[(k + 1) & 3]);
+            let (ax, ay) = (ci + a.0, cj + a.1);
+            let (bx, by) = (ci + b.0, cj + b.1);
+            if ax == bx {
+                let low = ay.min(by);
+                self.nodes.set_vertical(ax, low, id as u32);
+                verticals.push((ax, low));
+            }
+            points.push(self.crossing((ax, ay), (bx, by), values[k], values[(k + 1) & 3]));
+            let exit = cell::exit_edge(mask, k, || self.joined(ci, cj, values));
+            ci += ACROSS[exit].0;
+            cj += ACROSS[exit].1;
+            k = (exit + 2) & 3;
+            // The exit edge, seen from the next cell, runs the other way round.
+            let (v_from, v_to) = (values[exit], values[(exit + 1) & 3]);
+            values[k] = v_to;
+            values[(k + 1) & 3] = v_from;
+            carried = true;
+            if (ci, cj) == start && k == start_k {
+                break;
+            }
+        }
+        sort_by_column(&mut verticals);
+        let (lo, hi) = crate::ring::bounds(&points).unwrap_or((Vec2::ZERO, Vec2::ZERO));
+        let outer = crate::ring::signed_area(&points) > 0.0;
+        self.rings.push(Traced {
+            points,
+            verticals,
+            outer,
+            lo,
+            hi,
+            nested,
+        });
+        Ok(id)
+    }
+
+    /// The crossing between an inside node and an outside node, in world units, refined on
+    /// the field when asked.
+    fn crossing(&mut self, a: (i32, i32), b: (i32, i32), v_in: f32, v_out: f32) -> Vec2 {
+        let pa = Vec2::new(a.0 as f32, a.1 as f32);
+        let pb = Vec2::new(b.0 as f32, b.1 as f32);
+        let t = cell::crossing(v_in, v_out, self.iso);
+        let t = self.refine(pa, pb, t, v_in, v_out);
+        (pa + (pb - pa) * t) * self.step
+    }
+
+    /// Illinois false-position steps on the field along the edge, bracketing the crossing.
+    fn refine(&mut self, pa: Vec2, pb: Vec2, t0: f32, v_in: f32, v_out: f32) -> f32 {
+        let steps = self.options.refine_steps;
+        if steps == 0 {
+            return t0;
+        }
+        let (mut a, mut fa) = (0.0f32, v_in - self.iso);
+        let (mut b, mut fb) = (1.0f32, v_out - self.iso);
+        if fa == 0.0 {
+            // The inside node sits on the iso-line.
+            return 0.0;
+        }
+        let mut t = t0;
+        let mut side = 0i8;
+        for _ in 0..steps {
+            let v = (self.field)((pa + (pb - pa) * t) * self.step);
+            if v == self.iso {
+                return t;
+            }
+            if cell::is_inside(v, self.iso) {
+                a = t;
+                fa = v - self.iso;
+                if side == 1 {
+                    fb *= 0.5;
+                }
+                side = 1;
+            } else {
+                b = t;
+                fb = v - self.iso;
+                if side == -1 {
+                    fa *= 0.5;
+                }
+                side = -1;
+            }
+            let secant = a + (b - a) * fa / (fa - fb);
+            t = if secant.is_finite() && secant >= a && secant <= b {
+                secant
+            } else {
+                0.5 * (a + b)
+            };
+            if !(b - a > f32::EPSILON) {
+                break;
+            }
+        }
+        t
+    }
+}
+
+/// Sorts a ring's vertical crossings `(column, row)` into lexicographic order: a counting sort
+/// on the column, then an insertion sort within each column (a closed ring crosses each
+/// column it spans at least twice, so there are at most about half as many columns as
+/// crossings, and few crossings per column).
+fn sort_by_column(crossings: &mut Vec<(i32, i32)>) {
+    let Some(min) = crossings.iter().map(|c| c.0).min() else {
+        return;
+    };
+    let max = crossings.iter().map(|c| c.0).max().unwrap_or(min);
+    let columns = (i64::from(max) - i64::from(min)) as usize + 1;
+    if columns > crossings.len() {
+        // Not from a closed ring: fall back to a comparison sort.
+        crossings.sort_unstable();
+        return;
+    }
+    let mut starts = alloc::vec![0usize; columns + 1];
+    for c in crossings.iter() {
+        starts[(c.0 - min) as usize + 1] += 1;
+    }
+    for k in 0..columns {
+        starts[k + 1] += starts[k];
+    }
+    let mut sorted = alloc::vec![(0, 0); crossings.len()];
+    let mut fill = starts.clone();
+    for &c in crossings.iter() {
+        let k = (c.0 - min) as usize;
+        sorted[fill[k]] = c;
+        fill[k] += 1;
+    }
+    for k in 0..columns {
+        let column = &mut sorted[starts[k]..starts[k + 1]];
+        for n in 1..column.len() {
+            let mut m = n;
+            while m > 0 && column[m].1 < column[m - 1].1 {
+                column.swap(m, m - 1);
+                m -= 1;
+            }
+        }
+    }
+    *crossings = sorted;
+}
+
+/// Side of a node tile: tiles hold `TILE × TILE` nodes.
+const TILE_SHIFT: i32 = 3;
+const TILE_MASK: i32 = (1 << TILE_SHIFT) - 1;
+const TILE_NODES: usize = 1 << (2 * TILE_SHIFT);
+
+/// No ring crosses this vertical edge.
+const NO_RING: u32 = u32::MAX;
+
+/// Node samples for an 8 × 8 block of grid nodes, and the ring crossing the vertical edge
+/// above each node.
+#[derive(Clone)]
+struct Tile {
+    values: [f32; TILE_NODES],
+    /// Bit `s`: `values[s]` has been sampled.
+    sampled: u64,
+    /// The ring crossing the edge from node `s` up to the node above it, or [`NO_RING`].
+    verticals: [u32; TILE_NODES],
+}
+
+/// A sparse grid of node samples in dense tiles: the compact cache behind "each node is
+/// sampled once". Contours are local, so consecutive lookups mostly hit the same tile, which
+/// is remembered; other tiles are found through a small hash table.
+struct Nodes {
+    tiles: Vec<Tile>,
+    index: Table<u32>,
+    last: (i32, i32),
+    last_tile: usize,
+}
+
+impl Nodes {
+    fn new() -> Self {
+        Self {
+            tiles: Vec::with_capacity(64),
+            index: Table::with_slots(256),
+            last: (i32::MIN, i32::MIN),
+            last_tile: 0,
+        }
+    }
+
+    #[inline]
+    fn slot(i: i32, j: i32) -> usize {
+        ((j & TILE_MASK) << TILE_SHIFT | (i & TILE_MASK)) as usize
+    }
+
+    /// The tile holding node `(i, j)` (created when missing) and the node's slot in it.
+    #[inline]
+    fn locate(&mut self, i: i32, j: i32) -> (usize, usize) {
+        let key = (i >> TILE_SHIFT, j >> TILE_SHIFT);
+        if key != self.last {
+            self.last_tile = match self.index.get(key) {
+                Some(t) => t as usize,
+                None => {
+                    let t = self.tiles.len();
+                    self.tiles.push(Tile {
+                        values: [0.0; TILE_NODES],
+                        sampled: 0,
+                        verticals: [NO_RING; TILE_NODES],
+                    });
+                    self.index.insert(key, t as u32);
+                    t
+                }
+            };
+            self.last = key;
+        }
+        (self.last_tile, Self::slot(i, j))
+    }
+
+    /// The tile holding node `(i, j)`, if any node of it was touched.
+    #[inline]
+    fn find(&self, i: i32, j: i32) -> Option<&Tile> {
+        let key = (i >> TILE_SHIFT, j >> TILE_SHIFT);
+        let t = if key == self.last {
+            self.last_tile
+        } else {
+            self.index.get(key)? as usize
+        };
+        self.tiles.get(t)
+    }
+
+    /// The sample in `slot` of `tile`, taken with `sample` on first use.
+    #[inline]
+    fn value_or(&mut self, tile: usize, slot: usize, sample: impl FnOnce() -> f32) -> f32 {
+        let Some(t) = self.tiles.get_mut(tile) else {
+            return sample();
+        };
+        let bit = 1u64 << slot;
+        if t.sampled & bit != 0 {
+            return t.values.get(slot).copied().unwrap_or(f32::NAN);
+        }
+        let v = sample();
+        if let Some(value) = t.values.get_mut(slot) {
+            *value = v;
+            t.sampled |= bit;
+        }
+        v
+    }
+
+    /// The ring crossing the edge from node `(i, j)` up to `(i, j + 1)`.
+    #[inline]
+    fn vertical(&self, i: i32, j: i32) -> Option<u32> {
+        let r = *self.find(i, j)?.verticals.get(Self::slot(i, j))?;
+        (r != NO_RING).then_some(r)
+    }
+
+    fn set_vertical(&mut self, i: i32, j: i32, ring: u32) {
+        let (tile, slot) = self.locate(i, j);
+        if let Some(v) = self
+            .tiles
+            .get_mut(tile)
+            .and_then(|t| t.verticals.get_mut(slot))
+        {
+            *v = ring;
+        }
+    }
+}
+
+/// Open-addressing hash table from grid coordinates to small values. Lookups only:
+/// nothing depends on its iteration order, so results stay deterministic.
+struct Table<V> {
+    keys: Vec<u64>,
+    values: Vec<V>,
+    len: usize,
+}
+
+const EMPTY: u64 = 0;
+
+impl<V: Copy + Default> Table<V> {
+    /// An empty table with room for `slots` (a power of two) before it first grows.
+    fn with_slots(slots: usize) -> Self {
+        Self {
+            keys: alloc::vec![EMPTY; slots],
+            values: alloc::vec![V::default(); slots],
+            len: 0,
+        }
+    }
+
+    fn key((x, y): (i32, i32)) -> u64 {
+        // Doubled coordinates stay within ±2^30, so the offset keeps both halves positive and
+        // the key nonzero.
+        let x = (x as i64 + (1 << 31)) as u64;
+        let y = (y as i64 + (1 << 31)) as u64;
+        (x << 32) | y
+    }
+
+    fn slot(&self, key: u64) -> usize {
+        let mask = self.keys.len() - 1;
+        let bits = self.keys.len().trailing_zeros();
+        (key.wrapping_mul(0x9e37_79b9_7f4a_7c15) >> (64 - bits)) as usize & mask
+    }
+
+    fn get(&self, at: (i32, i32)) -> Option<V> {
+        let key = Self::key(at);
+        let mask = self.keys.len() - 1;
+        let mut s = self.slot(key);
+        loop {
+            match self.keys.get(s) {
+                Some(&k) if k == key => return self.values.get(s).copied(),
+                Some(&EMPTY) | None => return None,
+                Some(_) => s = (s + 1) & mask,
+            }
+        }
+    }
+
+    fn insert(&mut self, at: (i32, i32), value: V) {
+        if (self.len + 1) * 2 > self.keys.len() {
+            self.grow();
+        }
+        let key = Self::key(at);
+        let mask = self.keys.len() - 1;
+        let mut s = self.slot(key);
+        loop {
+            match self.keys.get(s) {
+                Some(&k) if k == key => break,
+                Some(&EMPTY) => {
+                    self.len += 1;
+                    break;
+                }
+                Some(_) => s = (s + 1) & mask,
+                None => return,
+            }
+        }
+        if let (Some(k), Some(v)) = (self.keys.get_mut(s), self.values.get_mut(s)) {
+            *k = key;
+            *v = value;
+        }
+    }
+
+    fn grow(&mut self) {
+        let size = self.keys.len() * 2;
+        let keys = core::mem::replace(&mut self.keys, alloc::vec![EMPTY; size]);
+        let values = core::mem::replace(&mut self.values, alloc::vec![V::default(); size]);
+        let mask = size - 1;
+        for (key, value) in keys.into_iter().zip(values) {
+            if key == EMPTY {
+                continue;
+            }
+            let mut s = self.slot(key);
+            while self.keys.get(s).is_some_and(|&k| k != EMPTY) {
+                s = (s + 1) & mask;
+            }
+            if let (Some(k), Some(v)) = (self.keys.get_mut(s), self.values.get_mut(s)) {
+                *k = key;
+                *v = value;
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn disc(p: Vec2) -> f32 {
+        1.0 - p.length() / 10.0
+    }
+
+    #[test]
+    fn refinement_puts_points_on_the_iso_line() {
+        let worst = |steps| {
+            let options = MarchOptions::DEFAULT.with_refine_steps(steps);
+            let rings = trace_with(disc, &[Vec2::ZERO], 2.5, 0.0, &options).unwrap();
+            rings[0]
+                .points
+                .iter()
+                .map(|p| (p.length() - 10.0).abs())
+                .fold(0.0, f32::max)
+        };
+        assert!(worst(0) > 1e-2);
+        assert!(worst(4) < 1e-5);
+    }
+
+    #[test]
+    fn regression_refinement_with_a_node_on_the_iso_line() {
+        // Node (10, 0) lies exactly on the circle: refinement must not bisect away from it.
+        let options = MarchOptions::DEFAULT.with_refine_steps(1);
+        let rings = trace_with(disc, &[Vec2::ZERO], 2.5, 0.0, &options).unwrap();
+        assert!(
+            rings[0]
+                .points
+                .iter()
+                .all(|p| (p.length() - 10.0).abs() < 0.01)
+        );
+    }
+
+    #[test]
+    fn hints_outside_or_covered_start_nothing() {
+        let rings = trace(disc, &[Vec2::new(50.0, 0.0)], 1.0, 0.0).unwrap();
+        assert!(rings.is_empty());
+        let rings = trace(disc, &[Vec2::ZERO, Vec2::new(3.0, 2.0)], 1.0, 0.0).unwrap();
+        assert_eq!(rings.len(), 1);
+    }
+
+    #[test]
+    fn an_unbounded_field_exhausts_the_budget() {
+        let half_plane = |p: Vec2| p.x;
+        let options = MarchOptions::DEFAULT.with_max_cells(1000);
+        assert_eq!(
+            trace_with(half_plane, &[Vec2::new(5.0, 0.0)], 1.0, 0.0, &options),
+            Err(MarchError::BudgetExceeded {
+                hint: 0,
+                cells: 1000
+            })
+        );
+    }
+
+    #[test]
+    fn every_node_is_sampled_once() {
+        use alloc::collections::BTreeSet;
+        use core::cell::RefCell;
+        // An annulus (a hole to scan) and a disc, across negative and positive coordinates.
+        let seen = RefCell::new((BTreeSet::new(), 0usize));
+        let field = |p: Vec2| {
+            let mut s = seen.borrow_mut();
+            s.0.insert((p.x.to_bits(), p.y.to_bits()));
+            s.1 += 1;
+            let ring = (p.length() - 10.0).min(25.0 - p.length());
+            let disc = 8.0 - p.distance(Vec2::new(60.0, -20.0));
+            ring.max(disc)
+        };
+        let hints = [Vec2::new(-17.3, 0.1), Vec2::new(60.1, -19.9)];
+        let rings = trace(field, &hints, 1.3, 0.0).unwrap();
+        assert_eq!(rings.len(), 3);
+        assert_eq!(rings.iter().filter(|r| r.hole).count(), 1);
+        let (distinct, calls) = &*seen.borrow();
+        assert_eq!(distinct.len(), *calls, "a point was sampled twice");
+    }
+
+    #[test]
+    fn node_tiles_keep_samples_and_edges_apart() {
+        let mut nodes = Nodes::new();
+        let coords = [
+            (0, 0),
+            (-1, 0),
+            (7, 7),
+            (8, 7),
+            (-8, -9),
+            (-9, -8),
+            (1000, -1000),
+        ];
+        for (n, &(i, j)) in coords.iter().enumerate() {
+            let (tile, slot) = nodes.locate(i, j);
+            assert_eq!(nodes.value_or(tile, slot, || n as f32), n as f32);
+            nodes.set_vertical(i, j, n as u32);
+        }
+        for (n, &(i, j)) in coords.iter().enumerate() {
+            let (tile, slot) = nodes.locate(i, j);
+            assert_eq!(nodes.value_or(tile, slot, || f32::NAN), n as f32);
+            assert_eq!(nodes.vertical(i, j), Some(n as u32));
+        }
+        assert_eq!(nodes.vertical(1, 0), None);
+        assert_eq!(nodes.vertical(-100, 5), None);
+    }
+
+    #[test]
+    fn crossings_sort_by_column_then_row() {
+        let mut s = 7u32;
+        let mut next = |m: u32| {
+            s ^= s << 13;
+            s ^= s >> 17;
+            s ^= s << 5;
+            (s % m) as i32 - (m / 2) as i32
+        };
+        for len in [0usize, 1, 2, 5, 40, 300] {
+            // Few columns (as a ring makes) and, once, many (the fallback).
+            for spread in [len as u32 / 2 + 1, 10 * len as u32 + 1] {
+                let mut v: Vec<(i32, i32)> = (0..len).map(|_| (next(spread), next(1000))).collect();
+                let mut expected = v.clone();
+                expected.sort_unstable();
+                sort_by_column(&mut v);
+                assert_eq!(v, expected);
+            }
+        }
+    }
+
+    #[test]
+    fn table_grows_and_finds() {
+        let mut t: Table<u32> = Table::with_slots(16);
+        for i in -2000..2000 {
+            t.insert((i, -i), i as u32);
+        }
+        for i in -2000..2000 {
+            assert_eq!(t.get((i, -i)), Some(i as u32));
+        }
+        assert_eq!(t.get((1, 1)), None);
+        t.insert((5, -5), 7);
+        assert_eq!(t.get((5, -5)), Some(7));
+    }
+}

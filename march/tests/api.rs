@@ -1,0 +1,239 @@
+//! Integration tests through the public API only.
+
+// Helpers outside `#[test]` functions unwrap too: a failure there is a test failure.
+#![allow(clippy::unwrap_used)]
+
+extern crate alloc;
+
+mod support;
+
+use creature_march::glam::Vec2;
+use creature_march::{
+    MarchError, MarchOptions, Ring, Saddle, march_grid, march_grid_with, trace, trace_with,
+    validate_rings,
+};
+use support::{Balls, creature, hausdorff, is_simple, sample, to_world};
+
+fn lone_ball(r: f32) -> Balls {
+    Balls(vec![(Vec2::new(3.3, -1.7), r)])
+}
+
+fn check_rings(rings: &[Ring]) {
+    validate_rings(rings).unwrap();
+    for r in rings {
+        assert!(r.points.len() >= 3);
+        assert!(r.points.iter().all(|p| p.is_finite()));
+        assert_eq!(r.hole, r.signed_area() < 0.0);
+        assert_eq!(r.hole, r.parent.is_some());
+        assert!(is_simple(r));
+        assert_ne!(
+            r.points.first(),
+            r.points.last(),
+            "closed without repeating"
+        );
+    }
+}
+
+#[test]
+fn a_single_ball_encloses_its_disc_area() {
+    let r = 30.0;
+    let balls = lone_ball(r);
+    let rings = trace(|p| balls.value(p), &balls.centres(), 0.5, 1.0).unwrap();
+    assert_eq!(rings.len(), 1);
+    check_rings(&rings);
+    let area = rings[0].signed_area();
+    let disc = core::f32::consts::PI * r * r;
+    assert!((area - disc).abs() / disc < 0.005, "{area} vs {disc}");
+}
+
+#[test]
+fn two_distant_balls_give_two_rings() {
+    let balls = Balls(vec![(Vec2::ZERO, 10.0), (Vec2::new(80.0, 25.0), 12.0)]);
+    let rings = trace(|p| balls.value(p), &balls.centres(), 1.0, 1.0).unwrap();
+    assert_eq!(rings.len(), 2);
+    check_rings(&rings);
+    for (ring, c) in rings.iter().zip(balls.centres()) {
+        assert!(ring.contains(c));
+    }
+}
+
+fn annulus(p: Vec2) -> f32 {
+    let d = p.distance(Vec2::new(5.0, 5.0));
+    (d - 10.0).min(25.0 - d)
+}
+
+#[test]
+fn an_annulus_is_an_outer_ring_with_one_hole() {
+    // The hint sits beside the hole: the walk up never crosses it, the hole scan finds it.
+    let rings = trace(annulus, &[Vec2::new(-12.5, 5.0)], 1.0, 0.0).unwrap();
+    check_rings(&rings);
+    assert_eq!(rings.len(), 2);
+    let hole = rings.iter().position(|r| r.hole).unwrap();
+    let outer = rings[hole].parent.unwrap();
+    assert!(!rings[outer].hole);
+    assert!(rings[hole].contains(Vec2::new(5.0, 5.0)));
+    // Hint below the hole: the walk crosses the hole first, then finds the outer ring.
+    let below = trace(annulus, &[Vec2::new(5.0, -12.0)], 1.0, 0.0).unwrap();
+    assert_eq!(below.len(), 2);
+    // Without the hole scan, a hint beside the hole finds only the outer ring.
+    let options = MarchOptions::DEFAULT.with_holes(false);
+    let no_scan = trace_with(annulus, &[Vec2::new(-12.5, 5.0)], 1.0, 0.0, &options).unwrap();
+    assert_eq!(no_scan.len(), 1);
+    // And the grid agrees.
+    let values = sample(annulus, (-30, -30), 70, 70, 1.0);
+    let grid = march_grid(&values, 70, 70, 0.0).unwrap();
+    assert_eq!(grid.len(), 2);
+    assert_eq!(grid.iter().filter(|r| r.hole).count(), 1);
+}
+
+#[test]
+fn grid_and_trace_agree_on_a_creature() {
+    for seed in [1, 7, 42, 1234] {
+        let balls = creature(seed);
+        let field = |p: Vec2| balls.value(p);
+        let step = 5.0;
+        let options = MarchOptions::DEFAULT.with_saddle(Saddle::Asymptotic);
+        let traced = trace_with(field, &balls.centres(), step, 1.0, &options).unwrap();
+        let origin = (-80, -40);
+        let values = sample(field, origin, 160, 160, step);
+        let grid = march_grid_with(&values, 160, 160, 1.0, &options).unwrap();
+        let grid = to_world(&grid, origin, step);
+        check_rings(&traced);
+        check_rings(&grid);
+        assert_eq!(traced.len(), grid.len(), "seed {seed}");
+        let h = hausdorff(&traced, &grid);
+        assert!(h <= step, "seed {seed}: hausdorff {h}");
+        for c in balls.centres() {
+            let outer = traced.iter().filter(|r| !r.hole && r.contains(c)).count();
+            assert_eq!(outer, 1, "seed {seed}: centre {c}");
+        }
+    }
+}
+
+/// reference-2d.md §2.6: in seeds 139 and 184 a thin limb pair that did not reach the thick
+/// spine was dropped, because the seed traces only the component above its top-most ball.
+#[test]
+fn regression_seed_thin_limb_pair_apart_from_a_thick_spine_is_outlined() {
+    let mut balls = Balls(Vec::new());
+    // Thick beaded spine (T = 35, m = 1).
+    balls.cover(Vec2::ZERO, Vec2::new(0.0, 200.0), 35.0, 1.0, false);
+    // Thin limb pair (T = 5.5) starting at 1.1 T from the spine, between two spine beads.
+    for dir in [-1.0f32, 1.0] {
+        let socket = Vec2::new(dir * 1.1 * 35.0 + dir * 8.0, 52.0);
+        balls.cover(socket, socket + Vec2::X * dir * 70.0, 5.5, 1.2, false);
+    }
+    let field = |p: Vec2| balls.value(p);
+    let top = balls
+        .centres()
+        .into_iter()
+        .max_by(|a, b| a.y.total_cmp(&b.y))
+        .unwrap();
+    // The seed's way: one trace from the top-most ball finds the spine only.
+    let seed_way = trace(field, &[top], 5.0, 1.0).unwrap();
+    assert_eq!(seed_way.len(), 1);
+    // Ours: every centre is a hint, so the limbs are outlined too.
+    let rings = trace(field, &balls.centres(), 5.0, 1.0).unwrap();
+    check_rings(&rings);
+    assert_eq!(rings.len(), 3);
+    for c in balls.centres() {
+        assert_eq!(rings.iter().filter(|r| !r.hole && r.contains(c)).count(), 1);
+    }
+}
+
+#[test]
+fn nan_regions_are_outside() {
+    let field = |p: Vec2| {
+        if p.length() < 5.0 {
+            f32::NAN
+        } else {
+            1.0 - p.length() / 20.0
+        }
+    };
+    let rings = trace(field, &[Vec2::new(10.0, 0.0)], 1.0, 0.0).unwrap();
+    check_rings(&rings);
+    assert_eq!(rings.len(), 2);
+    assert_eq!(rings.iter().filter(|r| r.hole).count(), 1);
+}
+
+#[test]
+fn saddle_rules_differ_only_where_they_should() {
+    // Two balls whose necks just meet on the diagonal of a cell.
+    let balls = Balls(vec![
+        (Vec2::new(-7.2, -7.2), 7.0),
+        (Vec2::new(7.2, 7.2), 7.0),
+    ]);
+    let field = |p: Vec2| balls.value(p);
+    for saddle in [Saddle::Centre, Saddle::Asymptotic] {
+        let options = MarchOptions::DEFAULT.with_saddle(saddle);
+        let rings = trace_with(field, &balls.centres(), 3.0, 1.0, &options).unwrap();
+        check_rings(&rings);
+        assert!(!rings.is_empty() && rings.len() <= 2);
+    }
+}
+
+#[test]
+fn results_are_deterministic() {
+    let balls = creature(99);
+    let a = trace(|p| balls.value(p), &balls.centres(), 3.0, 1.0).unwrap();
+    let b = trace(|p| balls.value(p), &balls.centres(), 3.0, 1.0).unwrap();
+    assert_eq!(a, b);
+    let values = sample(|p| balls.value(p), (-50, -20), 100, 100, 3.0);
+    assert_eq!(
+        march_grid(&values, 100, 100, 1.0).unwrap(),
+        march_grid(&values, 100, 100, 1.0).unwrap()
+    );
+}
+
+#[test]
+fn welding_removes_near_duplicates() {
+    let balls = creature(5);
+    let rings = trace(|p| balls.value(p), &balls.centres(), 5.0, 1.0).unwrap();
+    for r in &rings {
+        let n = r.points.len();
+        for i in 0..n {
+            assert!(r.points[i].distance(r.points[(i + 1) % n]) > 0.01 * 5.0);
+        }
+    }
+}
+
+#[test]
+fn bad_input_is_a_typed_error() {
+    let f = |p: Vec2| 1.0 - p.length();
+    assert!(matches!(
+        trace(f, &[Vec2::ZERO], 0.0, 0.0),
+        Err(MarchError::NotPositive { what: "step", .. })
+    ));
+    assert!(matches!(
+        trace(f, &[Vec2::ZERO], f32::NAN, 0.0),
+        Err(MarchError::NonFinite { what: "step", .. })
+    ));
+    assert!(matches!(
+        trace(f, &[Vec2::ZERO], 1.0, f32::INFINITY),
+        Err(MarchError::NonFinite { what: "iso", .. })
+    ));
+    assert!(matches!(
+        trace(f, &[Vec2::ZERO, Vec2::new(f32::NAN, 0.0)], 1.0, 0.0),
+        Err(MarchError::NonFinite {
+            what: "hint",
+            index: 1
+        })
+    ));
+    assert!(matches!(
+        trace(f, &[Vec2::new(1e9, 0.0)], 1.0, 0.0),
+        Err(MarchError::TooFar { index: 0, .. })
+    ));
+    let bad = MarchOptions::DEFAULT.with_weld(-1.0);
+    assert!(matches!(
+        trace_with(f, &[Vec2::ZERO], 0.1, 0.0, &bad),
+        Err(MarchError::OutOfRange { what: "weld", .. })
+    ));
+    assert!(matches!(
+        march_grid_with(&[0.0; 4], 2, 2, 0.0, &bad),
+        Err(MarchError::OutOfRange { .. })
+    ));
+    assert!(matches!(
+        march_grid(&[0.0; 4], 3, 2, 0.0),
+        Err(MarchError::GridSize { .. })
+    ));
+    assert_eq!(trace(f, &[], 1.0, 0.0), Ok(vec![]));
+}

@@ -1,0 +1,242 @@
+//! Meshing (feature `mesh`) through the public API.
+
+#![allow(clippy::unwrap_used)]
+
+extern crate alloc;
+
+mod support;
+
+use alloc::collections::BTreeSet;
+
+use creature_march::glam::Vec2;
+use creature_march::{MarchError, Mesh2, MeshOptions, Ring, trace, triangulate};
+use creature_metaball::{Ball2, Falloff, Field2};
+use support::creature;
+
+/// The mesh invariants: indices in range, every vertex used, counter-clockwise non-degenerate
+/// triangles inside the outline, ring vertices first, Euler characteristic.
+fn check_mesh(mesh: &Mesh2, rings: &[Ring], ring_points_kept: bool) {
+    let n = mesh.positions.len();
+    assert!(mesh.positions.iter().all(|p| p.is_finite()));
+    let mut used = vec![false; n];
+    let mut edges = BTreeSet::new();
+    for t in &mesh.triangles {
+        let [a, b, c] = t.map(|i| mesh.positions[i as usize]);
+        assert!(
+            (b - a).perp_dot(c - a) > 0.0,
+            "counter-clockwise and not degenerate"
+        );
+        let centroid = (a + b + c) / 3.0;
+        let inside = rings.iter().filter(|r| r.contains(centroid)).count();
+        assert_eq!(
+            inside % 2,
+            1,
+            "triangle centroid {centroid} outside the outline"
+        );
+        for k in 0..3 {
+            used[t[k] as usize] = true;
+            let (u, v) = (t[k], t[(k + 1) % 3]);
+            edges.insert((u.min(v), u.max(v)));
+        }
+    }
+    assert!(used.iter().all(|&u| u), "every vertex is used");
+    if ring_points_kept {
+        let mut k = 0;
+        for r in rings {
+            for p in &r.points {
+                assert_eq!(mesh.positions[k], *p, "ring vertex {k} is a mesh vertex");
+                k += 1;
+            }
+        }
+        assert_eq!(mesh.outline_len, k);
+    }
+    let outers = rings.iter().filter(|r| !r.hole).count() as i64;
+    let holes = rings.len() as i64 - outers;
+    let euler = n as i64 - edges.len() as i64 + mesh.triangles.len() as i64;
+    assert_eq!(
+        euler,
+        outers - holes,
+        "V - E + F = Σ (1 - holes) over components"
+    );
+}
+
+#[test]
+fn creatures_mesh_with_the_minimum_angle() {
+    for seed in [3, 11, 42, 77, 1000] {
+        let balls = creature(seed);
+        let rings = trace(|p| balls.value(p), &balls.centres(), 5.0, 1.0).unwrap();
+        let mesh = triangulate(&rings, &MeshOptions::DEFAULT).unwrap();
+        check_mesh(&mesh, &rings, true);
+        assert!(mesh.quality.refinement_complete, "seed {seed}");
+        assert!(
+            mesh.quality.min_angle >= 20.0 - 1e-3,
+            "seed {seed}: {:?}",
+            mesh.quality
+        );
+        assert_eq!(mesh.quality.below_20, 0);
+        assert_eq!(mesh.quality.below_limit, 0);
+        assert!(
+            mesh.positions.len() > mesh.outline_len,
+            "interior points were added"
+        );
+    }
+}
+
+/// The pipeline the `creature` facade runs: `creature-metaball`'s culled field, traced and
+/// meshed with the defaults, keeps every guarantee.
+#[test]
+fn culled_metaball_fields_mesh_with_every_guarantee() {
+    for seed in [2, 17, 64] {
+        let balls = creature(seed);
+        let metaballs: Vec<Ball2> = balls
+            .0
+            .iter()
+            .enumerate()
+            .map(|(i, &(c, r))| Ball2::new(c, r, i as u32))
+            .collect();
+        let field = Field2::new(&metaballs, Falloff::SEED).unwrap();
+        let rings = trace(|p| field.value(p), &balls.centres(), 5.0, 1.0).unwrap();
+        for c in balls.centres() {
+            let outer = rings.iter().filter(|r| !r.hole && r.contains(c)).count();
+            assert_eq!(outer, 1, "seed {seed}: centre {c}");
+        }
+        let mesh = triangulate(&rings, &MeshOptions::DEFAULT).unwrap();
+        check_mesh(&mesh, &rings, true);
+        assert!(mesh.quality.refinement_complete, "seed {seed}");
+        assert!(mesh.quality.min_angle >= 20.0 - 1e-3, "seed {seed}");
+        assert_eq!(mesh.quality.below_20, 0);
+    }
+}
+
+#[test]
+fn simplification_keeps_the_outline_and_drops_points() {
+    let balls = creature(8);
+    let rings = trace(|p| balls.value(p), &balls.centres(), 5.0, 1.0).unwrap();
+    let full = triangulate(&rings, &MeshOptions::DEFAULT).unwrap();
+    let lean = triangulate(&rings, &MeshOptions::DEFAULT.with_simplify(0.5)).unwrap();
+    assert!(lean.outline_len < full.outline_len);
+    check_mesh(&lean, &rings, false);
+    assert!(lean.quality.min_angle >= 20.0 - 1e-3);
+}
+
+#[test]
+fn an_annulus_mesh_leaves_the_hole_empty() {
+    let field = |p: Vec2| {
+        let d = p.length();
+        (d - 30.0).min(80.0 - d)
+    };
+    let rings = trace(field, &[Vec2::new(55.0, 0.0)], 4.0, 0.0).unwrap();
+    assert_eq!(rings.len(), 2);
+    let mesh = triangulate(&rings, &MeshOptions::DEFAULT).unwrap();
+    check_mesh(&mesh, &rings, true);
+    let area: f32 = mesh
+        .triangles
+        .iter()
+        .map(|t| {
+            let [a, b, c] = t.map(|i| mesh.positions[i as usize]);
+            0.5 * (b - a).perp_dot(c - a)
+        })
+        .sum();
+    let rings_area: f32 = rings.iter().map(Ring::signed_area).sum();
+    assert!((area - rings_area).abs() < 1e-3 * rings_area);
+}
+
+#[test]
+fn unrefined_meshes_report_their_slivers() {
+    let balls = creature(21);
+    let rings = trace(|p| balls.value(p), &balls.centres(), 5.0, 1.0).unwrap();
+    let options = MeshOptions::DEFAULT.with_min_angle(0.0).with_clearance(0.0);
+    let mesh = triangulate(&rings, &options).unwrap();
+    check_mesh(&mesh, &rings, true);
+    let recount = mesh
+        .triangles
+        .iter()
+        .filter(|t| {
+            let [a, b, c] = t.map(|i| mesh.positions[i as usize]);
+            let angle = |p: Vec2, q: Vec2, r: Vec2| (q - p).angle_to(r - p).abs().to_degrees();
+            angle(a, b, c).min(angle(b, c, a)).min(angle(c, a, b)) < 20.0
+        })
+        .count();
+    assert_eq!(mesh.quality.below_20, recount);
+    assert!(mesh.quality.refinement_complete);
+}
+
+fn square(o: Vec2, s: f32) -> Ring {
+    Ring {
+        points: vec![o, o + Vec2::X * s, o + Vec2::splat(s), o + Vec2::Y * s],
+        hole: false,
+        parent: None,
+    }
+}
+
+#[test]
+fn bad_rings_are_typed_errors() {
+    let options = MeshOptions::DEFAULT;
+    let crossing = [square(Vec2::ZERO, 10.0), square(Vec2::splat(5.0), 10.0)];
+    assert!(matches!(
+        triangulate(&crossing, &options),
+        Err(MarchError::RingsCross {
+            ring_a: 0,
+            ring_b: 1,
+            ..
+        })
+    ));
+    let bow_tie = Ring {
+        points: vec![Vec2::ZERO, Vec2::ONE, Vec2::X, Vec2::Y],
+        hole: false,
+        parent: None,
+    };
+    assert!(matches!(
+        triangulate(&[bow_tie], &options),
+        Err(MarchError::RingsCross {
+            ring_a: 0,
+            ring_b: 0,
+            ..
+        })
+    ));
+    let short = Ring {
+        points: vec![Vec2::ZERO, Vec2::X],
+        hole: false,
+        parent: None,
+    };
+    assert!(matches!(
+        triangulate(&[short], &options),
+        Err(MarchError::TooFewPoints { ring: 0, len: 2 })
+    ));
+    let mut nan = square(Vec2::ZERO, 1.0);
+    nan.points[2].x = f32::NAN;
+    assert!(matches!(
+        triangulate(&[nan], &options),
+        Err(MarchError::NonFinite { .. })
+    ));
+    let orphan = Ring {
+        hole: true,
+        ..square(Vec2::ZERO, 1.0)
+    };
+    assert!(matches!(
+        triangulate(&[orphan], &options),
+        Err(MarchError::BadParent {
+            ring: 0,
+            parent: None
+        })
+    ));
+    // A nonzero coordinate below spade's 2^-142.
+    let tiny = Ring {
+        points: vec![Vec2::new(1e-44, 0.0), Vec2::X, Vec2::ONE, Vec2::Y],
+        hole: false,
+        parent: None,
+    };
+    assert_eq!(
+        triangulate(&[tiny], &options),
+        Err(MarchError::Triangulation { point: 0 })
+    );
+    assert!(matches!(
+        triangulate(
+            &[square(Vec2::ZERO, 1.0)],
+            &options.with_min_angle(f32::NAN)
+        ),
+        Err(MarchError::NonFinite { .. })
+    ));
+    let empty = triangulate(&[], &options).unwrap();
+    assert!(empty.positions.is_empty() && empty.triangles.is_empty());
+}

@@ -1,0 +1,199 @@
+//! Property tests of the invariants the crate promises, driven by its public strategies.
+
+#![allow(clippy::unwrap_used)]
+
+extern crate alloc;
+
+mod support;
+
+use creature_march::glam::Vec2;
+use creature_march::{
+    MarchError, MarchOptions, Ring, Saddle, march_grid, march_grid_with, strategies, trace,
+    trace_with, validate_rings,
+};
+use proptest::prelude::*;
+use proptest::test_runner::FileFailurePersistence;
+use support::{hausdorff, is_simple, sample, to_world};
+
+fn well_formed(rings: &[Ring]) -> Result<(), TestCaseError> {
+    prop_assert!(validate_rings(rings).is_ok(), "{:?}", validate_rings(rings));
+    for r in rings {
+        prop_assert!(r.points.len() >= 3);
+        prop_assert!(r.points.iter().all(|p| p.is_finite()));
+        prop_assert_eq!(r.hole, r.signed_area() < 0.0);
+        prop_assert_eq!(r.hole, r.parent.is_some());
+        if let Some(p) = r.parent {
+            prop_assert!(!rings[p].hole);
+        }
+        prop_assert!(is_simple(r));
+    }
+    Ok(())
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig {
+        cases: 64,
+        failure_persistence: Some(Box::new(FileFailurePersistence::Direct(
+            "proptest-regressions/properties.txt",
+        ))),
+        ..ProptestConfig::default()
+    })]
+
+    #[test]
+    fn a_single_ball_encloses_the_disc_area(
+        centre in strategies::vec2_in(100.0),
+        radius in 5.0f32..40.0,
+    ) {
+        let balls = strategies::Blobs { balls: vec![(centre, radius)] };
+        let step = radius / 60.0;
+        let rings = trace(|p| balls.value(p), &[centre], step, 1.0).unwrap();
+        prop_assert_eq!(rings.len(), 1);
+        let disc = core::f32::consts::PI * radius * radius;
+        let area = rings[0].signed_area();
+        prop_assert!((area - disc).abs() / disc < 0.005, "{} vs {}", area, disc);
+    }
+
+    #[test]
+    fn trace_finds_every_component(blobs in strategies::blobs(1..12), step in 1.0f32..4.0) {
+        let field = |p: Vec2| blobs.value(p);
+        let rings = trace(field, &blobs.centres(), step, 1.0).unwrap();
+        well_formed(&rings)?;
+        for c in blobs.centres() {
+            let outer = rings.iter().filter(|r| !r.hole && r.contains(c)).count();
+            prop_assert_eq!(outer, 1, "centre {} in {} outer rings", c, outer);
+        }
+    }
+
+    #[test]
+    fn separated_balls_give_one_ring_each(blobs in strategies::separated_blobs(1..6)) {
+        let rings = trace(|p| blobs.value(p), &blobs.centres(), 1.0, 1.0).unwrap();
+        prop_assert_eq!(rings.len(), blobs.balls.len());
+        well_formed(&rings)?;
+    }
+
+    #[test]
+    fn an_annulus_is_one_outer_ring_and_one_hole(
+        annulus in strategies::annulus(),
+        step in 0.5f32..1.5,
+    ) {
+        let rings = trace(|p| annulus.value(p), &[annulus.hint()], step, 0.0).unwrap();
+        well_formed(&rings)?;
+        prop_assert_eq!(rings.len(), 2);
+        prop_assert_eq!(rings.iter().filter(|r| r.hole).count(), 1);
+    }
+
+    #[test]
+    fn grid_and_trace_agree(blobs in strategies::blobs(1..8), step in 2.0f32..5.0) {
+        let field = |p: Vec2| blobs.value(p);
+        let options = MarchOptions::DEFAULT.with_saddle(Saddle::Asymptotic);
+        let traced = trace_with(field, &blobs.centres(), step, 1.0, &options).unwrap();
+        // A grid covering every ball's reach (radius < 20, a few radii of margin).
+        let origin = ((-180.0 / step).floor() as i32, (-180.0 / step).floor() as i32);
+        let size = (360.0 / step).ceil() as usize + 2;
+        let values = sample(field, origin, size, size, step);
+        let grid = march_grid_with(&values, size, size, 1.0, &options).unwrap();
+        let grid = to_world(&grid, origin, step);
+        well_formed(&grid)?;
+        // The trace sees the components holding a hint; a component of a ball field holds a
+        // ball centre save in rare configurations, which are skipped.
+        let holds_centre = |r: &Ring| blobs.centres().iter().any(|&c| r.contains(c));
+        prop_assume!(grid.iter().all(|r| r.hole || holds_centre(r)));
+        prop_assert_eq!(traced.len(), grid.len());
+        let (traced_outer, grid_outer) = (traced, grid);
+        let h = hausdorff(&traced_outer, &grid_outer);
+        prop_assert!(h <= step, "hausdorff {} > step {}", h, step);
+    }
+
+    #[test]
+    fn grid_rings_are_closed_simple_and_oriented((values, w, h) in strategies::grid(), iso in -0.5f32..0.5) {
+        let rings = march_grid(&values, w, h, iso).unwrap();
+        well_formed(&rings)?;
+        let asymptotic = MarchOptions::DEFAULT.with_saddle(Saddle::Asymptotic);
+        well_formed(&march_grid_with(&values, w, h, iso, &asymptotic).unwrap())?;
+    }
+
+    #[test]
+    fn bad_grids_are_rejected((values, w, h) in strategies::bad_grid()) {
+        let is_size_error = matches!(march_grid(&values, w, h, 0.0), Err(MarchError::GridSize { .. }));
+        prop_assert!(is_size_error);
+    }
+
+    #[test]
+    fn bad_steps_and_isos_are_rejected(step in strategies::bad_step(), iso in strategies::non_finite_f32()) {
+        let f = |p: Vec2| 1.0 - p.length();
+        prop_assert!(trace(f, &[Vec2::ZERO], step, 0.0).is_err());
+        prop_assert!(trace(f, &[Vec2::ZERO], 0.1, iso).is_err());
+        prop_assert!(march_grid(&[0.0; 4], 2, 2, iso).is_err());
+    }
+
+    #[test]
+    fn star_rings_are_valid(ring in strategies::star_ring()) {
+        prop_assert!(validate_rings(&[ring]).is_ok());
+    }
+
+    #[test]
+    fn self_intersecting_and_crossing_rings_are_rejected(
+        ring in strategies::self_intersecting_ring(),
+        pair in strategies::crossing_rings(),
+    ) {
+        let self_crossing = matches!(validate_rings(&[ring]), Err(MarchError::RingsCross { ring_a: 0, ring_b: 0, .. }));
+        prop_assert!(self_crossing);
+        let crossing = matches!(validate_rings(&pair), Err(MarchError::RingsCross { ring_a: 0, ring_b: 1, .. }));
+        prop_assert!(crossing);
+    }
+}
+
+#[cfg(feature = "mesh")]
+mod mesh {
+    use alloc::collections::BTreeSet;
+
+    use creature_march::{MeshOptions, triangulate};
+
+    use super::*;
+
+    proptest! {
+        #![proptest_config(ProptestConfig {
+            cases: 32,
+            failure_persistence: Some(Box::new(FileFailurePersistence::Direct(
+                "proptest-regressions/properties.txt",
+            ))),
+            ..ProptestConfig::default()
+        })]
+
+        #[test]
+        fn meshes_fill_the_outline_with_good_triangles(
+            blobs in strategies::blobs(1..10),
+            spacing in 4.0f32..12.0,
+        ) {
+            let rings = trace(|p| blobs.value(p), &blobs.centres(), 2.0, 1.0).unwrap();
+            let mesh = triangulate(&rings, &MeshOptions::DEFAULT.with_interior_spacing(spacing)).unwrap();
+            // Every ring vertex is a mesh vertex, in order.
+            let ring_points: Vec<Vec2> = rings.iter().flat_map(|r| r.points.iter().copied()).collect();
+            prop_assert_eq!(&mesh.positions[..mesh.outline_len], &ring_points[..]);
+            let mut edges = BTreeSet::new();
+            for t in &mesh.triangles {
+                let [a, b, c] = t.map(|i| mesh.positions[i as usize]);
+                prop_assert!((b - a).perp_dot(c - a) > 0.0);
+                let centroid = (a + b + c) / 3.0;
+                prop_assert_eq!(rings.iter().filter(|r| r.contains(centroid)).count() % 2, 1);
+                for k in 0..3 {
+                    let (u, v) = (t[k], t[(k + 1) % 3]);
+                    edges.insert((u.min(v), u.max(v)));
+                }
+            }
+            let outers = rings.iter().filter(|r| !r.hole).count() as i64;
+            let holes = rings.len() as i64 - outers;
+            let euler = mesh.positions.len() as i64 - edges.len() as i64 + mesh.triangles.len() as i64;
+            prop_assert_eq!(euler, outers - holes);
+            if mesh.quality.refinement_complete {
+                prop_assert!(mesh.quality.min_angle >= 20.0 - 1e-2, "{:?}", mesh.quality);
+            }
+        }
+
+        #[test]
+        fn crossing_rings_never_reach_the_triangulator(pair in strategies::crossing_rings()) {
+            let crossing = matches!(triangulate(&pair, &MeshOptions::DEFAULT), Err(MarchError::RingsCross { .. }));
+            prop_assert!(crossing);
+        }
+    }
+}

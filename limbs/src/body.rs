@@ -37,17 +37,21 @@ pub enum HeadEnd {
 /// One spine bone that carries sockets (the auto-rigger gives sockets to every bone but the
 /// first and last).
 ///
-/// All positions are in body space: Y up, right-handed, any length unit (metres in
-/// `creature`).
+/// All positions are in body space, with the workspace's (glTF's) convention: right-handed,
+/// +Y up, the creature facing +Z, so its left is +X and its right −X. Any length unit (metres
+/// in `creature`). The planner never assumes the facing: it takes `left` and `right` as given,
+/// so a body facing elsewhere works as long as `left` is the creature's own left.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SpineBone {
     /// Position of the bone along the body axis, in body units. Must strictly increase with the
     /// bone's index in [`Body::bones`]; spans and overlap checks are measured in this
     /// coordinate.
     pub along: f32,
-    /// The left socket: the closest surface point on the body's left side.
+    /// The left socket: the closest surface point on the creature's left side (+X for a
+    /// creature facing +Z).
     pub left: Vec3,
-    /// The right socket: the closest surface point on the body's right side.
+    /// The right socket: the closest surface point on the creature's right side (−X for a
+    /// creature facing +Z).
     pub right: Vec3,
     /// The top socket: the closest surface point on the body's top.
     pub top: Vec3,
@@ -63,7 +67,8 @@ impl SpineBone {
     ///
     /// ```
     /// use creature_limbs::{SpineBone, glam::Vec3};
-    /// let bone = SpineBone::from_sockets(0.5, Vec3::new(-0.2, 1.0, 0.5), Vec3::new(0.2, 1.0, 0.5),
+    /// // Facing +Z: the left socket is on +X, the right one on −X.
+    /// let bone = SpineBone::from_sockets(0.5, Vec3::new(0.2, 1.0, 0.5), Vec3::new(-0.2, 1.0, 0.5),
     ///     Vec3::new(0.0, 1.2, 0.5), 1.0);
     /// assert!((bone.width - 0.4).abs() < 1e-6);
     /// ```
@@ -123,7 +128,7 @@ impl Body {
     ///
     /// [`LimbsError::NoBones`], [`TooManyBones`](LimbsError::TooManyBones),
     /// [`NonFinite`](LimbsError::NonFinite), [`TooLarge`](LimbsError::TooLarge),
-    /// [`Negative`](LimbsError::Negative), [`NonPositiveLength`](LimbsError::NonPositiveLength)
+    /// [`Negative`](LimbsError::Negative), [`InvalidLength`](LimbsError::InvalidLength)
     /// or [`NotIncreasing`](LimbsError::NotIncreasing), for the first problem found.
     pub fn validate(&self) -> Result<(), LimbsError> {
         if self.bones.is_empty() {
@@ -135,9 +140,8 @@ impl Body {
                 max: MAX_BONES,
             });
         }
-        check_scalar("body length", 0, self.length)?;
-        if !(self.length > 0.0) {
-            return Err(LimbsError::NonPositiveLength {
+        if !(self.length > 0.0 && self.length <= MAX_EXTENT) {
+            return Err(LimbsError::InvalidLength {
                 length: self.length,
             });
         }
@@ -261,8 +265,8 @@ mod tests {
     fn bone(along: f32) -> SpineBone {
         SpineBone::from_sockets(
             along,
-            Vec3::new(-0.5, 1.0, along),
             Vec3::new(0.5, 1.0, along),
+            Vec3::new(-0.5, 1.0, along),
             Vec3::new(0.0, 1.5, along),
             1.0,
         )
@@ -312,7 +316,13 @@ mod tests {
         b.length = 0.0;
         assert!(matches!(
             b.validate(),
-            Err(LimbsError::NonPositiveLength { .. })
+            Err(LimbsError::InvalidLength { .. })
+        ));
+        let mut b = good.clone();
+        b.length = f32::INFINITY;
+        assert!(matches!(
+            b.validate(),
+            Err(LimbsError::InvalidLength { .. })
         ));
         let mut b = good;
         b.bones[0].clearance = 1.0e30;

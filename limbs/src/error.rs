@@ -21,17 +21,17 @@ pub enum LimbsError {
     },
     /// A float of the body was NaN or infinite.
     NonFinite {
-        /// Which value, e.g. `"along"`, `"left socket"`, `"width"`, `"clearance"`,
-        /// `"body length"`.
+        /// Which value: `"along"`, `"left socket"`, `"right socket"`, `"top socket"`,
+        /// `"width"` or `"clearance"`.
         what: &'static str,
-        /// The bone it belongs to (0 for the body length).
+        /// The bone it belongs to.
         bone: usize,
     },
     /// A float of the body was larger in magnitude than [`MAX_EXTENT`](crate::MAX_EXTENT).
     TooLarge {
-        /// Which value.
+        /// Which value (as for [`NonFinite`](Self::NonFinite)).
         what: &'static str,
-        /// The bone it belongs to (0 for the body length).
+        /// The bone it belongs to.
         bone: usize,
         /// The value given (for vectors, its largest coordinate in magnitude).
         value: f32,
@@ -45,8 +45,9 @@ pub enum LimbsError {
         /// The value given.
         value: f32,
     },
-    /// The body length was zero or negative.
-    NonPositiveLength {
+    /// The body length was NaN, infinite, zero or negative, or larger than
+    /// [`MAX_EXTENT`](crate::MAX_EXTENT).
+    InvalidLength {
         /// The value given.
         length: f32,
     },
@@ -59,13 +60,26 @@ pub enum LimbsError {
         /// The predecessor's `along`.
         previous: f32,
     },
-    /// An option was NaN, infinite, out of its allowed range, or a `[min, max]` pair had
-    /// `min > max`.
+    /// An option was NaN, infinite, outside the range documented on its field of
+    /// [`PlanOptions`](crate::PlanOptions), or a `[min, max]` pair had `min > max`.
     InvalidOption {
         /// The option's field name in [`PlanOptions`](crate::PlanOptions).
         name: &'static str,
         /// The offending value (the minimum, for a reversed range).
         value: f32,
+    },
+    /// No layout of leg pairs keeps this walker standing: even legs on every bone tall enough
+    /// for them (at strides short enough not to overlap) leave the centre of mass less than
+    /// `required` inside the support region. Typically the body's mass lies beyond its last
+    /// bone that can carry legs (a heavy end too low for legs), or the options ask for more
+    /// margin than its feet can give.
+    NoStableLayout {
+        /// The margin with legs on every bone tall enough for them: the most any layout can
+        /// reach, in body units (negative: it tips over).
+        margin: f32,
+        /// The margin required: [`PlanOptions::min_margin`](crate::PlanOptions::min_margin) ×
+        /// body length.
+        required: f32,
     },
 }
 
@@ -94,9 +108,11 @@ impl fmt::Display for LimbsError {
                 f,
                 "{what} of bone {bone} is {value}: it must be zero or more"
             ),
-            Self::NonPositiveLength { length } => write!(
+            Self::InvalidLength { length } => write!(
                 f,
-                "the body length is {length}: it must be greater than zero"
+                "the body length is {length}: pass a finite length greater than zero and at \
+                 most {:e}",
+                crate::MAX_EXTENT
             ),
             Self::NotIncreasing {
                 bone,
@@ -110,8 +126,15 @@ impl fmt::Display for LimbsError {
             ),
             Self::InvalidOption { name, value } => write!(
                 f,
-                "option `{name}` is {value}: see its documented range in PlanOptions (ranges \
-                 need min <= max)"
+                "option `{name}` is {value}: keep it within the range documented on \
+                 PlanOptions::{name} (and a [min, max] pair needs min <= max)"
+            ),
+            Self::NoStableLayout { margin, required } => write!(
+                f,
+                "no layout of leg pairs keeps this walker standing: even legs on every bone tall \
+                 enough for them give a stability margin of {margin}, below the required \
+                 {required}; put bones that can carry legs under the body's heavy parts, or \
+                 lower `min_leg_length` or `min_margin`, or raise `foot_radius`"
             ),
         }
     }
@@ -144,6 +167,21 @@ mod tests {
         }
         .to_string();
         assert!(msg.contains("zero or more"), "{msg}");
+        let msg = LimbsError::InvalidLength { length: f32::NAN }.to_string();
+        assert!(msg.starts_with("the body length is NaN"), "{msg}");
+        assert!(!msg.contains("bone"), "{msg}");
+        let msg = LimbsError::InvalidOption {
+            name: "fin_size",
+            value: 0.5,
+        }
+        .to_string();
+        assert!(msg.contains("PlanOptions::fin_size"), "{msg}");
+        let msg = LimbsError::NoStableLayout {
+            margin: -0.5,
+            required: 0.1,
+        }
+        .to_string();
+        assert!(msg.contains("lower `min_leg_length`"), "{msg}");
     }
 
     #[test]

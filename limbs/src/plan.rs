@@ -39,12 +39,13 @@ pub enum Socket {
 }
 
 /// Which side of the body a limb is on (buzzing wings share the top socket but still come as a
-/// left and a right wing).
+/// left and a right wing). Sides are the creature's own: with the workspace's glTF convention
+/// (right-handed, +Y up, facing +Z) its left is +X.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Side {
-    /// The body's left.
+    /// The creature's left (+X when it faces +Z).
     Left,
-    /// The body's right.
+    /// The creature's right (−X when it faces +Z).
     Right,
     /// On the body's midline (dorsal fins, tails).
     Center,
@@ -116,17 +117,29 @@ pub struct Limb {
     pub span: Span,
 }
 
-/// Which of the seed's walker rules produced the first layout (before any repair).
+/// How a walker's final legs were laid out: which of the seed's rules gave them, or that the
+/// planner had to rebuild the layout. It always describes the legs in [`Plan::limbs`]; pairs
+/// added to a rule's layout are also listed as [`Repair::AddedPair`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum WalkerLayout {
-    /// Long or nearly uniform body: as many non-overlapping leg pairs as fit.
+    /// Long or nearly uniform body: as many non-overlapping leg pairs as fit (the seed's first
+    /// rule).
     Fill,
-    /// Widest bone plus a second pair on the next widest bone of similar width.
+    /// The widest bone plus a second pair on the next widest free bone of similar width (the
+    /// seed's second rule), with any pairs added to make it stand.
     TwoWide,
-    /// A single pair on a central widest bone.
+    /// A single pair on the widest bone, standing by itself: the centre of mass lies over the
+    /// segment between its feet (the seed's biped rule, or its balancing rule when no bone was
+    /// free for a balancing pair and none was needed).
     Biped,
-    /// Widest bone plus a balancing pair nearest the opposite end.
+    /// The widest bone plus one or more balancing pairs: the seed's balancing rule, or a biped
+    /// whose single pair did not stand and got a balancing pair as a repair.
     Balanced,
+    /// No seed rule's layout could be made to stand by adding pairs (the seed's "large first
+    /// pair covering every slot"), so the planner rebuilt it from other bones, with shorter
+    /// strides as a last resort: see the [`Repair::DroppedPair`], [`Repair::AddedPair`] and
+    /// [`Repair::ShortenedStride`] entries.
+    Rebuilt,
 }
 
 /// A change the planner made because a rule of the seed's algorithm would have broken a
@@ -143,24 +156,34 @@ pub enum Repair {
         /// The leg length it would have had.
         leg_length: f32,
     },
-    /// The whole body was raised so that legs reach a minimum length or a layout becomes
-    /// stable.
+    /// The whole body was raised, because no bone was high enough for a leg of
+    /// [`PlanOptions::min_leg_length`](crate::PlanOptions::min_leg_length): afterwards the
+    /// highest bone's legs are that long. It is the only reason for a lift.
     Lifted {
         /// How far, in body units.
         by: f32,
     },
-    /// A leg pair was added to make the walker stable.
+    /// A leg pair that the seed's rule did not place was added to make the walker stand. Its
+    /// bone has legs in the final plan.
     AddedPair {
         /// Its bone.
         bone: usize,
     },
-    /// The layout was rebuilt from another first bone, because the seed's layout could neither
-    /// balance nor take another pair (the seed's "large first pair covering every slot").
-    MovedFirstPair {
-        /// The first pair's bone before.
-        from: usize,
-        /// The first pair's bone after.
-        to: usize,
+    /// A leg pair that the seed's rule placed was removed, because its layout could not be
+    /// made to stand (the seed's "large first pair covering every slot"); the layout is
+    /// [`WalkerLayout::Rebuilt`]. Its bone has no legs in the final plan.
+    DroppedPair {
+        /// Its bone.
+        bone: usize,
+    },
+    /// A walker's strides were shortened: its legs and arms sweep `sweep ×` their length on
+    /// each side instead of [`PlanOptions::sweep`](crate::PlanOptions::sweep), so that pairs
+    /// that stand fit without overlapping (a short spine under long legs). The last resort,
+    /// used only when no layout stands at full stride; the layout is
+    /// [`WalkerLayout::Rebuilt`] and the limbs' spans use the shorter stride.
+    ShortenedStride {
+        /// The stride used, per unit of leg length (below `PlanOptions::sweep`).
+        sweep: f32,
     },
     /// Evenly spread flier legs were shortened so they do not overlap.
     ShortenedLegs {
@@ -181,8 +204,13 @@ pub enum Repair {
         /// Their new length.
         length: f32,
     },
-    /// Drawn arms were left out because no length would keep them clear of the legs.
-    DroppedArms,
+    /// Drawn arms were left out because they would have been shorter than
+    /// [`PlanOptions::min_arm_length`](crate::PlanOptions::min_arm_length) × body length: a
+    /// low socket, a small draw from `arm_length`, or too little room beside the legs' sweeps.
+    DroppedArms {
+        /// The length they would have had.
+        length: f32,
+    },
 }
 
 /// The planner's answer: limbs, the creature-wide knee direction, the body lift, and for
@@ -198,12 +226,12 @@ pub struct Plan {
     /// How far the body must be raised (body units, zero or more) so every walking leg reaches
     /// the ground as planned.
     pub lift: f32,
-    /// For walkers, the seed's rule that gave the first layout.
+    /// For walkers, how the final legs were laid out.
     pub layout: Option<WalkerLayout>,
     /// For walkers, the signed distance in the ground plane from the centre of mass to the
-    /// edge of the support region (the feet's convex hull grown by the smallest foot radius):
-    /// positive means statically stable. At least `min_margin × body length`. `None` for fliers
-    /// and swimmers.
+    /// edge of the support region (the feet's convex hull grown by
+    /// [`foot_radius`](crate::PlanOptions::foot_radius) × body length): positive means
+    /// statically stable. At least `min_margin × body length`. `None` for fliers and swimmers.
     pub stability_margin: Option<f32>,
     /// The body's centre of mass projected to the ground, as `(x, z)`
     /// (see [`Body::center_of_mass`](crate::Body::center_of_mass)).

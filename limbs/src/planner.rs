@@ -13,7 +13,8 @@ use crate::{
     Span, WalkerLayout,
 };
 
-/// Most first bones the walker's relocation repair tries (the widest ones), bounding its cost.
+/// How many first bones (the widest) and how many one- or two-pair bases (the most stable) the
+/// walker's rebuild tries, bounding its cost.
 const RELOCATION_TRIES: usize = 8;
 
 /// Plans the limbs of a creature of `kind` on `body`, drawing every random choice from `rng`.
@@ -25,9 +26,15 @@ const RELOCATION_TRIES: usize = 8;
 ///   bone is central (a biped), else a balancing pair nearest the opposite end; then arms,
 ///   likelier the more room there is between the head and the first blocked bone, halfway
 ///   there. Beyond the seed, overlap is measured with each leg's own sweep (so a large leg
-///   blocks more than a small one), bones too low for a leg are skipped (or the body lifted),
-///   and the layout is repaired until it is statically stable: the plan's
-///   [`stability_margin`](Plan::stability_margin) is at least `min_margin × body length`.
+///   blocks more than a small one), bones too low for a leg of `min_leg_length` are skipped
+///   (or, when every bone is, the body is lifted), and the layout is checked for static
+///   stability: the centre of mass must lie at least `min_margin × body length` inside the
+///   feet's convex hull grown by the fixed foot radius `foot_radius × body length`. A layout
+///   short of that gets balancing pairs; if none is enough, the layout is rebuilt from other
+///   bones; and as a last resort, the strides are shortened until pairs that stand fit (a
+///   short spine under long legs). Every step uses only bones tall enough for legs and never
+///   overlaps sweeps; every change is listed in [`Plan::repairs`] and [`Plan::layout`] names
+///   the final layout.
 /// - **Fliers**: buzzing wings on the top socket of a random front-half bone (scaled at random
 ///   per axis) or flapping wings on the middle bone's sides (scaled uniformly); 1 to
 ///   `max_flier_leg_pairs` hanging leg pairs, shorter on average the more there are, packed from
@@ -40,7 +47,11 @@ const RELOCATION_TRIES: usize = 8;
 ///
 /// # Errors
 ///
-/// Anything [`Body::validate`] or [`PlanOptions::validate`] reports.
+/// Anything [`Body::validate`] or [`PlanOptions::validate`] reports; for walkers,
+/// [`LimbsError::NoStableLayout`] when no layout can stand: even legs on every bone tall
+/// enough for them leave the centre of mass outside the support region (or inside by less than
+/// the required margin), e.g. a heavy end too low for legs. The planner never returns a walker
+/// that does not stand.
 ///
 /// # Example
 ///
@@ -69,7 +80,8 @@ const RELOCATION_TRIES: usize = 8;
 /// // A four-bone body, 1 unit above the ground, wider at the hips.
 /// let bones = [0.3, 0.5, 0.35, 0.3].iter().enumerate().map(|(i, &w)| {
 ///     let z = i as f32 * 0.5;
-///     SpineBone::from_sockets(z, Vec3::new(-w / 2.0, 1.0, z), Vec3::new(w / 2.0, 1.0, z),
+///     // Facing +Z (the head is the last bone): the left socket is on +X.
+///     SpineBone::from_sockets(z, Vec3::new(w / 2.0, 1.0, z), Vec3::new(-w / 2.0, 1.0, z),
 ///         Vec3::new(0.0, 1.0 + w / 2.0, z), 1.0)
 /// }).collect();
 /// let body = Body::new(bones, 2.5, HeadEnd::Last);
@@ -89,7 +101,13 @@ pub fn plan<R: Rng + ?Sized>(
 ) -> Result<Plan, LimbsError> {
     body.validate()?;
     options.validate()?;
-    let ctx = Ctx { body, options };
+    let ctx = Ctx {
+        body,
+        options,
+        com: body.center_of_mass(),
+        foot_radius: options.foot_radius * body.length,
+        sweep: options.sweep,
+    };
     let mut out = Plan {
         kind,
         limbs: Vec::new(),
@@ -97,21 +115,29 @@ pub fn plan<R: Rng + ?Sized>(
         lift: 0.0,
         layout: None,
         stability_margin: None,
-        center_of_mass: body.center_of_mass(),
+        center_of_mass: ctx.com,
         support: Vec::new(),
         repairs: Vec::new(),
     };
     match kind {
-        CreatureKind::Walker => ctx.walker(&mut out, rng),
+        CreatureKind::Walker => ctx.walker(&mut out, rng)?,
         CreatureKind::Flier => ctx.flier(&mut out, rng),
         CreatureKind::Swimmer => ctx.swimmer(&mut out, rng),
     }
     Ok(out)
 }
 
+#[derive(Clone, Copy)]
 struct Ctx<'a> {
     body: &'a Body,
     options: &'a PlanOptions,
+    /// The body's centre of mass in the ground plane.
+    com: Vec2,
+    /// Every foot's contact radius, in body units.
+    foot_radius: f32,
+    /// Half a walking leg's (or arm's) sweep per unit of its length: `options.sweep`, unless
+    /// the walker's last repair shortened the strides.
+    sweep: f32,
 }
 
 fn draw_knee<R: Rng + ?Sized>(rng: &mut R) -> Knee {
@@ -170,10 +196,17 @@ impl Ctx<'_> {
         (b.left.y - ground + lift, b.right.y - ground + lift)
     }
 
+    /// The shorter walking leg on `bone` with the body raised by `lift`: the height of its
+    /// lower side socket above the ground.
+    fn shortest_leg(&self, bone: usize, lift: f32) -> f32 {
+        let (l, r) = self.walking_legs(bone, lift);
+        l.min(r)
+    }
+
     /// The sweep of a walking leg pair on `bone`.
     fn pair_span(&self, bone: usize, lift: f32) -> Span {
         let (l, r) = self.walking_legs(bone, lift);
-        self.centered_span(bone, self.options.sweep * l.max(r))
+        self.centered_span(bone, self.sweep * l.max(r))
     }
 
     fn free_for_pair(&self, bone: usize, pairs: &[usize], lift: f32) -> bool {
@@ -183,223 +216,148 @@ impl Ctx<'_> {
             .all(|&p| p != bone && !span.overlaps(&self.pair_span(p, lift)))
     }
 
-    /// Stability margin of walking pairs on `pairs`.
-    fn margin(&self, pairs: &[usize], lift: f32) -> f32 {
+    /// Stability margin of walking pairs on `pairs`: feet under the side sockets, each with
+    /// the fixed contact radius `foot_radius × body length` (leg size plays no part).
+    fn margin(&self, pairs: &[usize]) -> f32 {
+        if pairs.is_empty() {
+            return f32::NEG_INFINITY;
+        }
         let mut feet: Vec<Vec2> = Vec::with_capacity(pairs.len() * 2);
-        let mut shortest = f32::INFINITY;
         for &p in pairs {
             let b = &self.body.bones[p];
             feet.push(Vec2::new(b.left.x, b.left.z));
             feet.push(Vec2::new(b.right.x, b.right.z));
-            let (l, r) = self.walking_legs(p, lift);
-            shortest = shortest.min(l.min(r));
         }
-        if feet.is_empty() {
-            return f32::NEG_INFINITY;
-        }
-        support_margin(
-            &feet,
-            self.options.foot_radius * shortest,
-            self.body.center_of_mass(),
-        )
+        support_margin(&feet, self.foot_radius, self.com)
     }
 
-    fn walker<R: Rng + ?Sized>(&self, out: &mut Plan, rng: &mut R) {
+    /// The lift that gives the highest bone legs of `min_len` (zero when it already has them),
+    /// recorded as a repair when non-zero.
+    fn lift_for_min_legs(&self, out: &mut Plan, min_len: f32) -> f32 {
+        let tallest = |lift: f32| {
+            (0..self.n())
+                .map(|i| self.shortest_leg(i, lift))
+                .fold(f32::NEG_INFINITY, f32::max)
+        };
+        let long_enough = |leg: f32| leg >= min_len && leg > 0.0;
+        let t0 = tallest(0.0);
+        if long_enough(t0) {
+            return 0.0;
+        }
+        let mut lift = (min_len - t0).max(0.0);
+        // Rounding can leave the sum an ulp short: nudge until the legs really are long enough.
+        let step = (min_len * f32::EPSILON).max(f32::MIN_POSITIVE);
+        for _ in 0..64 {
+            if long_enough(tallest(lift)) {
+                break;
+            }
+            lift += step.max(lift * f32::EPSILON);
+        }
+        out.repairs.push(Repair::Lifted { by: lift });
+        lift
+    }
+
+    fn walker<R: Rng + ?Sized>(&self, out: &mut Plan, rng: &mut R) -> Result<(), LimbsError> {
         let o = self.options;
         let body = self.body;
         let n = self.n();
         out.knee = Some(draw_knee(rng));
         let reverse_fill = coin(rng);
 
-        // Tiny legs: lift a body that is too low everywhere; skip low bones otherwise.
+        // Tiny legs: lift a body that is too low everywhere; pass over low bones otherwise.
         let min_len = o.min_leg_length * body.length;
-        let (highest, max_clear) =
-            body.bones
-                .iter()
-                .enumerate()
-                .fold((0, f32::NEG_INFINITY), |(bi, bc), (i, b)| {
-                    if b.clearance > bc {
-                        (i, b.clearance)
-                    } else {
-                        (bi, bc)
-                    }
-                });
-        let mut lift = 0.0;
-        let threshold = if max_clear < min_len {
-            lift = min_len - max_clear;
-            out.repairs.push(Repair::Lifted { by: lift });
-            max_clear
-        } else {
-            min_len
-        };
-        let eligible: Vec<bool> = body
-            .bones
-            .iter()
-            .enumerate()
-            .map(|(i, b)| i == highest || b.clearance >= threshold)
+        let lift = self.lift_for_min_legs(out, min_len);
+        let eligible: Vec<bool> = (0..n)
+            .map(|i| {
+                let leg = self.shortest_leg(i, lift);
+                leg >= min_len && leg > 0.0
+            })
             .collect();
-
-        let widest = body.bones.iter().map(|b| b.width).fold(0.0f32, f32::max);
-        let narrowest = body
-            .bones
-            .iter()
-            .map(|b| b.width)
-            .fold(f32::INFINITY, f32::min);
-        let height = body.bones.iter().map(|b| b.clearance).sum::<f32>() / n as f32 + lift;
-        let long = body.length > o.long_body_ratio * height;
-        let uniform = narrowest >= o.uniform_width_ratio * widest;
-
-        let mut pairs: Vec<usize> = Vec::new();
-        let layout = if long || uniform {
-            // As many non-overlapping pairs as fit: interval scheduling by earliest end (or, in
-            // the reverse direction, latest start), which places the most pairs.
-            let mut order: Vec<usize> = (0..n).filter(|&i| eligible[i]).collect();
-            if reverse_fill {
-                order.sort_by(|&a, &b| {
-                    let (sa, sb) = (self.pair_span(a, lift), self.pair_span(b, lift));
-                    sb.start.total_cmp(&sa.start).then(b.cmp(&a))
-                });
-            } else {
-                order.sort_by(|&a, &b| {
-                    let (sa, sb) = (self.pair_span(a, lift), self.pair_span(b, lift));
-                    sa.end.total_cmp(&sb.end).then(a.cmp(&b))
-                });
-            }
-            for i in order {
-                if self.free_for_pair(i, &pairs, lift) {
-                    pairs.push(i);
-                }
-            }
-            WalkerLayout::Fill
-        } else {
-            let widest_any = argmax(n, |i| body.bones[i].width, |_| true);
-            let first = argmax(n, |i| body.bones[i].width, |i| eligible[i]);
-            if let (Some(w), Some(f)) = (widest_any, first)
-                && w != f
-            {
+        for (i, &ok) in eligible.iter().enumerate() {
+            if !ok {
                 out.repairs.push(Repair::SkippedLowBone {
-                    bone: w,
-                    leg_length: body.bones[w].clearance + lift,
+                    bone: i,
+                    leg_length: self.shortest_leg(i, lift),
                 });
             }
-            let Some(first) = first else {
-                // Unreachable: the highest bone is always eligible. Fall back to it anyway.
-                pairs.push(highest);
-                return self.finish_walker(out, pairs, lift, &eligible, WalkerLayout::Biped, rng);
-            };
-            pairs.push(first);
-            let next = argmax(
-                n,
-                |i| body.bones[i].width,
-                |i| eligible[i] && self.free_for_pair(i, &pairs, lift),
-            );
-            let first_width = body.bones[first].width;
-            match next {
-                Some(s) if body.bones[s].width >= o.second_pair_ratio * first_width => {
-                    pairs.push(s);
-                    WalkerLayout::TwoWide
-                }
-                _ => {
-                    let off = (2 * first).abs_diff(n - 1);
-                    if off <= 2 * o.central_bones {
-                        WalkerLayout::Biped
-                    } else {
-                        let opposite = self.along(0) + self.along(n - 1) - self.along(first);
-                        let balance = argmax(
-                            n,
-                            |i| -(self.along(i) - opposite).abs(),
-                            |i| eligible[i] && self.free_for_pair(i, &pairs, lift),
-                        );
-                        if let Some(b) = balance {
-                            pairs.push(b);
+        }
+
+        // The seed's layout, on eligible bones, with leg-size-aware overlap.
+        let (seed_pairs, rule) = self.seed_layout(lift, &eligible, reverse_fill);
+
+        // Repairs: balancing pairs first, then a rebuilt layout, else an error.
+        let required = o.min_margin * body.length;
+        let mut pairs = seed_pairs.clone();
+        let mut margin = self.margin(&pairs);
+        let mut rebuilt = false;
+        let mut sweep = self.sweep;
+        if margin < required {
+            let (grown, m) = self.grow(pairs.clone(), lift, &eligible);
+            if m >= required {
+                pairs = grown;
+                margin = m;
+            } else {
+                if let Ok((p, m2)) = self.rebuild(lift, &eligible) {
+                    pairs = p;
+                    margin = m2;
+                } else {
+                    match self.shortened_strides(lift, &eligible) {
+                        Ok((p, m2, s)) => {
+                            out.repairs.push(Repair::ShortenedStride { sweep: s });
+                            pairs = p;
+                            margin = m2;
+                            sweep = s;
                         }
-                        WalkerLayout::Balanced
+                        Err(best) => {
+                            return Err(LimbsError::NoStableLayout {
+                                margin: best,
+                                required,
+                            });
+                        }
                     }
                 }
+                rebuilt = true;
+            }
+        }
+        for &p in &seed_pairs {
+            if !pairs.contains(&p) {
+                out.repairs.push(Repair::DroppedPair { bone: p });
+            }
+        }
+        for &p in &pairs {
+            if !seed_pairs.contains(&p) {
+                out.repairs.push(Repair::AddedPair { bone: p });
+            }
+        }
+        let layout = if rebuilt {
+            WalkerLayout::Rebuilt
+        } else {
+            match rule {
+                WalkerLayout::Biped | WalkerLayout::Balanced if pairs.len() == 1 => {
+                    WalkerLayout::Biped
+                }
+                WalkerLayout::Biped | WalkerLayout::Balanced => WalkerLayout::Balanced,
+                other => other,
             }
         };
-        self.finish_walker(out, pairs, lift, &eligible, layout, rng);
+
+        // Legs, head to tail, left then right, with the final strides.
+        let ctx = Ctx { sweep, ..*self };
+        ctx.write_walker(out, pairs, lift, margin, layout, rng);
+        Ok(())
     }
 
-    /// Repairs the layout until stable, adds arms, and writes the walker's plan.
-    fn finish_walker<R: Rng + ?Sized>(
+    /// Writes a walker's legs, layout, lift, margin and support, then adds arms.
+    fn write_walker<R: Rng + ?Sized>(
         &self,
         out: &mut Plan,
         mut pairs: Vec<usize>,
-        mut lift: f32,
-        eligible: &[bool],
+        lift: f32,
+        margin: f32,
         layout: WalkerLayout,
         rng: &mut R,
     ) {
         let body = self.body;
-        let n = self.n();
-        let required = self.options.min_margin * body.length;
-        // Extra pairs obey the tiny-leg rule too.
-        let mut margin = self.margin(&pairs, lift);
-
-        // 1. One more pair, as long as it helps.
-        if margin < required {
-            let (p, m, added) = self.grow(pairs.clone(), lift, eligible);
-            if m > margin {
-                for &a in &added {
-                    out.repairs.push(Repair::AddedPair { bone: a });
-                }
-                pairs = p;
-                margin = m;
-            }
-        }
-        // 2. Another first bone (the first pair blocked every slot that could balance it).
-        if margin < required {
-            let from = pairs.first().copied().unwrap_or(0);
-            let mut widest: Vec<usize> = (0..n).filter(|&i| eligible[i] && i != from).collect();
-            widest.sort_by(|&a, &b| {
-                body.bones[b]
-                    .width
-                    .total_cmp(&body.bones[a].width)
-                    .then(a.cmp(&b))
-            });
-            for &start in widest.iter().take(RELOCATION_TRIES) {
-                let (p, m, _) = self.grow(alloc::vec![start], lift, eligible);
-                if m >= required {
-                    out.repairs.push(Repair::MovedFirstPair { from, to: start });
-                    pairs = p;
-                    margin = m;
-                    break;
-                }
-            }
-        }
-        // 3. Lift the body so one pair under the centre of mass has feet big enough to stand.
-        if margin < required {
-            let com = body.center_of_mass();
-            let dist = |i: usize| {
-                let b = &body.bones[i];
-                let feet = [
-                    Vec2::new(b.left.x, b.left.z),
-                    Vec2::new(b.right.x, b.right.z),
-                ];
-                -crate::support::signed_distance(&convex_hull(&feet), com)
-            };
-            let best = argmax(n, |i| -dist(i), |_| true).unwrap_or(0);
-            let (l, r) = self.walking_legs(best, 0.0);
-            let shortest = l.min(r);
-            let foot = self.options.foot_radius;
-            let mut new_lift = lift.max((dist(best) + required) / foot - shortest);
-            pairs = alloc::vec![best];
-            // Guard against rounding: nudge until the measured margin clears the bar.
-            for _ in 0..8 {
-                margin = self.margin(&pairs, new_lift);
-                if margin >= required {
-                    break;
-                }
-                new_lift += (required - margin) / foot + required * 1e-3;
-            }
-            out.repairs.push(Repair::Lifted {
-                by: new_lift - lift,
-            });
-            lift = new_lift;
-        }
-
-        // Legs, head to tail, left then right.
         pairs.sort_by_key(|&p| body.head_rank(p));
         for &p in &pairs {
             let b = &body.bones[p];
@@ -438,17 +396,86 @@ impl Ctx<'_> {
         self.arms(out, &pairs, lift, rng);
     }
 
-    /// Greedily adds the pair that most raises the margin until the margin is enough or no pair
-    /// raises it. Returns the pairs, their margin and the bones added.
-    fn grow(
+    /// The seed's walker rules on the eligible bones: the pairs and the rule that placed them
+    /// (`Balanced` even when no balancing bone was free; the caller settles the final name).
+    fn seed_layout(
         &self,
-        mut pairs: Vec<usize>,
         lift: f32,
         eligible: &[bool],
-    ) -> (Vec<usize>, f32, Vec<usize>) {
+        reverse_fill: bool,
+    ) -> (Vec<usize>, WalkerLayout) {
+        let o = self.options;
+        let body = self.body;
+        let n = self.n();
+        let widest = body.bones.iter().map(|b| b.width).fold(0.0f32, f32::max);
+        let narrowest = body
+            .bones
+            .iter()
+            .map(|b| b.width)
+            .fold(f32::INFINITY, f32::min);
+        let height = body.bones.iter().map(|b| b.clearance).sum::<f32>() / n as f32 + lift;
+        let long = body.length > o.long_body_ratio * height;
+        let uniform = narrowest >= o.uniform_width_ratio * widest;
+
+        let mut pairs: Vec<usize> = Vec::new();
+        if long || uniform {
+            // As many non-overlapping pairs as fit: interval scheduling by earliest end (or, in
+            // the reverse direction, latest start), which places the most pairs.
+            let mut order: Vec<usize> = (0..n).filter(|&i| eligible[i]).collect();
+            if reverse_fill {
+                order.sort_by(|&a, &b| {
+                    let (sa, sb) = (self.pair_span(a, lift), self.pair_span(b, lift));
+                    sb.start.total_cmp(&sa.start).then(b.cmp(&a))
+                });
+            } else {
+                order.sort_by(|&a, &b| {
+                    let (sa, sb) = (self.pair_span(a, lift), self.pair_span(b, lift));
+                    sa.end.total_cmp(&sb.end).then(a.cmp(&b))
+                });
+            }
+            for i in order {
+                if self.free_for_pair(i, &pairs, lift) {
+                    pairs.push(i);
+                }
+            }
+            return (pairs, WalkerLayout::Fill);
+        }
+        let Some(first) = argmax(n, |i| body.bones[i].width, |i| eligible[i]) else {
+            return (pairs, WalkerLayout::Balanced);
+        };
+        pairs.push(first);
+        let next = argmax(
+            n,
+            |i| body.bones[i].width,
+            |i| eligible[i] && self.free_for_pair(i, &pairs, lift),
+        );
+        if let Some(s) = next
+            && body.bones[s].width >= o.second_pair_ratio * body.bones[first].width
+        {
+            pairs.push(s);
+            return (pairs, WalkerLayout::TwoWide);
+        }
+        let off = (2 * first).abs_diff(n - 1);
+        if off <= 2 * o.central_bones {
+            return (pairs, WalkerLayout::Biped);
+        }
+        let opposite = self.along(0) + self.along(n - 1) - self.along(first);
+        let balance = argmax(
+            n,
+            |i| -(self.along(i) - opposite).abs(),
+            |i| eligible[i] && self.free_for_pair(i, &pairs, lift),
+        );
+        if let Some(b) = balance {
+            pairs.push(b);
+        }
+        (pairs, WalkerLayout::Balanced)
+    }
+
+    /// Greedily adds the eligible free pair that most raises the margin until the margin is
+    /// enough or no pair raises it. Returns the pairs and their margin.
+    fn grow(&self, mut pairs: Vec<usize>, lift: f32, eligible: &[bool]) -> (Vec<usize>, f32) {
         let required = self.options.min_margin * self.body.length;
-        let mut margin = self.margin(&pairs, lift);
-        let mut added = Vec::new();
+        let mut margin = self.margin(&pairs);
         while margin < required {
             let mut best: Option<(usize, f32)> = None;
             for (i, &ok) in eligible.iter().enumerate() {
@@ -456,7 +483,7 @@ impl Ctx<'_> {
                     continue;
                 }
                 pairs.push(i);
-                let m = self.margin(&pairs, lift);
+                let m = self.margin(&pairs);
                 pairs.pop();
                 if m > margin && best.is_none_or(|(_, bm)| m > bm) {
                     best = Some((i, m));
@@ -464,10 +491,131 @@ impl Ctx<'_> {
             }
             let Some((i, m)) = best else { break };
             pairs.push(i);
-            added.push(i);
             margin = m;
         }
-        (pairs, margin, added)
+        (pairs, margin)
+    }
+
+    /// A layout from scratch, for when the seed's layout cannot be made to stand: first from
+    /// each of the widest eligible bones, then from the most stable one- and two-pair bases
+    /// (every eligible bone and every compatible two bones), each grown with [`Self::grow`].
+    /// Only eligible bones and non-overlapping sweeps are used. Returns the first layout that
+    /// stands, or the best margin seen.
+    fn rebuild(&self, lift: f32, eligible: &[bool]) -> Result<(Vec<usize>, f32), f32> {
+        let body = self.body;
+        let n = self.n();
+        let required = self.options.min_margin * body.length;
+        let mut best = f32::NEG_INFINITY;
+        let mut firsts: Vec<usize> = (0..n).filter(|&i| eligible[i]).collect();
+        firsts.sort_by(|&a, &b| {
+            body.bones[b]
+                .width
+                .total_cmp(&body.bones[a].width)
+                .then(a.cmp(&b))
+        });
+        for &start in firsts.iter().take(RELOCATION_TRIES) {
+            let (p, m) = self.grow(alloc::vec![start], lift, eligible);
+            if m >= required {
+                return Ok((p, m));
+            }
+            best = best.max(m);
+        }
+        let mut bases: Vec<(f32, usize, usize)> = Vec::new();
+        for i in (0..n).filter(|&i| eligible[i]) {
+            bases.push((self.margin(&[i]), i, i));
+            for j in (i + 1..n).filter(|&j| eligible[j]) {
+                if self.free_for_pair(j, &[i], lift) {
+                    bases.push((self.margin(&[i, j]), i, j));
+                }
+            }
+        }
+        bases.sort_by(|a, b| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1)).then(a.2.cmp(&b.2)));
+        for &(_, i, j) in bases.iter().take(RELOCATION_TRIES) {
+            let base = if i == j {
+                alloc::vec![i]
+            } else {
+                alloc::vec![i, j]
+            };
+            let (p, m) = self.grow(base, lift, eligible);
+            if m >= required {
+                return Ok((p, m));
+            }
+            best = best.max(m);
+        }
+        Err(best)
+    }
+
+    /// The last resort, when no layout stands at full stride: the longest stride (below
+    /// `sweep`) at which [`Self::rebuild`] finds a layout that stands, searched among the
+    /// strides at which two eligible bones' sweeps just stop overlapping; failing that, legs
+    /// on every eligible bone at the stride where none overlap. Returns the pairs, their margin
+    /// and the stride, or, when even every eligible bone together does not stand (so no stride
+    /// can help), that best possible margin.
+    fn shortened_strides(
+        &self,
+        lift: f32,
+        eligible: &[bool],
+    ) -> Result<(Vec<usize>, f32, f32), f32> {
+        let required = self.options.min_margin * self.body.length;
+        let all: Vec<usize> = (0..self.n()).filter(|&i| eligible[i]).collect();
+        let best = self.margin(&all);
+        if !(best >= required) {
+            return Err(best);
+        }
+        let leg = |i: usize| {
+            let (l, r) = self.walking_legs(i, lift);
+            l.max(r)
+        };
+        // The largest stride at which bones `i` and `j` no longer overlap (with some slack).
+        let fit =
+            |i: usize, j: usize| (self.along(j) - self.along(i)).abs() / (leg(i) + leg(j)) * 0.999;
+        // Neighbours apart means everyone apart: sweeps are intervals centred on the bones.
+        let s_all = all
+            .windows(2)
+            .map(|w| fit(w[0], w[1]))
+            .fold(self.sweep, f32::min)
+            .max(0.0);
+        let mut strides: Vec<f32> = Vec::new();
+        for (k, &i) in all.iter().enumerate() {
+            for &j in &all[k + 1..] {
+                let s = fit(i, j);
+                if s > s_all && s < self.sweep {
+                    strides.push(s);
+                }
+            }
+        }
+        strides.sort_by(|a, b| b.total_cmp(a));
+        strides.dedup();
+        // Binary search for the longest stride that works (the first success in descending
+        // order); every probe is checked, so the answer stands whatever the search assumes.
+        let (mut lo, mut hi) = (0, strides.len());
+        let mut found = None;
+        while lo < hi {
+            let mid = lo + (hi - lo) / 2;
+            let s = strides[mid];
+            if let Ok((p, m)) = (Ctx { sweep: s, ..*self }).rebuild(lift, eligible) {
+                found = Some((p, m, s));
+                hi = mid;
+            } else {
+                lo = mid + 1;
+            }
+        }
+        if let Some(f) = found {
+            return Ok(f);
+        }
+        let ctx = Ctx {
+            sweep: s_all,
+            ..*self
+        };
+        let apart = all
+            .iter()
+            .enumerate()
+            .all(|(k, &i)| ctx.free_for_pair(i, &all[..k], lift));
+        if apart {
+            Ok((all, best, s_all))
+        } else {
+            Err(best)
+        }
     }
 
     /// Arms, sometimes: halfway between the head and the first bone a leg blocks.
@@ -499,21 +647,26 @@ impl Ctx<'_> {
         ) else {
             return;
         };
+        let min_arm = self.options.min_arm_length * body.length;
         let t = between(rng, self.options.arm_length);
-        let (l, r) = self.walking_legs(bone, lift);
-        let mut length = t * l.min(r);
+        let mut length = t * self.shortest_leg(bone, lift);
+        if !(length >= min_arm && length > 0.0) {
+            out.repairs.push(Repair::DroppedArms { length });
+            return;
+        }
         let a = self.along(bone);
         let room = leg_spans
             .iter()
             .map(|s| if a < s.start { s.start - a } else { a - s.end })
             .fold(f32::INFINITY, f32::min);
-        let sweep = self.options.sweep;
+        let sweep = self.sweep;
         if sweep * length > room {
-            length = room / sweep * 0.999;
-            if length < self.options.min_leg_length * body.length || !(length > 0.0) {
-                out.repairs.push(Repair::DroppedArms);
+            let allowed = room / sweep * 0.999;
+            if !(allowed >= min_arm && allowed > 0.0) {
+                out.repairs.push(Repair::DroppedArms { length: allowed });
                 return;
             }
+            length = allowed;
             out.repairs.push(Repair::ShortenedArms { length });
         }
         let span = self.centered_span(bone, sweep * length);
@@ -844,4 +997,153 @@ fn argmax(n: usize, key: impl Fn(usize) -> f32, keep: impl Fn(usize) -> bool) ->
         }
     }
     best.map(|(i, _)| i)
+}
+
+#[cfg(test)]
+mod tests {
+    use alloc::vec;
+
+    use super::*;
+    use crate::SpineBone;
+    use crate::random::tests::SplitMix;
+
+    /// A straight body facing +Z (left on +X), bones 0.5 apart.
+    fn body(widths: &[f32], clearances: &[f32]) -> Body {
+        let bones = widths
+            .iter()
+            .zip(clearances)
+            .enumerate()
+            .map(|(i, (&w, &c))| {
+                let z = i as f32 * 0.5;
+                SpineBone::from_sockets(
+                    z,
+                    Vec3::new(w / 2.0, c, z),
+                    Vec3::new(-w / 2.0, c, z),
+                    Vec3::new(0.0, c + w / 2.0, z),
+                    c,
+                )
+            })
+            .collect();
+        Body::new(
+            bones,
+            0.5 * (widths.len() as f32 + 1.0),
+            crate::HeadEnd::Last,
+        )
+    }
+
+    fn ctx<'a>(body: &'a Body, options: &'a PlanOptions) -> Ctx<'a> {
+        Ctx {
+            body,
+            options,
+            com: body.center_of_mass(),
+            foot_radius: options.foot_radius * body.length,
+            sweep: options.sweep,
+        }
+    }
+
+    #[test]
+    fn the_margin_does_not_depend_on_leg_length() {
+        let o = PlanOptions::DEFAULT;
+        let short = body(&[0.4, 0.4, 1.0], &[0.5, 0.5, 0.5]);
+        let tall = body(&[0.4, 0.4, 1.0], &[50.0, 50.0, 50.0]);
+        for pairs in [&[2][..], &[0, 2], &[0, 1, 2]] {
+            assert_eq!(ctx(&short, &o).margin(pairs), ctx(&tall, &o).margin(pairs));
+        }
+        // One pair: the foot radius minus the distance to the centre of mass.
+        let c = ctx(&short, &o);
+        let expected = c.foot_radius - (c.com.y - 1.0).abs();
+        assert!((c.margin(&[2]) - expected).abs() < 1e-6);
+    }
+
+    #[test]
+    fn the_lift_gives_the_highest_bone_exactly_the_minimum_leg() {
+        // Awkward floats: 0.1 and 0.3 are not exact in binary.
+        let b = body(&[0.5, 0.5, 0.5], &[0.1, 0.3, 0.1]);
+        let o = PlanOptions::DEFAULT.with_min_leg_length(0.3);
+        let c = ctx(&b, &o);
+        let mut out = Plan {
+            kind: CreatureKind::Walker,
+            limbs: Vec::new(),
+            knee: None,
+            lift: 0.0,
+            layout: None,
+            stability_margin: None,
+            center_of_mass: c.com,
+            support: Vec::new(),
+            repairs: Vec::new(),
+        };
+        let min_len = o.min_leg_length * b.length;
+        let lift = c.lift_for_min_legs(&mut out, min_len);
+        assert!(lift > 0.0);
+        assert!(c.shortest_leg(1, lift) >= min_len);
+        assert!(lift < min_len - 0.3 + 1e-5);
+        assert_eq!(out.repairs, vec![Repair::Lifted { by: lift }]);
+        // Tall enough already: no lift, no repair.
+        out.repairs.clear();
+        let o = PlanOptions::DEFAULT;
+        let c = ctx(&b, &o);
+        assert_eq!(c.lift_for_min_legs(&mut out, 0.2), 0.0);
+        assert!(out.repairs.is_empty());
+    }
+
+    #[test]
+    fn a_rebuild_uses_only_eligible_bones() {
+        let b = body(&[0.4, 0.4, 0.4, 0.4, 1.0], &[1.0, 1.0, 1.0, 1.0, 6.0]);
+        let o = PlanOptions::DEFAULT;
+        let c = ctx(&b, &o);
+        // Bone 4 would stand alone on the widest bone, but it is not eligible.
+        let eligible = [true, true, true, true, false];
+        let (pairs, margin) = c.rebuild(0.0, &eligible).unwrap();
+        assert!(pairs.iter().all(|&p| p < 4), "{pairs:?}");
+        assert!(margin >= o.min_margin * b.length);
+        for (k, &p) in pairs.iter().enumerate() {
+            assert!(c.free_for_pair(p, &pairs[..k], 0.0));
+        }
+        // Nothing eligible: nothing stands.
+        assert!(c.rebuild(0.0, &[false; 5]).is_err());
+    }
+
+    #[test]
+    fn shortened_strides_are_as_long_as_possible() {
+        // Two bones 0.5 apart with 2-long legs: at the default stride (±1) they overlap.
+        let b = body(&[0.5, 0.5], &[2.0, 2.0]);
+        let o = PlanOptions::DEFAULT;
+        let c = ctx(&b, &o);
+        assert!(c.rebuild(0.0, &[true, true]).is_err());
+        let (pairs, margin, stride) = c.shortened_strides(0.0, &[true, true]).unwrap();
+        assert_eq!(pairs.len(), 2);
+        assert!(margin >= o.min_margin * b.length);
+        // Just short of the stride at which the sweeps touch: 0.5 / (2 + 2).
+        assert!(stride < 0.125 && stride > 0.124, "{stride}");
+        // A heavy bone that cannot carry legs: no stride helps.
+        let b = body(&[0.3, 0.3, 2.0], &[1.0, 1.0, 1.0]);
+        let c = ctx(&b, &o);
+        assert!(c.shortened_strides(0.0, &[true, true, false]).is_err());
+    }
+
+    #[test]
+    fn arms_shorter_than_the_minimum_are_dropped() {
+        // Pairs on bones 0 and 4 (sweeping up to z = 3); the head bone 7 is free for arms.
+        let b = body(&[1.0, 0.3, 0.3, 0.3, 0.9, 0.3, 0.3, 0.3], &[2.0; 8]);
+        let o = PlanOptions::DEFAULT
+            .with_arm_chance(100.0)
+            .with_arm_length([0.01, 0.01]);
+        let p = plan(&b, CreatureKind::Walker, &o, &mut SplitMix(3)).unwrap();
+        assert_eq!(p.layout, Some(WalkerLayout::TwoWide));
+        assert_eq!(p.limbs_of(LimbKind::Arm).count(), 0);
+        assert!(
+            p.repairs
+                .iter()
+                .any(|r| matches!(r, Repair::DroppedArms { length } if *length < 0.05 * b.length))
+        );
+        // Long enough arms are kept.
+        let p = plan(
+            &b,
+            CreatureKind::Walker,
+            &o.with_arm_length([0.5, 0.5]),
+            &mut SplitMix(3),
+        )
+        .unwrap();
+        assert_eq!(p.limbs_of(LimbKind::Arm).count(), 2);
+    }
 }

@@ -6,39 +6,45 @@
 
 mod support;
 
-use creature_limbs::glam::Vec2;
+use creature_limbs::glam::Vec3;
 use creature_limbs::{
-    Body, CreatureKind, HeadEnd, LimbKind, LimbsError, Plan, PlanOptions, Repair, Side, Socket,
-    WalkerLayout, plan, support_margin,
+    Body, CreatureKind, HeadEnd, Limb, LimbKind, LimbsError, Plan, PlanOptions, Repair, Side,
+    Socket, WalkerLayout, plan,
 };
 use support::reference::seed_walker;
-use support::{SplitMix, legs_overlap, straight_body, walker_body};
+use support::{SplitMix, legs_overlap, margin_of, straight_body, walker_body};
 
 fn walker(body: &Body, options: &PlanOptions, seed: u64) -> Plan {
     plan(body, CreatureKind::Walker, options, &mut SplitMix(seed)).unwrap()
 }
 
-/// The seed reference's margin, measured the way the planner measures it.
-fn seed_margin(body: &Body, options: &PlanOptions, pairs: &[usize]) -> f32 {
-    let mut feet = Vec::new();
-    let mut shortest = f32::INFINITY;
-    for &p in pairs {
-        let b = &body.bones[p];
-        feet.push(Vec2::new(b.left.x, b.left.z));
-        feet.push(Vec2::new(b.right.x, b.right.z));
-        shortest = shortest.min(b.clearance);
+/// The socket point a side limb attaches to.
+fn socket_point(body: &Body, limb: &Limb) -> Vec3 {
+    let b = &body.bones[limb.bone];
+    match limb.socket {
+        Socket::Left => b.left,
+        Socket::Right => b.right,
+        Socket::Top | Socket::Tip => b.top,
     }
-    support_margin(&feet, options.foot_radius * shortest, body.center_of_mass())
 }
 
 #[test]
 fn a_four_legged_walker_is_stable_and_mirrored() {
+    // Hips and chest, facing +Z (the head is the last bone): left sockets on +X.
     let body = walker_body(12);
+    let options = PlanOptions::DEFAULT;
     for seed in 0..20 {
-        let p = walker(&body, &PlanOptions::DEFAULT, seed);
-        assert!(p.leg_pairs() >= 1);
+        let p = walker(&body, &options, seed);
+        assert_eq!(p.leg_pairs(), 2, "seed {seed}: {p:?}");
+        assert_eq!(p.layout, Some(WalkerLayout::TwoWide));
         let margin = p.stability_margin.unwrap();
-        assert!(margin >= 0.02 * body.length, "seed {seed}: {margin}");
+        assert!(
+            margin >= options.min_margin * body.length,
+            "seed {seed}: {margin}"
+        );
+        // The margin is what the public support polygon code measures for these feet.
+        let bones: Vec<usize> = p.limbs_of(LimbKind::Leg).map(|l| l.bone).collect();
+        assert!((margin - margin_of(&body, &options, &bones)).abs() < 1e-5);
         assert!(!legs_overlap(&p), "seed {seed}");
         assert!(p.knee.is_some());
         for (i, limb) in p.limbs.iter().enumerate() {
@@ -46,6 +52,17 @@ fn a_four_legged_walker_is_stable_and_mirrored() {
             assert_eq!(twin.mirror, Some(i));
             assert_eq!(twin.bone, limb.bone);
             assert_ne!(twin.side, limb.side);
+            // The body's mid-plane is x = 0: twins' sockets and feet are reflections across it.
+            let mirror = Vec3::new(-1.0, 1.0, 1.0);
+            let (a, b) = (socket_point(&body, limb), socket_point(&body, twin));
+            assert!((a * mirror - b).length() < 1e-6, "{a} {b}");
+            if let (Some(fa), Some(fb)) = (limb.foot, twin.foot) {
+                assert!((fa * mirror - fb).length() < 1e-6, "{fa} {fb}");
+            }
+            // The creature faces +Z, so its left is +X.
+            if limb.side == Side::Left {
+                assert!(a.x > 0.0);
+            }
         }
     }
 }
@@ -89,29 +106,190 @@ fn walking_legs_reach_the_ground() {
 /// with no free spaces to add more legs to correct."
 #[test]
 fn regression_large_first_pair_covering_every_slot_is_moved() {
-    // The head bone is the widest and stands 6 high: its legs sweep the whole body.
+    // The head bone is the widest and stands 6 high: its legs sweep the whole body. The centre
+    // of mass is 19% of the body length behind that bone.
     let body = straight_body(
         &[0.4, 0.4, 0.4, 0.4, 0.4, 1.0],
         &[1.0, 1.0, 1.0, 1.0, 1.0, 6.0],
         0.5,
         HeadEnd::Last,
     );
-    let options = PlanOptions::DEFAULT.with_foot_radius(0.05);
-    // The seed: one pair at the head end, nothing else fits, and it tips over.
+    let options = PlanOptions::DEFAULT;
+    let required = options.min_margin * body.length;
+    // The seed: one pair at the head end, nothing else fits, and it tips over, with the
+    // default (leg-size-independent) feet.
     let seed = seed_walker(&body, options.sweep);
     assert_eq!(seed, vec![5]);
-    assert!(seed_margin(&body, &options, &seed) < 0.0);
-    // Ours: the layout is rebuilt from another first bone and stands.
-    let p = walker(&body, &options, 5);
+    let offset = body.center_of_mass().y - body.bones[5].along;
+    assert!(offset.abs() > 0.18 * body.length, "{offset}");
+    assert!(margin_of(&body, &options, &seed) < 0.0);
+    // Ours: the layout is rebuilt without the covering pair, from pairs that straddle the
+    // centre of mass, and stands on feet of the default size.
+    for seed in 0..10 {
+        let p = walker(&body, &options, seed);
+        assert_eq!(p.layout, Some(WalkerLayout::Rebuilt), "{p:?}");
+        assert!(
+            p.repairs.contains(&Repair::DroppedPair { bone: 5 }),
+            "{:?}",
+            p.repairs
+        );
+        assert!(p.limbs_of(LimbKind::Leg).all(|l| l.bone != 5));
+        assert!(p.leg_pairs() >= 2);
+        for leg in p.limbs_of(LimbKind::Leg) {
+            assert!(
+                p.repairs.contains(&Repair::AddedPair { bone: leg.bone }),
+                "{:?}",
+                p.repairs
+            );
+        }
+        assert_eq!(p.lift, 0.0, "stability never comes from lifting");
+        assert!(!p.repairs.iter().any(|r| matches!(r, Repair::Lifted { .. })));
+        let margin = p.stability_margin.unwrap();
+        assert!(margin >= required, "{margin}");
+        let bones: Vec<usize> = p.limbs_of(LimbKind::Leg).map(|l| l.bone).collect();
+        assert!((margin - margin_of(&body, &options, &bones)).abs() < 1e-5);
+        assert!(!legs_overlap(&p));
+    }
+}
+
+/// Review finding: stability was bought with foot size (a foot radius proportional to leg
+/// length), so long legs alone made a lone pair far from the centre of mass "stable".
+#[test]
+fn regression_long_legs_do_not_make_a_lone_pair_stable() {
+    // One pair on bone 5 of six, the centre of mass well behind it. With legs 1 or 100 long,
+    // the margin of that lone pair is the same, and negative.
+    let widths = [0.4, 0.4, 0.4, 0.4, 0.4, 1.0];
+    let short = straight_body(&widths, &[1.0; 6], 0.5, HeadEnd::Last);
+    let tall = straight_body(&widths, &[100.0; 6], 0.5, HeadEnd::Last);
+    let options = PlanOptions::DEFAULT;
+    let (a, b) = (
+        margin_of(&short, &options, &[5]),
+        margin_of(&tall, &options, &[5]),
+    );
+    assert_eq!(a, b);
+    assert!(a < 0.0);
+    // So the planner never settles for it: the tall walker's legs cover each other, and it
+    // stands on several pairs or not at all.
+    let p = walker(&short, &options, 1);
+    assert!(p.leg_pairs() >= 2);
+    match plan(&tall, CreatureKind::Walker, &options, &mut SplitMix(1)) {
+        Ok(p) => assert!(p.leg_pairs() >= 2 && p.stability_margin.unwrap() > 0.0),
+        Err(e) => assert!(matches!(e, LimbsError::NoStableLayout { .. }), "{e}"),
+    }
+}
+
+/// The seed's biped rule ("stick with one pair of legs" when the widest bone is within two
+/// bones of the centre) only stands when the mass is really over the feet: a widest bone two
+/// bones off-centre gets a balancing pair.
+#[test]
+fn an_off_centre_biped_gets_a_balancing_pair() {
+    let body = straight_body(
+        &[0.3, 0.3, 0.3, 0.3, 0.3, 0.9, 0.5, 0.3, 0.3],
+        &[2.0; 9],
+        0.4,
+        HeadEnd::Last,
+    );
+    let options = PlanOptions::DEFAULT.with_arm_chance(0.0);
+    // The widest bone (5) is within two bones of the middle (4), but the lone pair tips.
+    assert!(margin_of(&body, &options, &[5]) < options.min_margin * body.length);
+    let p = walker(&body, &options, 0);
+    assert_eq!(p.layout, Some(WalkerLayout::Balanced), "{p:?}");
+    assert!(p.leg_pairs() >= 2);
+    assert!(p.limbs_of(LimbKind::Leg).any(|l| l.bone == 5));
     assert!(
         p.repairs
             .iter()
-            .any(|r| matches!(r, Repair::MovedFirstPair { from: 5, .. })),
-        "{:?}",
-        p.repairs
+            .any(|r| matches!(r, Repair::AddedPair { .. }))
     );
     assert!(p.stability_margin.unwrap() >= options.min_margin * body.length);
+}
+
+/// Review finding: the old last-resort repair replaced every pair with one, on any bone, without
+/// recording the dropped pairs, and could leave legs below `min_leg_length`.
+#[test]
+fn regression_rebuilt_layouts_use_only_tall_enough_bones_and_say_so() {
+    // Bone 4 is the widest and tallest (its legs cover all others); bones 0 and 1 are too low
+    // for legs. Only bones 2, 3 and 4 may carry legs.
+    let body = straight_body(
+        &[0.4, 0.4, 0.4, 0.4, 1.0],
+        &[0.05, 0.05, 1.0, 1.0, 5.0],
+        0.5,
+        HeadEnd::Last,
+    );
+    let options = PlanOptions::DEFAULT;
+    let min = options.min_leg_length * body.length;
+    for seed in 0..10 {
+        match plan(&body, CreatureKind::Walker, &options, &mut SplitMix(seed)) {
+            Ok(p) => {
+                for leg in p.limbs_of(LimbKind::Leg) {
+                    assert!(leg.bone >= 2 && leg.length >= min, "{p:?}");
+                }
+                assert!(p.repairs.contains(&Repair::SkippedLowBone {
+                    bone: 0,
+                    leg_length: 0.05
+                }));
+                let legs: Vec<usize> = p.limbs_of(LimbKind::Leg).map(|l| l.bone).collect();
+                for r in &p.repairs {
+                    match *r {
+                        Repair::AddedPair { bone } => assert!(legs.contains(&bone)),
+                        Repair::DroppedPair { bone } => assert!(!legs.contains(&bone)),
+                        _ => {}
+                    }
+                }
+                assert!(p.stability_margin.unwrap() >= options.min_margin * body.length);
+            }
+            Err(e) => assert!(matches!(e, LimbsError::NoStableLayout { .. }), "{e}"),
+        }
+    }
+}
+
+/// A short spine under long legs: only one pair fits at full stride, and the mass lies between
+/// the bones. As a last resort the strides are shortened so both pairs fit.
+#[test]
+fn a_short_spine_under_long_legs_takes_shorter_strides() {
+    // Two equal bones 0.3 apart whose 2-long legs sweep ±1 around them.
+    let body = straight_body(&[0.5, 0.5], &[2.0, 2.0], 0.3, HeadEnd::Last);
+    let options = PlanOptions::DEFAULT;
+    // Either pair alone tips: the mass is 0.15 from its feet, the foot radius 0.045.
+    assert!(margin_of(&body, &options, &[0]) < 0.0);
+    let p = walker(&body, &options, 0);
+    assert_eq!(p.leg_pairs(), 2);
+    assert_eq!(p.layout, Some(WalkerLayout::Rebuilt));
+    let stride = p
+        .repairs
+        .iter()
+        .find_map(|r| match *r {
+            Repair::ShortenedStride { sweep } => Some(sweep),
+            _ => None,
+        })
+        .unwrap();
+    assert!(stride < options.sweep && stride > 0.07, "{stride}");
     assert!(!legs_overlap(&p));
+    for leg in p.limbs_of(LimbKind::Leg) {
+        assert!((leg.span.end - leg.span.start - 2.0 * stride * 2.0).abs() < 1e-5);
+    }
+    assert!(p.stability_margin.unwrap() >= options.min_margin * body.length);
+}
+
+/// When no layout can stand, the planner says so instead of returning a walker that tips.
+#[test]
+fn a_walker_that_cannot_stand_is_an_error() {
+    // A heavy end (bone 2, wide) too low for legs: the mass lies beyond every bone that can
+    // carry legs.
+    let body = straight_body(&[0.3, 0.3, 2.0], &[1.0, 1.0, 0.01], 0.5, HeadEnd::Last);
+    let options = PlanOptions::DEFAULT;
+    let err = plan(&body, CreatureKind::Walker, &options, &mut SplitMix(0)).unwrap_err();
+    match err {
+        LimbsError::NoStableLayout { margin, required } => {
+            assert!(margin < required);
+            assert_eq!(margin, margin_of(&body, &options, &[0, 1]));
+            assert_eq!(required, options.min_margin * body.length);
+        }
+        other => panic!("{other}"),
+    }
+    // Allowing shorter legs lets the heavy end carry legs (the body is lifted), and it stands.
+    let p = walker(&body, &options.with_min_leg_length(0.001), 0);
+    assert!(p.stability_margin.unwrap() >= options.min_margin * body.length);
 }
 
 /// Seed failure 2: "if spine bending results in the thickest part of the creature being very
@@ -147,9 +325,9 @@ fn regression_a_body_on_the_ground_is_lifted() {
     let body = straight_body(&[0.5; 5], &[0.0; 5], 0.5, HeadEnd::First);
     let p = walker(&body, &PlanOptions::DEFAULT, 9);
     assert!(p.lift > 0.0);
-    assert!(p.repairs.iter().any(|r| matches!(r, Repair::Lifted { .. })));
+    assert!(p.repairs.contains(&Repair::Lifted { by: p.lift }));
     for leg in p.limbs_of(LimbKind::Leg) {
-        assert!(leg.length >= 0.08 * body.length * 0.999);
+        assert!(leg.length >= 0.08 * body.length);
     }
     assert!(p.stability_margin.unwrap() >= 0.02 * body.length);
 }
@@ -182,7 +360,7 @@ fn regression_large_legs_are_not_placed_over_small_ones() {
 
 #[test]
 fn a_biped_keeps_one_central_pair_when_it_stands() {
-    // Widest in the middle, tall legs (big feet), narrow elsewhere.
+    // Widest in the middle, narrow elsewhere: the centre of mass is over the middle bone.
     let body = straight_body(
         &[0.2, 0.3, 1.0, 0.3, 0.2],
         &[2.0, 2.0, 2.0, 2.0, 2.0],
@@ -220,6 +398,31 @@ fn arms_go_between_the_head_and_the_legs() {
     // No arms when the chance is zero.
     let p = walker(&body, &options.with_arm_chance(0.0), 8);
     assert_eq!(p.limbs_of(LimbKind::Arm).count(), 0);
+}
+
+/// Review finding: an arm's length is a drawn fraction of its socket's height, so a draw of 0
+/// (or a low socket) gave zero-length arms. They are now left out, and the plan says so.
+#[test]
+fn regression_zero_length_arms_are_dropped() {
+    let body = straight_body(
+        &[0.3, 0.3, 0.3, 0.5, 1.0, 0.5, 0.3, 0.3, 0.3, 0.3],
+        &[2.5; 10],
+        0.6,
+        HeadEnd::Last,
+    );
+    let options = PlanOptions::DEFAULT
+        .with_arm_chance(100.0)
+        .with_arm_length([0.0, 0.0]);
+    let p = walker(&body, &options, 8);
+    assert_eq!(p.limbs_of(LimbKind::Arm).count(), 0);
+    assert!(p.repairs.contains(&Repair::DroppedArms { length: 0.0 }));
+    // Arms that are drawn long enough are kept, at least `min_arm_length` long.
+    let options = options.with_arm_length([0.5, 0.5]);
+    let p = walker(&body, &options, 8);
+    for arm in p.limbs_of(LimbKind::Arm) {
+        assert!(arm.length >= options.min_arm_length * body.length);
+    }
+    assert_eq!(p.limbs_of(LimbKind::Arm).count(), 2);
 }
 
 #[test]
@@ -358,4 +561,17 @@ fn bad_input_is_an_error() {
         err,
         Err(LimbsError::InvalidOption { name: "sweep", .. })
     ));
+
+    let mut body = walker_body(4);
+    body.length = f32::NAN;
+    let err = plan(
+        &body,
+        CreatureKind::Walker,
+        &PlanOptions::DEFAULT,
+        &mut SplitMix(0),
+    )
+    .unwrap_err();
+    assert!(matches!(err, LimbsError::InvalidLength { .. }));
+    // The message is about the body length, not about a bone.
+    assert!(!err.to_string().contains("bone"), "{err}");
 }

@@ -112,6 +112,11 @@ pub(crate) fn validate_ball(
             });
         }
     }
+    validate_radius(radius, index)
+}
+
+/// Checks a ball radius: finite, positive, in [`RADIUS_RANGE`] (`what: "ball radius"`).
+pub(crate) fn validate_radius(radius: f32, index: usize) -> Result<(), MetaballError> {
     if !radius.is_finite() {
         return Err(MetaballError::NonFinite {
             what: "ball radius",

@@ -123,7 +123,7 @@ pub fn cover_segment(
 /// - [`MetaballError::NotPositive`] / [`MetaballError::OutOfRange`] for a thickness ≤ 0 or
 ///   outside [`THICKNESS_RANGE`];
 /// - [`MetaballError::OutOfRange`] for a multiplier outside [`MULTIPLIER_RANGE`] `[1, 1.6]`;
-/// - [`MetaballError::TooManyBalls`] beyond [`MAX_COVER_BALLS`].
+/// - [`MetaballError::TooManyCoverBalls`] beyond [`MAX_COVER_BALLS`].
 pub fn cover_segment_with(
     from: Vec2,
     to: Vec2,
@@ -264,7 +264,7 @@ fn plan(
     // The seed's order of operations: ceil(distance / (2.97 T) · m).
     let steps = math::ceil(length / (SEED_SPACING * thickness) * multiplier);
     if !(steps.is_finite() && steps < MAX_COVER_BALLS as f32) {
-        return Err(MetaballError::TooManyBalls {
+        return Err(MetaballError::TooManyCoverBalls {
             needed: steps + 1.0,
             max: MAX_COVER_BALLS,
         });
@@ -375,7 +375,7 @@ mod tests {
         ));
         assert!(matches!(
             cover_segment(a, Vec2::new(1e12, -1e12), 1e-5, 1.6, 0),
-            Err(MetaballError::TooManyBalls { .. })
+            Err(MetaballError::TooManyCoverBalls { .. })
         ));
         // Both multiplier bounds are accepted.
         assert!(cover_segment(a, b, 1.0, 1.0, 0).is_ok());

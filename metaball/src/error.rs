@@ -2,7 +2,8 @@
 
 use core::fmt;
 
-/// What went wrong when building a field, covering a bone or blending attributes.
+/// What went wrong when building a field, covering a bone, blending attributes or asking a
+/// falloff for a radius.
 ///
 /// Every variant carries the offending value or index, and its `Display` message says what to
 /// change in the input.
@@ -50,11 +51,24 @@ pub enum MetaballError {
         found: usize,
     },
     /// Covering a bone would need more balls than [`MAX_COVER_BALLS`](crate::MAX_COVER_BALLS).
-    TooManyBalls {
+    TooManyCoverBalls {
         /// How many balls the bone would need (`f32`: it may exceed every integer type).
         needed: f32,
         /// The largest number of balls one covering may produce.
         max: usize,
+    },
+    /// A field was given more balls than it can index ([`MAX_FIELD_BALLS`](crate::MAX_FIELD_BALLS)).
+    TooManyFieldBalls {
+        /// How many balls were given.
+        count: usize,
+        /// The largest number of balls one field may hold.
+        max: usize,
+    },
+    /// Blending finite attributes gave a non-finite result: their magnitudes are within
+    /// rounding of `f32::MAX`, or the attribute type's own arithmetic overflowed.
+    BlendOverflow {
+        /// How many attributes (the balls reaching the point) were blended.
+        blended: usize,
     },
 }
 
@@ -86,10 +100,20 @@ impl fmt::Display for MetaballError {
                 f,
                 "{what} has {found} entries: pass exactly {expected} (one per ball)"
             ),
-            Self::TooManyBalls { needed, max } => write!(
+            Self::TooManyCoverBalls { needed, max } => write!(
                 f,
                 "covering the bone needs {needed:e} balls, more than the limit of {max}: use a \
-                 shorter bone or a larger thickness"
+                 shorter bone, a larger thickness or a smaller multiplier"
+            ),
+            Self::TooManyFieldBalls { count, max } => write!(
+                f,
+                "the field was given {count} balls, more than the limit of {max}: split the balls \
+                 over several fields"
+            ),
+            Self::BlendOverflow { blended } => write!(
+                f,
+                "blending {blended} finite attributes overflowed to a non-finite value: scale the \
+                 attributes down, away from f32::MAX"
             ),
         }
     }
@@ -130,6 +154,34 @@ mod tests {
         .to_string();
         assert!(msg.contains("exactly 4"), "{msg}");
         assert!(MetaballError::NoBalls.to_string().contains("at least one"));
+        let msg = MetaballError::BlendOverflow { blended: 3 }.to_string();
+        assert!(
+            msg.contains("3 finite attributes") && msg.contains("scale"),
+            "{msg}"
+        );
+    }
+
+    /// Regression: one `TooManyBalls` variant served both a too-long bone and a too-large field,
+    /// and told a caller with five billion balls to "use a shorter bone".
+    #[test]
+    fn too_many_balls_messages_fit_where_they_arise() {
+        let cover = MetaballError::TooManyCoverBalls {
+            needed: 1e9,
+            max: 1 << 16,
+        }
+        .to_string();
+        assert!(cover.contains("covering the bone") && cover.contains("shorter bone"));
+        let field = MetaballError::TooManyFieldBalls {
+            count: 5_000_000_000,
+            max: u32::MAX as usize,
+        }
+        .to_string();
+        assert!(field.contains("5000000000 balls"), "{field}");
+        assert!(field.contains("several fields"), "{field}");
+        assert!(
+            !field.contains("bone") && !field.contains("thickness"),
+            "{field}"
+        );
     }
 
     #[test]

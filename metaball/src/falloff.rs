@@ -1,6 +1,8 @@
 //! Falloff functions: how much one ball contributes at a distance from its centre.
 
 use crate::MetaballError;
+use crate::ball::validate_radius;
+use crate::field::check_epsilon;
 use crate::math;
 
 /// The field value that separates inside (`value ≥ ISO_LEVEL`) from outside, for every falloff.
@@ -116,10 +118,11 @@ impl Falloff {
 
     /// A lone ball's contribution at `distance` from its centre, for a ball of `radius`.
     ///
-    /// Returns 0 for a non-finite or non-positive radius or a NaN distance (never NaN).
+    /// Total, never NaN nor infinite: 0 for a non-finite or non-positive radius, a NaN
+    /// distance, or a falloff that fails [`validate`](Self::validate).
     #[must_use]
     pub fn evaluate(&self, distance: f32, radius: f32) -> f32 {
-        if !(radius > 0.0) || !radius.is_finite() || distance.is_nan() {
+        if !(radius > 0.0) || !radius.is_finite() || distance.is_nan() || self.validate().is_err() {
             return 0.0;
         }
         let q = (distance / radius) * (distance / radius);
@@ -127,17 +130,51 @@ impl Falloff {
         if value.is_finite() { value } else { 0.0 }
     }
 
-    /// The value at a ball's centre: `e^(−B)`, `peak` or `strength`.
+    /// The value at a ball's centre: `e^(−B)`, `peak` or `strength`; 0 for a falloff that
+    /// fails [`validate`](Self::validate) (whose peak could be infinite or NaN).
     #[must_use]
     pub fn peak(&self) -> f32 {
+        if self.validate().is_err() {
+            return 0.0;
+        }
         self.kernel().value(0.0)
     }
 
     /// Where the field of a lone ball of `radius` crosses [`ISO_LEVEL`]: its visible radius.
     /// 0 when the ball never reaches the iso level alone (Wyvill peak or Blinn strength ≤ 1).
+    ///
+    /// Total, never NaN nor infinite: 0 too wherever [`try_iso_radius`](Self::try_iso_radius)
+    /// returns an error (a falloff that fails [`validate`](Self::validate), a radius outside
+    /// [`RADIUS_RANGE`](crate::RADIUS_RANGE)); use that to tell the cases apart.
+    ///
+    /// ```
+    /// use creature_metaball::Falloff;
+    ///
+    /// assert_eq!(Falloff::SEED.iso_radius(4.0), 4.0);
+    /// // Blinn with sharpness 0 would put the iso line at infinity: rejected, so 0.
+    /// let flat = Falloff::Blinn { strength: 2.0, sharpness: 0.0 };
+    /// assert_eq!(flat.iso_radius(4.0), 0.0);
+    /// assert!(flat.try_iso_radius(4.0).is_err());
+    /// ```
     #[must_use]
     pub fn iso_radius(&self, radius: f32) -> f32 {
-        match *self {
+        self.try_iso_radius(radius).unwrap_or(0.0)
+    }
+
+    /// [`iso_radius`](Self::iso_radius), with its inputs checked: the result is finite and
+    /// non-negative.
+    ///
+    /// # Errors
+    /// As [`validate`](Self::validate) for the falloff; [`MetaballError::NonFinite`],
+    /// [`MetaballError::NotPositive`] or [`MetaballError::OutOfRange`] for a radius that is
+    /// not finite, not positive or outside [`RADIUS_RANGE`](crate::RADIUS_RANGE) (`what:
+    /// "ball radius"`).
+    pub fn try_iso_radius(&self, radius: f32) -> Result<f32, MetaballError> {
+        self.validate()?;
+        validate_radius(radius, 0)?;
+        // With the constants and the radius in range every branch is finite: at most
+        // 1e9 · √(ln 1e6 / 1e-3) ≈ 1.2e11.
+        Ok(match *self {
             Self::Exponential { .. } => radius,
             Self::Wyvill { peak } => {
                 if peak > 1.0 {
@@ -156,15 +193,47 @@ impl Falloff {
                     0.0
                 }
             }
-        }
+        })
     }
 
     /// The distance beyond which a ball of `radius` contributes less than `epsilon` (and is
     /// skipped by a culled field). `radius` itself for `Wyvill`, whose support ends there; 0 for
     /// a `Blinn` ball whose strength is already at most `epsilon`.
+    ///
+    /// Total, never NaN nor infinite: 0 too wherever
+    /// [`try_cutoff_radius`](Self::try_cutoff_radius) returns an error (a falloff that fails
+    /// [`validate`](Self::validate), a radius outside [`RADIUS_RANGE`](crate::RADIUS_RANGE), an
+    /// epsilon outside [`EPSILON_RANGE`](crate::EPSILON_RANGE)).
+    ///
+    /// ```
+    /// use creature_metaball::{DEFAULT_EPSILON, Falloff};
+    ///
+    /// let rc = Falloff::SEED.cutoff_radius(10.0, DEFAULT_EPSILON);
+    /// assert!((rc - 44.1).abs() < 0.1); // R √(1 + ln ε / B)
+    /// // Blobbiness 0 would divide by zero: rejected, so 0.
+    /// let flat = Falloff::Exponential { blobbiness: 0.0 };
+    /// assert_eq!(flat.cutoff_radius(10.0, DEFAULT_EPSILON), 0.0);
+    /// assert!(flat.try_cutoff_radius(10.0, DEFAULT_EPSILON).is_err());
+    /// ```
     #[must_use]
     pub fn cutoff_radius(&self, radius: f32, epsilon: f32) -> f32 {
-        radius * math::sqrt(self.kernel().cutoff_q(epsilon))
+        self.try_cutoff_radius(radius, epsilon).unwrap_or(0.0)
+    }
+
+    /// [`cutoff_radius`](Self::cutoff_radius), with its inputs checked: the result is finite
+    /// and non-negative.
+    ///
+    /// # Errors
+    /// As [`try_iso_radius`](Self::try_iso_radius), plus [`MetaballError::NonFinite`] or
+    /// [`MetaballError::OutOfRange`] for an epsilon outside
+    /// [`EPSILON_RANGE`](crate::EPSILON_RANGE) (`what: "epsilon"`).
+    pub fn try_cutoff_radius(&self, radius: f32, epsilon: f32) -> Result<f32, MetaballError> {
+        self.validate()?;
+        validate_radius(radius, 0)?;
+        check_epsilon(epsilon)?;
+        // In range, `cutoff_q` is at most 1 + ln(1e-12) / −1e-3 ≈ 2.8e4 (exponential) or
+        // ln(1e6 / 1e-12) / 1e-3 ≈ 4.1e4 (Blinn): the result stays below 1e9 · 204.
+        Ok(radius * math::sqrt(self.kernel().cutoff_q(epsilon)))
     }
 
     /// Whether the falloff is exactly zero beyond a finite radius (so culling is exact).
@@ -460,6 +529,127 @@ mod tests {
                 ..
             })
         ));
+    }
+
+    /// Regression: `iso_radius` and `cutoff_radius` did not validate, so Blinn with sharpness
+    /// 0 put the iso line at infinity, exponential blobbiness 0 gave a NaN cutoff, and a NaN
+    /// radius gave NaN.
+    #[test]
+    fn radii_of_rejected_inputs_are_errors_and_zero_never_nan() {
+        let flat_blinn = Falloff::Blinn {
+            strength: 2.0,
+            sharpness: 0.0,
+        };
+        assert!(matches!(
+            flat_blinn.try_iso_radius(3.0),
+            Err(MetaballError::OutOfRange {
+                what: "sharpness",
+                ..
+            })
+        ));
+        assert_eq!(flat_blinn.iso_radius(3.0), 0.0);
+        let flat_exp = Falloff::Exponential { blobbiness: 0.0 };
+        assert!(matches!(
+            flat_exp.try_cutoff_radius(3.0, 1e-4),
+            Err(MetaballError::OutOfRange {
+                what: "blobbiness",
+                ..
+            })
+        ));
+        assert_eq!(flat_exp.cutoff_radius(3.0, 1e-4), 0.0);
+        assert_eq!(
+            Falloff::SEED.try_iso_radius(f32::NAN),
+            Err(MetaballError::NonFinite {
+                what: "ball radius",
+                index: 0
+            })
+        );
+        assert_eq!(Falloff::SEED.iso_radius(f32::NAN), 0.0);
+        assert!(matches!(
+            Falloff::SEED.try_cutoff_radius(3.0, 0.0),
+            Err(MetaballError::OutOfRange {
+                what: "epsilon",
+                ..
+            })
+        ));
+        assert!(matches!(
+            Falloff::SEED.try_cutoff_radius(3.0, f32::NAN),
+            Err(MetaballError::NonFinite {
+                what: "epsilon",
+                ..
+            })
+        ));
+        assert!(matches!(
+            Falloff::WYVILL.try_cutoff_radius(-1.0, 1e-4),
+            Err(MetaballError::NotPositive { .. })
+        ));
+        // An extreme but rejected blobbiness would have an infinite peak.
+        assert_eq!(Falloff::Exponential { blobbiness: -1e3 }.peak(), 0.0);
+        assert_eq!(
+            Falloff::Exponential { blobbiness: -1e3 }.evaluate(0.0, 1.0),
+            0.0
+        );
+        // Valid inputs give the same radii as before.
+        assert_eq!(Falloff::SEED.try_iso_radius(3.0), Ok(3.0));
+        assert_eq!(Falloff::WYVILL.try_cutoff_radius(4.0, 1e-4), Ok(4.0));
+    }
+
+    #[test]
+    fn radii_are_finite_for_every_combination_of_edge_inputs() {
+        let specials = [
+            f32::NAN,
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+            0.0,
+            -0.0,
+            -1.0,
+            f32::MIN_POSITIVE,
+            1e-12,
+            1e-6,
+            1e-3,
+            0.5,
+            1.0,
+            80.0,
+            1e6,
+            1e9,
+            f32::MAX,
+        ];
+        let mut falloffs = alloc::vec::Vec::new();
+        for &a in &specials {
+            falloffs.push(Falloff::Exponential { blobbiness: a });
+            falloffs.push(Falloff::Exponential { blobbiness: -a });
+            falloffs.push(Falloff::Wyvill { peak: a });
+            for &b in &specials {
+                falloffs.push(Falloff::Blinn {
+                    strength: a,
+                    sharpness: b,
+                });
+            }
+        }
+        for falloff in falloffs {
+            assert!(falloff.peak().is_finite(), "{falloff:?}");
+            for &radius in &specials {
+                let iso = falloff.iso_radius(radius);
+                assert!(iso.is_finite() && iso >= 0.0, "{falloff:?} {radius}: {iso}");
+                assert_eq!(
+                    falloff.try_iso_radius(radius).is_ok(),
+                    falloff.validate().is_ok() && validate_radius(radius, 0).is_ok()
+                );
+                for &epsilon in &specials {
+                    let rc = falloff.cutoff_radius(radius, epsilon);
+                    assert!(
+                        rc.is_finite() && rc >= 0.0,
+                        "{falloff:?} {radius} {epsilon}"
+                    );
+                    if let Ok(rc) = falloff.try_cutoff_radius(radius, epsilon) {
+                        assert!(rc.is_finite() && rc >= 0.0);
+                    }
+                }
+                for &distance in &specials {
+                    assert!(falloff.evaluate(distance, radius).is_finite());
+                }
+            }
+        }
     }
 
     #[test]

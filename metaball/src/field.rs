@@ -16,6 +16,10 @@ pub const DEFAULT_EPSILON: f32 = 1e-4;
 /// Accepted culling epsilons.
 pub const EPSILON_RANGE: (f32, f32) = (1e-12, 0.1);
 
+/// The most balls one field may hold: `u32::MAX`, as balls are indexed by `u32` (on 32-bit
+/// targets memory runs out long before).
+pub const MAX_FIELD_BALLS: usize = u32::MAX as usize;
+
 /// Largest `width × height` that [`Field2::sample_grid`] fills.
 pub const MAX_GRID_SAMPLES: usize = 1 << 24;
 
@@ -83,23 +87,7 @@ impl FieldOptions {
     /// [`MetaballError::OutOfRange`] naming the option.
     pub fn validate(&self) -> Result<(), MetaballError> {
         self.falloff.validate()?;
-        let e = self.epsilon;
-        if !e.is_finite() {
-            return Err(MetaballError::NonFinite {
-                what: "epsilon",
-                index: 0,
-            });
-        }
-        let (min, max) = EPSILON_RANGE;
-        if !(e >= min && e <= max) {
-            return Err(MetaballError::OutOfRange {
-                what: "epsilon",
-                index: 0,
-                value: e,
-                min,
-                max,
-            });
-        }
+        check_epsilon(self.epsilon)?;
         if let Some(size) = self.cell_size {
             if !size.is_finite() {
                 return Err(MetaballError::NonFinite {
@@ -117,6 +105,27 @@ impl FieldOptions {
         }
         Ok(())
     }
+}
+
+/// Checks a culling epsilon against [`EPSILON_RANGE`].
+pub(crate) fn check_epsilon(e: f32) -> Result<(), MetaballError> {
+    if !e.is_finite() {
+        return Err(MetaballError::NonFinite {
+            what: "epsilon",
+            index: 0,
+        });
+    }
+    let (min, max) = EPSILON_RANGE;
+    if !(e >= min && e <= max) {
+        return Err(MetaballError::OutOfRange {
+            what: "epsilon",
+            index: 0,
+            value: e,
+            min,
+            max,
+        });
+    }
+    Ok(())
 }
 
 impl Default for FieldOptions {
@@ -138,6 +147,74 @@ pub struct Share {
 /// up to 4, the glTF skinning limit.
 pub type Shares = smallvec::SmallVec<[Share; 4]>;
 
+/// A per-ball value that [`Field2::blend`] / [`Field3::blend`] can interpolate: anything linear
+/// (`a + b`, `a * w`) that can say whether it is finite, so that a NaN or infinite attribute is
+/// reported as an error instead of leaking into the blend.
+///
+/// Implemented for `f32`, [`Vec2`], [`Vec3`], [`Vec3A`](glam::Vec3A) and [`Vec4`](glam::Vec4);
+/// implement it for your own colour or weight types.
+///
+/// ```
+/// use core::ops::{Add, Mul};
+/// use creature_metaball::Attribute;
+///
+/// #[derive(Clone, Copy)]
+/// struct Rgb([f32; 3]);
+///
+/// impl Add for Rgb {
+///     type Output = Self;
+///     fn add(self, o: Self) -> Self {
+///         Rgb([self.0[0] + o.0[0], self.0[1] + o.0[1], self.0[2] + o.0[2]])
+///     }
+/// }
+/// impl Mul<f32> for Rgb {
+///     type Output = Self;
+///     fn mul(self, w: f32) -> Self {
+///         Rgb(self.0.map(|c| c * w))
+///     }
+/// }
+/// impl Attribute for Rgb {
+///     fn is_finite(&self) -> bool {
+///         self.0.iter().all(|c| c.is_finite())
+///     }
+/// }
+/// assert!(!Rgb([0.0, f32::NAN, 1.0]).is_finite());
+/// ```
+pub trait Attribute: Copy + Add<Output = Self> + Mul<f32, Output = Self> {
+    /// Whether every component is finite (not NaN, not infinite).
+    fn is_finite(&self) -> bool;
+}
+
+impl Attribute for f32 {
+    fn is_finite(&self) -> bool {
+        f32::is_finite(*self)
+    }
+}
+
+impl Attribute for Vec2 {
+    fn is_finite(&self) -> bool {
+        Vec2::is_finite(*self)
+    }
+}
+
+impl Attribute for Vec3 {
+    fn is_finite(&self) -> bool {
+        Vec3::is_finite(*self)
+    }
+}
+
+impl Attribute for glam::Vec3A {
+    fn is_finite(&self) -> bool {
+        glam::Vec3A::is_finite(*self)
+    }
+}
+
+impl Attribute for glam::Vec4 {
+    fn is_finite(&self) -> bool {
+        glam::Vec4::is_finite(*self)
+    }
+}
+
 /// Statistics of a field's culling grid, for diagnostics and tuning.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[non_exhaustive]
@@ -155,16 +232,16 @@ fn check_options_and_count(options: &FieldOptions, count: usize) -> Result<(), M
     if count == 0 {
         return Err(MetaballError::NoBalls);
     }
-    if count > u32::MAX as usize {
-        return Err(MetaballError::TooManyBalls {
-            needed: count as f32,
-            max: u32::MAX as usize,
+    if count > MAX_FIELD_BALLS {
+        return Err(MetaballError::TooManyFieldBalls {
+            count,
+            max: MAX_FIELD_BALLS,
         });
     }
     Ok(())
 }
 
-fn check_attributes(count: usize, found: usize) -> Result<(), MetaballError> {
+fn check_attribute_count(count: usize, found: usize) -> Result<(), MetaballError> {
     if count == found {
         Ok(())
     } else {
@@ -173,6 +250,17 @@ fn check_attributes(count: usize, found: usize) -> Result<(), MetaballError> {
             expected: count,
             found,
         })
+    }
+}
+
+fn check_attributes<T: Attribute>(count: usize, attributes: &[T]) -> Result<(), MetaballError> {
+    check_attribute_count(count, attributes.len())?;
+    match attributes.iter().position(|a| !a.is_finite()) {
+        Some(index) => Err(MetaballError::NonFinite {
+            what: "attribute",
+            index,
+        }),
+        None => Ok(()),
     }
 }
 
@@ -187,7 +275,10 @@ fn check_attributes(count: usize, found: usize) -> Result<(), MetaballError> {
 /// [`bounds`](Self::bounds) the culled field is exactly 0.
 ///
 /// Non-finite sample points are outside every ball: value 0, zero gradient, no shares. No
-/// method returns NaN.
+/// method returns NaN or an infinity: a value whose sum overflows `f32` (an extreme falloff
+/// and thousands of coincident balls) saturates to `f32::MAX`, still inside; a gradient
+/// component saturates to `±f32::MAX`; [`blend`](Self::blend) reports a non-finite attribute
+/// or result as an error.
 ///
 /// ```
 /// use creature_metaball::{Ball2, Falloff, Field2, glam::Vec2};
@@ -352,9 +443,17 @@ impl Field2 {
     }
 
     /// Blends one attribute per ball (colour, texture weights, anything linear) with the
-    /// per-ball shares `f_i(p) / D(p)` of the culled field: `Σ f_i a_i / Σ f_i`.
+    /// per-ball shares `f_i(p) / D(p)` of the culled field: `Σ (f_i / Σ f_j) a_i`. The weights
+    /// are normalised before they multiply the attributes (in `f64`), so the blend of finite
+    /// attributes is their convex combination and cannot overflow unless an attribute is within
+    /// rounding of `f32::MAX`.
     ///
     /// `Ok(None)` where no ball reaches `p` (culled value 0).
+    ///
+    /// Only the attributes of the balls that reach `p` are read, so a sample stays O(nearby
+    /// balls), and only those are checked: a NaN or infinite attribute of a ball that reaches
+    /// `p` is an error, one of a ball that does not is never read. To check every attribute
+    /// once up front, call [`validate_attributes`](Self::validate_attributes).
     ///
     /// ```
     /// use creature_metaball::{Ball2, Falloff, Field2, glam::{Vec2, Vec3}};
@@ -369,13 +468,43 @@ impl Field2 {
     /// ```
     ///
     /// # Errors
-    /// [`MetaballError::WrongLength`] unless there is exactly one attribute per ball.
-    pub fn blend<T>(&self, p: Vec2, attributes: &[T]) -> Result<Option<T>, MetaballError>
-    where
-        T: Copy + Add<Output = T> + Mul<f32, Output = T>,
-    {
-        check_attributes(self.core.len(), attributes.len())?;
-        Ok(self.core.blend(p.to_array(), attributes))
+    /// - [`MetaballError::WrongLength`] unless there is exactly one attribute per ball;
+    /// - [`MetaballError::NonFinite`] (`what: "attribute"`, the ball's index) for a NaN or
+    ///   infinite attribute of a ball that reaches `p`;
+    /// - [`MetaballError::BlendOverflow`] if the blend of finite attributes is not finite.
+    pub fn blend<T: Attribute>(
+        &self,
+        p: Vec2,
+        attributes: &[T],
+    ) -> Result<Option<T>, MetaballError> {
+        check_attribute_count(self.core.len(), attributes.len())?;
+        self.core.blend(p.to_array(), attributes)
+    }
+
+    /// Checks a whole attribute list for [`blend`](Self::blend) once, in O(balls): one
+    /// attribute per ball, every one finite.
+    ///
+    /// ```
+    /// use creature_metaball::{Ball2, Falloff, Field2, MetaballError, glam::Vec2};
+    ///
+    /// let balls = [Ball2::new(Vec2::ZERO, 5.0, 0), Ball2::new(Vec2::new(1e3, 0.0), 5.0, 1)];
+    /// let field = Field2::new(&balls, Falloff::SEED)?;
+    /// let bad = [0.5, f32::NAN];
+    /// // The far ball does not reach the origin, so blending there never reads its NaN…
+    /// assert_eq!(field.blend(Vec2::ZERO, &bad)?, Some(0.5));
+    /// // …but the validator finds it.
+    /// assert_eq!(
+    ///     field.validate_attributes(&bad),
+    ///     Err(MetaballError::NonFinite { what: "attribute", index: 1 })
+    /// );
+    /// # Ok::<(), MetaballError>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`MetaballError::WrongLength`] or [`MetaballError::NonFinite`] naming the first
+    /// non-finite attribute's index.
+    pub fn validate_attributes<T: Attribute>(&self, attributes: &[T]) -> Result<(), MetaballError> {
+        check_attributes(self.core.len(), attributes)
     }
 
     /// The largest possible difference between [`value`](Self::value) and
@@ -610,13 +739,23 @@ impl Field3 {
     /// Blends one attribute per ball with the shares `f_i / D`; see [`Field2::blend`].
     ///
     /// # Errors
-    /// [`MetaballError::WrongLength`] unless there is exactly one attribute per ball.
-    pub fn blend<T>(&self, p: Vec3, attributes: &[T]) -> Result<Option<T>, MetaballError>
-    where
-        T: Copy + Add<Output = T> + Mul<f32, Output = T>,
-    {
-        check_attributes(self.core.len(), attributes.len())?;
-        Ok(self.core.blend(p.to_array(), attributes))
+    /// As [`Field2::blend`].
+    pub fn blend<T: Attribute>(
+        &self,
+        p: Vec3,
+        attributes: &[T],
+    ) -> Result<Option<T>, MetaballError> {
+        check_attribute_count(self.core.len(), attributes.len())?;
+        self.core.blend(p.to_array(), attributes)
+    }
+
+    /// Checks a whole attribute list for [`blend`](Self::blend) once; see
+    /// [`Field2::validate_attributes`].
+    ///
+    /// # Errors
+    /// As [`Field2::validate_attributes`].
+    pub fn validate_attributes<T: Attribute>(&self, attributes: &[T]) -> Result<(), MetaballError> {
+        check_attributes(self.core.len(), attributes)
     }
 
     /// The bound on `|value − value_exact|`; see [`Field2::error_bound`].
@@ -646,5 +785,66 @@ impl Field3 {
             cells: self.core.cell_count(),
             entries: self.core.entry_count(),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Regression: more than `u32::MAX` balls was reported as `TooManyBalls`, whose message told
+    /// the caller to "use a shorter bone or a larger thickness". Such a slice cannot be
+    /// allocated in a test, so the count check is called directly.
+    #[cfg(target_pointer_width = "64")]
+    #[test]
+    fn too_many_field_balls_is_its_own_error() {
+        let count = MAX_FIELD_BALLS + 1;
+        assert_eq!(
+            check_options_and_count(&FieldOptions::DEFAULT, count),
+            Err(MetaballError::TooManyFieldBalls {
+                count,
+                max: MAX_FIELD_BALLS
+            })
+        );
+        assert!(check_options_and_count(&FieldOptions::DEFAULT, MAX_FIELD_BALLS).is_ok());
+        assert_eq!(
+            check_options_and_count(&FieldOptions::DEFAULT, 0),
+            Err(MetaballError::NoBalls)
+        );
+    }
+
+    #[test]
+    fn attributes_are_checked_for_length_and_finiteness() {
+        assert!(check_attributes(3, &[1.0f32, 2.0, 3.0]).is_ok());
+        assert_eq!(
+            check_attributes(3, &[1.0f32, 2.0]),
+            Err(MetaballError::WrongLength {
+                what: "attributes",
+                expected: 3,
+                found: 2
+            })
+        );
+        assert_eq!(
+            check_attributes(
+                3,
+                &[Vec3::ONE, Vec3::new(0.0, f32::INFINITY, 0.0), Vec3::NAN]
+            ),
+            Err(MetaballError::NonFinite {
+                what: "attribute",
+                index: 1
+            })
+        );
+        assert!(!Attribute::is_finite(&glam::Vec4::new(
+            0.0,
+            0.0,
+            0.0,
+            f32::NAN
+        )));
+        assert!(!Attribute::is_finite(&glam::Vec3A::new(
+            f32::NEG_INFINITY,
+            0.0,
+            0.0
+        )));
+        assert!(Attribute::is_finite(&Vec2::new(-1.0, 1e30)));
     }
 }

@@ -3,13 +3,11 @@
 
 use alloc::vec;
 use alloc::vec::Vec;
-use core::ops::{Add, Mul};
-
 use smallvec::SmallVec;
 
 use crate::falloff::Kernel;
 use crate::math;
-use crate::{Share, Shares};
+use crate::{Attribute, MetaballError, Share, Shares};
 
 /// One ball as the inner loops read it, copied into every cell it overlaps.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -119,7 +117,7 @@ impl Core<2> {
             }
         }
         for sample in &mut out {
-            *sample = finite_or_zero(*sample);
+            *sample = saturate(*sample);
         }
         out
     }
@@ -386,7 +384,7 @@ impl<const D: usize> Core<D> {
         for ball in &self.balls {
             sum += self.kernel.value(distance2(&p, &ball.center) * ball.inv_r2);
         }
-        finite_or_zero(sum)
+        saturate(sum)
     }
 
     /// The culled value and gradient.
@@ -402,69 +400,92 @@ impl<const D: usize> Core<D> {
         gradient_sum(self.kernel, &self.balls, &p, false)
     }
 
-    /// Calls `visit(ball index, contribution)` for every ball within its cutoff of `p`, in ball
-    /// order; returns the sum of the contributions.
-    fn for_each_contribution(&self, p: &[f32; D], mut visit: impl FnMut(u32, f32)) -> f32 {
-        let mut total = 0.0;
+    /// Calls `visit(ball index, contribution)` for every ball within its cutoff of `p` that
+    /// contributes a positive amount, in ball order. Each contribution is finite: a valid
+    /// kernel's value is at most its peak (`e^80` at worst).
+    fn for_each_contribution(&self, p: &[f32; D], mut visit: impl FnMut(u32, f32)) {
         for e in self.nearby(p) {
             let d2 = distance2(p, &e.center);
             if d2 < e.cutoff_d2 {
                 let f = self.kernel.value(d2 * e.inv_r2);
                 if f > 0.0 && f.is_finite() {
-                    total += f;
                     visit(e.index, f);
                 }
             }
         }
-        total
     }
 
+    /// Per-id sums in `f64`: at most 2^32 terms of at most `e^80 ≈ 5.5e34` each, so they never
+    /// overflow even where the `f32` value saturates.
     pub(crate) fn shares(&self, p: [f32; D], k: usize) -> Shares {
-        let mut per_id: SmallVec<[Share; 16]> = SmallVec::new();
+        let mut per_id: SmallVec<[(u32, f64); 16]> = SmallVec::new();
         if k == 0 {
             return Shares::new();
         }
         self.for_each_contribution(&p, |index, f| {
             let id = self.ids.get(index as usize).copied().unwrap_or(0);
-            if let Some(s) = per_id.iter_mut().find(|s| s.id == id) {
-                s.weight += f;
+            if let Some(s) = per_id.iter_mut().find(|s| s.0 == id) {
+                s.1 += f64::from(f);
             } else {
-                per_id.push(Share { id, weight: f });
+                per_id.push((id, f64::from(f)));
             }
         });
-        per_id.sort_by(|a, b| b.weight.total_cmp(&a.weight).then(a.id.cmp(&b.id)));
+        per_id.sort_by(|a, b| b.1.total_cmp(&a.1).then(a.0.cmp(&b.0)));
         per_id.truncate(k);
-        let total: f32 = per_id.iter().map(|s| s.weight).sum();
-        if !(total > 0.0) || !total.is_finite() {
+        let total: f64 = per_id.iter().map(|s| s.1).sum();
+        if !(total > 0.0 && total.is_finite()) {
             return Shares::new();
         }
-        let inv = 1.0 / total;
         per_id
             .into_iter()
-            .map(|s| Share {
-                id: s.id,
-                weight: s.weight * inv,
+            .map(|(id, weight)| Share {
+                id,
+                // In (0, 1]: the cast cannot overflow.
+                weight: (weight / total) as f32,
             })
             .collect()
     }
 
-    pub(crate) fn blend<T>(&self, p: [f32; D], attributes: &[T]) -> Option<T>
-    where
-        T: Copy + Add<Output = T> + Mul<f32, Output = T>,
-    {
+    /// `Σ (f_i / Σ f_j) a_i` over the balls reaching `p`, the weights normalised in `f64`
+    /// before they touch the attributes. `attributes` has one entry per ball (checked by the
+    /// caller); only the entries of contributing balls are read, and checked.
+    pub(crate) fn blend<T: Attribute>(
+        &self,
+        p: [f32; D],
+        attributes: &[T],
+    ) -> Result<Option<T>, MetaballError> {
+        let mut contributions: SmallVec<[(u32, f32); 16]> = SmallVec::new();
+        let mut total = 0.0f64;
+        self.for_each_contribution(&p, |index, f| {
+            total += f64::from(f);
+            contributions.push((index, f));
+        });
+        if !(total > 0.0 && total.is_finite()) {
+            return Ok(None);
+        }
         let mut acc: Option<T> = None;
-        let total = self.for_each_contribution(&p, |index, f| {
-            if let Some(&a) = attributes.get(index as usize) {
-                acc = Some(match acc {
-                    Some(sum) => sum + a * f,
-                    None => a * f,
+        for &(index, f) in &contributions {
+            let Some(&a) = attributes.get(index as usize) else {
+                continue;
+            };
+            if !a.is_finite() {
+                return Err(MetaballError::NonFinite {
+                    what: "attribute",
+                    index: index as usize,
                 });
             }
-        });
-        if !(total > 0.0) || !total.is_finite() {
-            return None;
+            let term = a * ((f64::from(f) / total) as f32);
+            acc = Some(match acc {
+                Some(sum) => sum + term,
+                None => term,
+            });
         }
-        acc.map(|sum| sum * (1.0 / total))
+        match acc {
+            Some(v) if !v.is_finite() => Err(MetaballError::BlendOverflow {
+                blended: contributions.len(),
+            }),
+            other => Ok(other),
+        }
     }
 }
 
@@ -498,8 +519,21 @@ fn distance2<const D: usize>(p: &[f32; D], c: &[f32; D]) -> f32 {
     d2
 }
 
-fn finite_or_zero(x: f32) -> f32 {
-    if x.is_finite() { x } else { 0.0 }
+/// A sum of non-negative finite contributions that overflowed `f32` is `+∞`: it saturates to
+/// `f32::MAX`, so a point deep inside an extreme field still reads as inside (regression:
+/// it used to read 0, outside). A NaN cannot arise from such a sum; it would read 0.
+fn saturate(x: f32) -> f32 {
+    if x.is_nan() { 0.0 } else { x.min(f32::MAX) }
+}
+
+/// An `f64` gradient component as `f32`, saturated to `±f32::MAX`.
+fn saturate_f64(x: f64) -> f32 {
+    if x.is_nan() {
+        0.0
+    } else {
+        // Clamped into the f32 range first, so the cast rounds rather than overflows.
+        x.clamp(-f64::from(f32::MAX), f64::from(f32::MAX)) as f32
+    }
 }
 
 #[inline(always)]
@@ -515,17 +549,21 @@ fn culled_sum<const D: usize>(
             sum += kernel(d2 * e.inv_r2);
         }
     }
-    finite_or_zero(sum)
+    saturate(sum)
 }
 
+/// The value (an `f32` sum in ball order, the same bits as [`culled_sum`] / the exact sum) and
+/// the gradient, whose terms `2 f'(q) (p − c) / R²` are formed and summed in `f64`: one tiny
+/// steep ball can exceed `f32` on its own (`e^80 · 160 / R` for `R = 1e-6`), and terms of both
+/// signs could then meet as `∞ − ∞`. Each component saturates to `±f32::MAX`.
 fn gradient_sum<const D: usize>(
     kernel: Kernel,
     entries: &[Entry<D>],
     p: &[f32; D],
     culled: bool,
 ) -> (f32, [f32; D]) {
-    let mut value = 0.0;
-    let mut gradient = [0.0f32; D];
+    let mut value = 0.0f32;
+    let mut gradient = [0.0f64; D];
     for e in entries {
         let mut delta = [0.0f32; D];
         let mut d2 = 0.0;
@@ -538,16 +576,14 @@ fn gradient_sum<const D: usize>(
         }
         let (f, slope2) = kernel.value_and_slope(d2 * e.inv_r2);
         value += f;
-        let scale = slope2 * e.inv_r2;
-        for k in 0..D {
-            gradient[k] += scale * delta[k];
+        if slope2 != 0.0 {
+            let scale = f64::from(slope2) * f64::from(e.inv_r2);
+            for k in 0..D {
+                gradient[k] += scale * f64::from(delta[k]);
+            }
         }
     }
-    if value.is_finite() && gradient.iter().all(|g| g.is_finite()) {
-        (value, gradient)
-    } else {
-        (0.0, [0.0; D])
-    }
+    (saturate(value), gradient.map(saturate_f64))
 }
 
 /// Calls `f` with the flat index of every cell in the inclusive box `from..=to`.
@@ -732,5 +768,95 @@ mod tests {
             let list = &core.entries[core.starts[c] as usize..core.starts[c + 1] as usize];
             assert!(list.windows(2).all(|w| w[0].index < w[1].index));
         }
+    }
+
+    /// The sharpest accepted falloff: a peak of `e^80 ≈ 5.5e34`.
+    const STEEP: Falloff = Falloff::Exponential { blobbiness: -80.0 };
+
+    /// Regression: an overflowing sum was turned into 0 (`finite_or_zero`), so with an extreme
+    /// falloff and thousands of coincident balls a point deep inside read as outside.
+    #[test]
+    fn overflowing_sum_saturates_instead_of_reading_outside() {
+        // 10,000 × 5.5e34 = 5.5e38 > f32::MAX.
+        let balls = vec![([3.0f32, -2.0], 1.0f32, 7u32); 10_000];
+        let core = Core::<2>::build(&balls, STEEP.kernel(), 1e-4, None);
+        let centre = [3.0, -2.0];
+        assert_eq!(core.value(centre), f32::MAX);
+        assert_eq!(core.value_exact(centre), f32::MAX);
+        let (v, g) = core.value_and_gradient(centre);
+        assert_eq!(v, f32::MAX);
+        assert_eq!(g, [0.0, 0.0]);
+        let samples = core.sample_grid([2.0, -2.0], 0.5, 5, 1);
+        assert_eq!(samples[2], f32::MAX);
+        assert!(samples.iter().all(|s| s.is_finite()));
+        // Just off the centre the gradient is too steep for f32: it saturates, pointing back.
+        let off = [3.1, -2.0];
+        let (v, g) = core.value_and_gradient(off);
+        assert!(v > 1.0 && v.is_finite());
+        assert_eq!(g[0], -f32::MAX);
+        assert_eq!(g[1], 0.0);
+        assert_eq!(core.value_and_gradient_exact(off), (v, g));
+        // Shares and blends sum in f64, so they survive the overflow.
+        let shares = core.shares(centre, 4);
+        assert_eq!(shares.len(), 1);
+        assert_eq!((shares[0].id, shares[0].weight), (7, 1.0));
+        let ones = vec![2.5f32; balls.len()];
+        let blended = core.blend(centre, &ones).unwrap().unwrap();
+        assert!((blended - 2.5).abs() < 1e-3, "{blended}");
+    }
+
+    /// Regression: the gradient's per-ball scale `2 f'(q) / R²` was formed in `f32`, so one tiny
+    /// steep ball overflowed it and `value_and_gradient` returned `(0, 0)`: outside, although
+    /// `value` read 1e26.
+    #[test]
+    fn one_steep_tiny_ball_keeps_its_value_and_gradient() {
+        let core = Core::<2>::build(&[([0.0, 0.0], 1e-6, 0)], STEEP.kernel(), 1e-4, None);
+        let p = [5e-7, 0.0];
+        let (v, g) = core.value_and_gradient(p);
+        assert_eq!(v.to_bits(), core.value(p).to_bits());
+        assert!(v > 1e25, "{v}");
+        // d/dx exp(B x²/R² − B) = 2 B x / R² · f: about −160 · 5e-7 · 1e12 · 1.1e26.
+        let expected = 2.0 * -80.0 * 5e-7 * 1e12 * f64::from(v);
+        assert!(
+            (f64::from(g[0]) - expected).abs() <= 1e-5 * expected.abs(),
+            "{g:?} vs {expected}"
+        );
+        assert_eq!(g[1], 0.0);
+    }
+
+    #[test]
+    fn blend_reports_non_finite_attributes_of_reaching_balls_only() {
+        let balls = [([0.0f32, 0.0], 1.0f32, 0u32), ([100.0, 0.0], 1.0, 1)];
+        let core = Core::<2>::build(&balls, Falloff::SEED.kernel(), 1e-4, None);
+        assert_eq!(
+            core.blend([0.0, 0.0], &[f32::NAN, 1.0]),
+            Err(MetaballError::NonFinite {
+                what: "attribute",
+                index: 0
+            })
+        );
+        // The far ball does not reach the origin: its attribute is not read.
+        assert_eq!(core.blend([0.0, 0.0], &[4.0, f32::INFINITY]), Ok(Some(4.0)));
+        // Nothing reaches here: nothing is read.
+        assert_eq!(core.blend([50.0, 0.0], &[f32::NAN, f32::NAN]), Ok(None));
+    }
+
+    /// Finite attributes within rounding of `f32::MAX` can still overflow: a typed error, never
+    /// an infinity.
+    #[test]
+    fn blend_of_huge_finite_attributes_overflows_to_an_error() {
+        let balls = vec![([0.0f32, 0.0], 1.0f32, 0u32); 10];
+        let core = Core::<2>::build(&balls, Falloff::SEED.kernel(), 1e-4, None);
+        // Each weight is 0.1 rounded up in f32 (0.10000000149), and the ten terms, rounded as
+        // they are added, pass f32::MAX.
+        assert_eq!(
+            core.blend([0.0, 0.0], &[f32::MAX; 10]),
+            Err(MetaballError::BlendOverflow { blended: 10 })
+        );
+        let half = core
+            .blend([0.0, 0.0], &[f32::MAX / 2.0; 10])
+            .unwrap()
+            .unwrap();
+        assert!(half.is_finite());
     }
 }

@@ -249,6 +249,18 @@ pub fn bad_falloff() -> impl Strategy<Value = Falloff> {
     ]
 }
 
+/// A culling epsilon every field rejects: not finite, or outside
+/// [`EPSILON_RANGE`](crate::EPSILON_RANGE).
+pub fn bad_epsilon() -> impl Strategy<Value = f32> {
+    prop_oneof![
+        non_finite_f32(),
+        Just(0.0f32),
+        -1.0f32..0.0,
+        Just(1e-13f32),
+        0.11f32..10.0,
+    ]
+}
+
 /// A multiplier outside `[1, 1.6]` (or not finite).
 pub fn bad_multiplier() -> impl Strategy<Value = f32> {
     prop_oneof![non_finite_f32(), -10.0f32..0.999, 1.601f32..10.0]

@@ -424,3 +424,103 @@ fn interior_joints_leave_no_double_ball() {
         assert!(field.contains(Vec2::new(0.0, i as f32)), "gap at y = {i}");
     }
 }
+
+/// Regression: an overflowing sum read as 0, so with the sharpest accepted falloff (peak
+/// `e^80`) and thousands of coincident balls the point deep inside read as outside.
+#[test]
+fn a_pile_of_steep_balls_still_reads_inside() {
+    let steep = Falloff::Exponential { blobbiness: -80.0 };
+    let centre = Vec2::new(-7.0, 11.0);
+    let balls = vec![Ball2::new(centre, 2.0, 4); 10_000];
+    let field = Field2::new(&balls, steep).unwrap();
+    assert_eq!(field.value(centre), f32::MAX);
+    assert_eq!(field.value_exact(centre), f32::MAX);
+    assert!(field.contains(centre));
+    let (v, g) = field.value_and_gradient(centre + Vec2::new(0.0, 0.3));
+    assert!(v >= ISO_LEVEL && v.is_finite());
+    assert!(g.is_finite() && g.y < 0.0, "{g}");
+    assert_eq!(
+        field.shares(centre, 4).as_slice(),
+        &[creature_metaball::Share { id: 4, weight: 1.0 }]
+    );
+    let colour = vec![Vec3::new(0.1, 0.5, 0.9); balls.len()];
+    let blended = field.blend(centre, &colour).unwrap().unwrap();
+    assert_abs_diff_eq!(blended, colour[0], epsilon = 1e-3);
+    let samples = field.sample_grid(centre - Vec2::ONE, 1.0, 3, 3).unwrap();
+    assert_eq!(samples[4], f32::MAX);
+
+    let balls3 = vec![Ball3::new(centre.extend(1.0), 2.0, 4); 10_000];
+    let field3 = Field3::new(&balls3, steep).unwrap();
+    assert!(field3.contains(centre.extend(1.0)));
+}
+
+/// Regression: `blend` passed NaN and infinite attributes straight into its result.
+#[test]
+fn blend_reports_non_finite_attributes_as_errors() {
+    let balls = [
+        Ball2::new(Vec2::ZERO, 5.0, 0),
+        Ball2::new(Vec2::new(6.0, 0.0), 5.0, 1),
+        Ball2::new(Vec2::new(500.0, 0.0), 5.0, 2),
+    ];
+    let field = Field2::new(&balls, Falloff::SEED).unwrap();
+    let nan_near = [Vec4::ONE, Vec4::new(0.0, f32::NAN, 0.0, 0.0), Vec4::ONE];
+    assert_eq!(
+        field.blend(Vec2::new(3.0, 0.0), &nan_near),
+        Err(MetaballError::NonFinite {
+            what: "attribute",
+            index: 1
+        })
+    );
+    // A bad attribute of a ball that does not reach the point is never read…
+    let inf_far = [1.0, 3.0, f32::INFINITY];
+    let mid = field.blend(Vec2::new(3.0, 0.0), &inf_far).unwrap().unwrap();
+    assert_abs_diff_eq!(mid, 2.0, epsilon = 1e-5);
+    // …and the whole-list validator finds it.
+    assert_eq!(
+        field.validate_attributes(&inf_far),
+        Err(MetaballError::NonFinite {
+            what: "attribute",
+            index: 2
+        })
+    );
+    assert!(field.validate_attributes(&[1.0, 2.0, 3.0]).is_ok());
+    assert!(matches!(
+        field.validate_attributes(&[1.0]),
+        Err(MetaballError::WrongLength { .. })
+    ));
+    // Finite attributes at the edge of f32 overflow into a typed error, not an infinity.
+    let huge = Field2::new(&[Ball2::new(Vec2::ZERO, 1.0, 0); 10], Falloff::SEED).unwrap();
+    assert_eq!(
+        huge.blend(Vec2::ZERO, &[f32::MAX; 10]),
+        Err(MetaballError::BlendOverflow { blended: 10 })
+    );
+}
+
+/// Regression: `iso_radius` / `cutoff_radius` returned ∞ for Blinn with sharpness 0, NaN for an
+/// exponential blobbiness of 0, and NaN for a NaN radius.
+#[test]
+fn falloff_radii_are_never_nan_or_infinite() {
+    let flat_blinn = Falloff::Blinn {
+        strength: 2.0,
+        sharpness: 0.0,
+    };
+    let flat_exp = Falloff::Exponential { blobbiness: 0.0 };
+    assert_eq!(flat_blinn.iso_radius(5.0), 0.0);
+    assert!(flat_blinn.try_iso_radius(5.0).is_err());
+    assert_eq!(flat_exp.cutoff_radius(5.0, 1e-4), 0.0);
+    assert!(flat_exp.try_cutoff_radius(5.0, 1e-4).is_err());
+    assert_eq!(Falloff::SEED.iso_radius(f32::NAN), 0.0);
+    assert_eq!(Falloff::SEED.cutoff_radius(f32::NAN, 1e-4), 0.0);
+    assert!(matches!(
+        Falloff::SEED.try_cutoff_radius(5.0, 2.0),
+        Err(MetaballError::OutOfRange {
+            what: "epsilon",
+            ..
+        })
+    ));
+    assert_abs_diff_eq!(
+        Falloff::BLINN.try_iso_radius(5.0).unwrap(),
+        5.0 * 2.0f32.ln().sqrt(),
+        epsilon = 1e-5
+    );
+}

@@ -2,8 +2,8 @@
 
 use creature_metaball::glam::Vec2;
 use creature_metaball::{
-    CoverOptions, Falloff, Field2, Field3, FieldOptions, ISO_LEVEL, MetaballError, SEED_SPACING,
-    cover_radius_factor, cover_segment_with, strategies,
+    Ball2, CoverOptions, Falloff, Field2, Field3, FieldOptions, ISO_LEVEL, MetaballError,
+    SEED_SPACING, cover_radius_factor, cover_segment_with, strategies,
 };
 use proptest::prelude::*;
 use proptest::test_runner::FileFailurePersistence;
@@ -327,5 +327,58 @@ proptest! {
         let r = falloff.iso_radius(ball.radius);
         let p = ball.center + Vec2::from_angle(angle) * r;
         prop_assert!((field.value(p) - ISO_LEVEL).abs() < 1e-4, "{}", field.value(p));
+    }
+
+    #[test]
+    fn radii_are_finite_and_rejected_inputs_are_typed_errors(
+        falloff in prop_oneof![strategies::falloff(), strategies::bad_falloff()],
+        radius in prop_oneof![1e-3f32..1e3, strategies::bad_radius()],
+        epsilon in prop_oneof![1e-10f32..0.05, strategies::bad_epsilon()],
+    ) {
+        let iso = falloff.iso_radius(radius);
+        let cutoff = falloff.cutoff_radius(radius, epsilon);
+        prop_assert!(iso.is_finite() && iso >= 0.0, "{}", iso);
+        prop_assert!(cutoff.is_finite() && cutoff >= 0.0, "{}", cutoff);
+        prop_assert!(falloff.peak().is_finite());
+        let ball_ok = Ball2::new(Vec2::ZERO, radius, 0).validate().is_ok();
+        let options_ok = FieldOptions::DEFAULT.with_falloff(falloff).with_epsilon(epsilon).validate().is_ok();
+        match falloff.try_iso_radius(radius) {
+            Ok(r) => prop_assert_eq!(r, iso),
+            Err(_) => {
+                prop_assert!(falloff.validate().is_err() || !ball_ok);
+                prop_assert_eq!(iso, 0.0);
+            }
+        }
+        prop_assert_eq!(falloff.try_iso_radius(radius).is_ok(), falloff.validate().is_ok() && ball_ok);
+        match falloff.try_cutoff_radius(radius, epsilon) {
+            Ok(r) => prop_assert_eq!(r, cutoff),
+            Err(_) => prop_assert_eq!(cutoff, 0.0),
+        }
+        prop_assert_eq!(falloff.try_cutoff_radius(radius, epsilon).is_ok(), options_ok && ball_ok);
+    }
+
+    #[test]
+    fn blend_never_returns_a_non_finite_value(
+        field in strategies::field2(),
+        p in strategies::vec2_in(120.0),
+        seed in proptest::collection::vec(
+            prop_oneof![4 => -1e3f32..1e3, 1 => strategies::non_finite_f32()],
+            64,
+        ),
+    ) {
+        let attributes: Vec<f32> = (0..field.ball_count()).map(|i| seed[i % seed.len()]).collect();
+        let all_finite = attributes.iter().all(|a| a.is_finite());
+        prop_assert_eq!(field.validate_attributes(&attributes).is_ok(), all_finite);
+        match field.blend(p, &attributes) {
+            Ok(Some(v)) => prop_assert!(v.is_finite()),
+            Ok(None) => prop_assert_eq!(field.value(p), 0.0),
+            Err(MetaballError::NonFinite { what: "attribute", index }) => {
+                prop_assert!(!attributes[index].is_finite());
+            }
+            Err(e) => prop_assert!(false, "unexpected {}", e),
+        }
+        if all_finite {
+            prop_assert!(field.blend(p, &attributes).is_ok());
+        }
     }
 }

@@ -31,15 +31,24 @@ tasks:
   clippy       cargo clippy (default and all features, all targets) with -D warnings
   test         cargo test --workspace --all-features (unit, integration, property, doc tests)
   doc          cargo doc --workspace --no-deps with RUSTDOCFLAGS=-D warnings
+  libm         clippy and tests of every micro-crate with only its `libm` feature (the
+               configuration no_std users get; `test` runs with std, which wins over libm)
   no-std       build every micro-crate without std (thumbv7em-none-eabihf, or a host
                no_std staticlib when that target cannot be installed)
   package      cargo package --workspace: every publishable crate packages and builds alone
   bench-build  cargo bench --workspace --no-run: benches keep compiling
   tidy         project rules: README and CHANGELOG per crate, no #[should_panic]
+  sweep        10,000 seeds of `creature::generate_2d` in release, every creature checked
+  gltf         generate a few creatures with the `generate` example and verify their .glb
 
 not part of ci:
   bless        regenerate golden files: runs every crate's `tests/golden.rs` with
                CREATURE_BLESS=1 (review the diff, and add a CHANGELOG line)
+  verify-gltf DIR
+               run the Khronos glTF-Validator (installed from npm into
+               target/gltf-validator) on every .glb under DIR; fails on any error or
+               warning, and when node or npm is missing
+  gallery      render 16 creatures (seeds 0-15) into creature/gallery.png
 
 environment:
   CREATURE_NO_STD_FALLBACK=1   skip the embedded target and use the host staticlib check
@@ -47,11 +56,14 @@ environment:
 
 type Task = fn(&Workspace) -> Result<(), String>;
 
-const TASKS: [(&str, Task); 8] = [
+const TASKS: [(&str, Task); 11] = [
     ("tidy", tidy),
     ("fmt", fmt),
     ("clippy", clippy),
     ("test", test),
+    ("libm", libm),
+    ("sweep", sweep),
+    ("gltf", gltf),
     ("doc", doc),
     ("no-std", no_std),
     ("package", package),
@@ -74,6 +86,14 @@ fn main() -> ExitCode {
     let result = match task.as_str() {
         "ci" => ci(&workspace),
         "bless" => step("bless", bless, &workspace),
+        "gallery" => step("gallery", gallery, &workspace),
+        "verify-gltf" => match args.get(1) {
+            Some(dir) => {
+                let dir = PathBuf::from(dir);
+                step("verify-gltf", |w| verify_gltf(w, &dir), &workspace)
+            }
+            None => Err(format!("verify-gltf needs a folder\n\n{USAGE}")),
+        },
         "-h" | "--help" | "help" => {
             print!("{USAGE}");
             Ok(())
@@ -105,7 +125,11 @@ fn ci(workspace: &Workspace) -> Result<(), String> {
     Ok(())
 }
 
-fn step(name: &str, run: Task, workspace: &Workspace) -> Result<(), String> {
+fn step(
+    name: &str,
+    run: impl FnOnce(&Workspace) -> Result<(), String>,
+    workspace: &Workspace,
+) -> Result<(), String> {
     println!("\n==> xtask {name}");
     let start = Instant::now();
     run(workspace).map_err(|e| format!("step `{name}`: {e}"))?;
@@ -120,6 +144,8 @@ fn step(name: &str, run: Task, workspace: &Workspace) -> Result<(), String> {
 struct Workspace {
     root: PathBuf,
     micro_crates: Vec<&'static str>,
+    /// Whether `creature/` (the facade) is a member.
+    facade: bool,
 }
 
 impl Workspace {
@@ -138,13 +164,37 @@ impl Workspace {
             .into_iter()
             .filter(|name| members.iter().any(|m| m == name))
             .collect();
-        Ok(Self { root, micro_crates })
+        let facade = members.iter().any(|m| m == "creature");
+        Ok(Self {
+            root,
+            micro_crates,
+            facade,
+        })
     }
 
     fn cargo(&self) -> Command {
         let mut command = Command::new(env::var("CARGO").unwrap_or_else(|_| "cargo".into()));
         command.current_dir(&self.root);
         command
+    }
+
+    /// Whether the facade crate `creature` is a workspace member.
+    fn has_facade(&self) -> bool {
+        self.facade
+    }
+
+    /// Packages that must build without `std`: every micro-crate, and the facade (whose
+    /// generators need `std`, but whose data types, skeletons and textures do not).
+    fn no_std_packages(&self) -> Vec<String> {
+        let mut out: Vec<String> = self
+            .micro_crates
+            .iter()
+            .map(|name| format!("creature-{name}"))
+            .collect();
+        if self.facade {
+            out.push("creature".to_string());
+        }
+        out
     }
 
     /// Folders of every publishable member (the micro-crates and the facade, when present).
@@ -154,9 +204,8 @@ impl Workspace {
             .iter()
             .map(|c| self.root.join(c))
             .collect();
-        let facade = self.root.join("creature");
-        if facade.join("Cargo.toml").exists() {
-            out.push(facade);
+        if self.facade {
+            out.push(self.root.join("creature"));
         }
         out
     }
@@ -233,6 +282,34 @@ fn test(w: &Workspace) -> Result<(), String> {
     run(c)
 }
 
+/// The micro-crates with `--no-default-features --features libm`: clippy on the libraries and
+/// their tests, then the unit and integration tests (property tests need `std` and are skipped
+/// by their `required-features`). This is the only run where the `libm` math backends execute.
+fn libm(w: &Workspace) -> Result<(), String> {
+    if w.micro_crates.is_empty() {
+        return Ok(());
+    }
+    let mut packages = Vec::new();
+    let mut features = Vec::new();
+    for name in &w.micro_crates {
+        packages.push("-p".to_string());
+        packages.push(format!("creature-{name}"));
+        features.push(format!("creature-{name}/libm"));
+    }
+    let features = features.join(",");
+    let mut c = w.cargo();
+    c.args(["clippy", "--locked", "--lib", "--tests"]);
+    c.args(&packages);
+    c.args(["--no-default-features", "--features", &features]);
+    c.args(["--", "-D", "warnings"]);
+    run(c)?;
+    let mut c = w.cargo();
+    c.args(["test", "--locked", "--lib", "--tests"]);
+    c.args(&packages);
+    c.args(["--no-default-features", "--features", &features]);
+    run(c)
+}
+
 fn doc(w: &Workspace) -> Result<(), String> {
     let mut c = w.cargo();
     c.args([
@@ -293,14 +370,20 @@ fn no_std(w: &Workspace) -> Result<(), String> {
     };
     if target_ready {
         println!("no_std check: building for {NO_STD_TARGET}");
-        for name in &w.micro_crates {
-            let mut c = w.cargo();
-            c.args(["build", "--locked", "-p", &format!("creature-{name}")]);
-            c.args(["--no-default-features", "--features", "libm"]);
-            c.args(["--target", NO_STD_TARGET]);
-            run(c)?;
+        let packages = w.no_std_packages();
+        let mut c = w.cargo();
+        c.args(["build", "--locked"]);
+        for package in &packages {
+            c.args(["-p", package]);
         }
-        println!("no_std check: ran the {NO_STD_TARGET} build");
+        let features: Vec<String> = packages.iter().map(|p| format!("{p}/libm")).collect();
+        c.args(["--no-default-features", "--features", &features.join(",")]);
+        c.args(["--target", NO_STD_TARGET]);
+        run(c)?;
+        println!(
+            "no_std check: ran the {NO_STD_TARGET} build ({} crates)",
+            packages.len()
+        );
         Ok(())
     } else {
         no_std_fallback(w)
@@ -322,14 +405,15 @@ fn no_std_fallback(w: &Workspace) -> Result<(), String> {
     );
     let mut source =
         String::from("//! Generated by `cargo xtask no-std`.\n#![no_std]\n\nextern crate alloc;\n");
-    for name in &w.micro_crates {
-        let path = w.root.join(name);
+    for package in w.no_std_packages() {
+        let folder = package.strip_prefix("creature-").unwrap_or("creature");
+        let path = w.root.join(folder);
         let _ = writeln!(
             manifest,
-            "creature-{name} = {{ path = {:?}, default-features = false, features = [\"libm\"] }}",
+            "{package} = {{ path = {:?}, default-features = false, features = [\"libm\"] }}",
             path.to_string_lossy()
         );
-        let _ = writeln!(source, "extern crate creature_{name};");
+        let _ = writeln!(source, "extern crate {};", package.replace('-', "_"));
     }
     source.push_str(
         "\nstruct NoAlloc;\n\n\
@@ -362,7 +446,7 @@ fn no_std_fallback(w: &Workspace) -> Result<(), String> {
     })?;
     println!(
         "no_std check: ran the host staticlib fallback ({} crates)",
-        w.micro_crates.len()
+        w.no_std_packages().len()
     );
     Ok(())
 }
@@ -396,6 +480,17 @@ fn bless(w: &Workspace) -> Result<(), String> {
 
 fn tidy(w: &Workspace) -> Result<(), String> {
     let mut problems = Vec::new();
+    let manifest = fs::read_to_string(w.root.join("Cargo.toml"))
+        .map_err(|e| format!("cannot read the root Cargo.toml: {e}"))?;
+    // Internal crates in [workspace.dependencies] carry a version, so publishing resolves them.
+    for line in manifest.lines() {
+        let line = line.trim();
+        if line.starts_with("creature") && line.contains("path =") && !line.contains("version =") {
+            problems.push(format!(
+                "root Cargo.toml: `{line}` needs a `version` next to its `path`"
+            ));
+        }
+    }
     for dir in w.publishable() {
         for file in ["README.md", "CHANGELOG.md"] {
             if !dir.join(file).exists() {
@@ -403,9 +498,22 @@ fn tidy(w: &Workspace) -> Result<(), String> {
             }
         }
         let mut sources = Vec::new();
-        for sub in ["src", "tests"] {
-            collect_rust_files(&dir.join(sub), &mut sources);
+        collect_rust_files(&dir.join("src"), &mut sources);
+        for path in &sources {
+            let text = fs::read_to_string(path).unwrap_or_default();
+            let documented = if path.ends_with("lib.rs") {
+                text.contains("#![doc")
+            } else {
+                text.trim_start().starts_with("//!")
+            };
+            if !documented {
+                problems.push(format!(
+                    "{}: start the module with a `//!` doc comment saying what it holds",
+                    path.display()
+                ));
+            }
         }
+        collect_rust_files(&dir.join("tests"), &mut sources);
         for path in sources {
             let text = fs::read_to_string(&path).unwrap_or_default();
             if text.contains(concat!("#[should", "_panic")) {
@@ -434,6 +542,167 @@ fn collect_rust_files(dir: &Path, out: &mut Vec<PathBuf>) {
         if path.is_dir() {
             collect_rust_files(&path, out);
         } else if path.extension().is_some_and(|e| e == "rs") {
+            out.push(path);
+        }
+    }
+}
+
+/// The sweep: `creature`'s `tests/sweep.rs` over 10,000 seeds, in release (a debug build would
+/// take minutes); it prints the counts.
+fn sweep(w: &Workspace) -> Result<(), String> {
+    if !w.has_facade() {
+        println!("sweep: skipped, the facade `creature` is not a workspace member");
+        return Ok(());
+    }
+    let mut c = w.cargo();
+    c.args([
+        "test",
+        "--release",
+        "--locked",
+        "-p",
+        "creature",
+        "--test",
+        "sweep",
+        "--",
+        "--nocapture",
+    ]);
+    c.env("CREATURE_SWEEP_SEEDS", "10000");
+    run(c)
+}
+
+/// Freshly generated `.glb` files through the Khronos validator.
+fn gltf(w: &Workspace) -> Result<(), String> {
+    if !w.has_facade() {
+        println!("gltf: skipped, the facade `creature` is not a workspace member");
+        return Ok(());
+    }
+    let dir = w.root.join("target").join("ci-gltf");
+    for seed in ["0", "7", "42", "1234"] {
+        let out = dir.join(format!("seed-{seed}"));
+        let mut c = w.cargo();
+        c.args([
+            "run",
+            "--release",
+            "--locked",
+            "-p",
+            "creature",
+            "--features",
+            "export",
+            "--example",
+            "generate",
+            "--",
+            "--dim",
+            "2d",
+            "--seed",
+            seed,
+            "--out",
+        ]);
+        c.arg(&out);
+        run(c)?;
+    }
+    verify_gltf(w, &dir)
+}
+
+/// The 16-creature gallery of the root README.
+fn gallery(w: &Workspace) -> Result<(), String> {
+    let mut c = w.cargo();
+    c.args([
+        "run",
+        "--release",
+        "--locked",
+        "-p",
+        "creature",
+        "--features",
+        "export",
+        "--example",
+        "gallery",
+        "--",
+    ]);
+    c.arg(w.root.join("creature").join("gallery.png"));
+    run(c)
+}
+
+/// The pinned validator release on npm.
+const GLTF_VALIDATOR: &str = "gltf-validator@2.0.0-dev.3.10";
+
+const VALIDATE_JS: &str = r#"// Generated by `cargo xtask verify-gltf`.
+const fs = require('fs');
+const validator = require('gltf-validator');
+(async () => {
+  let bad = 0;
+  for (const file of process.argv.slice(2)) {
+    const report = await validator.validateBytes(new Uint8Array(fs.readFileSync(file)), {
+      uri: file,
+      maxIssues: 200,
+    });
+    const i = report.issues;
+    console.log(`${file}: ${i.numErrors} errors, ${i.numWarnings} warnings, ${i.numInfos} infos, ${i.numHints} hints`);
+    for (const m of i.messages) {
+      if (m.severity <= 1) {
+        console.log(`  ${m.severity === 0 ? 'error' : 'warning'} ${m.code}: ${m.message} ${m.pointer || ''}`);
+      }
+    }
+    if (i.numErrors > 0 || i.numWarnings > 0) bad++;
+  }
+  process.exit(bad ? 1 : 0);
+})().catch((e) => {
+  console.error(e);
+  process.exit(2);
+});
+"#;
+
+/// Runs the Khronos glTF-Validator on every `.glb` under `dir`; any error or warning fails.
+fn verify_gltf(w: &Workspace, dir: &Path) -> Result<(), String> {
+    for tool in ["node", "npm"] {
+        match Command::new(tool).arg("--version").output() {
+            Ok(o) if o.status.success() => {}
+            _ => {
+                return Err(format!(
+                    "`{tool}` was not found: verify-gltf needs node and npm to run the Khronos \
+                     glTF-Validator (install Node.js)"
+                ));
+            }
+        }
+    }
+    let mut files = Vec::new();
+    collect_files(dir, "glb", &mut files);
+    if files.is_empty() {
+        return Err(format!("no .glb files under {}", dir.display()));
+    }
+    let cache = w.root.join("target").join("gltf-validator");
+    if !cache.join("node_modules").join("gltf-validator").exists() {
+        fs::create_dir_all(&cache).map_err(|e| format!("cannot create {cache:?}: {e}"))?;
+        let mut c = Command::new("npm");
+        c.args([
+            "install",
+            "--no-save",
+            "--no-audit",
+            "--no-fund",
+            "--prefix",
+        ]);
+        c.arg(&cache).arg(GLTF_VALIDATOR);
+        run(c)?;
+    }
+    let script = cache.join("validate.js");
+    fs::write(&script, VALIDATE_JS).map_err(|e| format!("cannot write {script:?}: {e}"))?;
+    let mut c = Command::new("node");
+    c.arg(&script).args(&files);
+    c.env("NODE_PATH", cache.join("node_modules"));
+    run(c).map_err(|e| format!("{e}: the validator reported errors or warnings"))?;
+    println!("verify-gltf: {} files, 0 errors, 0 warnings", files.len());
+    Ok(())
+}
+
+fn collect_files(dir: &Path, extension: &str, out: &mut Vec<PathBuf>) {
+    let Ok(entries) = fs::read_dir(dir) else {
+        return;
+    };
+    let mut entries: Vec<PathBuf> = entries.filter_map(|e| e.ok().map(|e| e.path())).collect();
+    entries.sort();
+    for path in entries {
+        if path.is_dir() {
+            collect_files(&path, extension, out);
+        } else if path.extension().is_some_and(|e| e == extension) {
             out.push(path);
         }
     }

@@ -421,7 +421,7 @@ impl Lattice {
         if !self.deformed {
             return;
         }
-        const BATCH: usize = 4;
+        const BATCH: usize = 8;
         let mut chunks = points.chunks_exact_mut(BATCH);
         for chunk in &mut chunks {
             let mut locals = [Vec3::ZERO; BATCH];
@@ -494,6 +494,33 @@ impl Lattice {
         let row = l + 1;
         let layer = row * (m + 1);
         let mut out = [Vec3A::ZERO; N];
+        if l == 2 && m == 2 && n < SMALL_DEPTH {
+            // The body lattice's 3×3 cross-sections, with every size known at compile time.
+            let mut bu = [[0.0f32; SMALL_DEPTH]; N];
+            let mut weights = [[Vec3A::ZERO; 9]; N];
+            for q in 0..N {
+                let bs = quadratic_basis(locals[q].x);
+                let bt = quadratic_basis(locals[q].y);
+                self.binomials[2].eval(locals[q].z, &mut bu[q]);
+                for j in 0..3 {
+                    for i in 0..3 {
+                        weights[q][j * 3 + i] = Vec3A::splat(bt[j] * bs[i]);
+                    }
+                }
+            }
+            for (k, layer_offsets) in self.offsets.chunks_exact(9).enumerate().take(n + 1) {
+                let mut sums = [Vec3A::ZERO; N];
+                for (c, d) in layer_offsets.iter().enumerate() {
+                    for q in 0..N {
+                        sums[q] += *d * weights[q][c];
+                    }
+                }
+                for q in 0..N {
+                    out[q] += sums[q] * bu[q][k];
+                }
+            }
+            return out;
+        }
         if layer <= SMALL_LAYER && n < SMALL_DEPTH {
             // Common case (the body's 3×3 cross-sections): weigh each layer with the products
             // B_i(s) B_j(t), splatted once and reused by every layer, then sum the layers with
@@ -596,6 +623,14 @@ impl Lattice {
             self.deformed = true;
         }
     }
+}
+
+/// The degree-2 Bernstein basis `[(1 − x)², 2x(1 − x), x²]`, with the same operations in the
+/// same order as the general evaluation, so it gives the same bits.
+#[inline]
+fn quadratic_basis(x: f32) -> [f32; 3] {
+    let y = 1.0 - x;
+    [y * y, 2.0 * x * y, x * x]
 }
 
 /// Whether local coordinates lie in the closed unit cube.
@@ -856,5 +891,20 @@ mod tests {
             .unwrap();
         assert_eq!(lattice.deform(Vec3::ONE), Vec3::splat(1.5));
         assert_eq!(lattice.deform(Vec3::ZERO), Vec3::ZERO);
+    }
+
+    #[test]
+    fn quadratic_basis_matches_the_general_evaluation_bit_for_bit() {
+        let general = crate::bernstein::Binomials::new(2);
+        for step in -20..=40 {
+            let x = step as f32 * 0.037;
+            let mut out = [0.0f32; 3];
+            general.eval(x, &mut out);
+            assert_eq!(
+                quadratic_basis(x).map(f32::to_bits),
+                out.map(f32::to_bits),
+                "x = {x}"
+            );
+        }
     }
 }

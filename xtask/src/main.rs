@@ -579,46 +579,34 @@ fn gltf(w: &Workspace) -> Result<(), String> {
     let dir = w.root.join("target").join("ci-gltf");
     for seed in ["0", "7", "42", "1234"] {
         let out = dir.join(format!("seed-{seed}"));
-        let mut c = w.cargo();
-        c.args([
-            "run",
-            "--release",
-            "--locked",
-            "-p",
-            "creature",
-            "--features",
-            "export",
-            "--example",
-            "generate",
-            "--",
-            "--dim",
-            "2d",
-            "--seed",
-            seed,
-            "--out",
-        ]);
+        let mut c = example(w, "generate");
+        c.args(["--dim", "2d", "--seed", seed, "--out"]);
         c.arg(&out);
         run(c)?;
     }
+    // Eight 3D creatures of random kinds (walkers, fliers, swimmers, with their clips).
+    let mut c = example(w, "generate");
+    c.args(["--kind", "random", "--count", "8", "--seed", "100", "--out"]);
+    c.arg(dir.join("3d"));
+    run(c)?;
     verify_gltf(w, &dir)
 }
 
-/// The 16-creature gallery of the root README.
-fn gallery(w: &Workspace) -> Result<(), String> {
+/// `cargo run --release -p creature --features export --example NAME --`, arguments to follow.
+fn example(w: &Workspace, name: &str) -> Command {
     let mut c = w.cargo();
-    c.args([
-        "run",
-        "--release",
-        "--locked",
-        "-p",
-        "creature",
-        "--features",
-        "export",
-        "--example",
-        "gallery",
-        "--",
-    ]);
+    c.args(["run", "--release", "--locked", "-p", "creature"]);
+    c.args(["--features", "export", "--example", name, "--"]);
+    c
+}
+
+/// The galleries of the root README: 16 2D creatures, and 3D ones of every kind.
+fn gallery(w: &Workspace) -> Result<(), String> {
+    let mut c = example(w, "gallery");
     c.arg(w.root.join("creature").join("gallery.png"));
+    run(c)?;
+    let mut c = example(w, "gallery3d");
+    c.arg(w.root.join("creature").join("gallery3d.png"));
     run(c)
 }
 

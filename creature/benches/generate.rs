@@ -1,0 +1,108 @@
+//! `generate` (3D) per kind over 16 fixed seeds, and `generate_2d` end to end, without a texture and with a 256² texture and normal map, over
+//! 16 fixed seeds; and, as the reference in the same run, the texture rendered the seed's way
+//! (every ball's `exp` at every pixel, field sum and colour blend, no culling).
+
+#![allow(clippy::expect_used)]
+
+use core::hint::black_box;
+
+use creature::glam::Vec2;
+use creature::metaball::{Ball2, Falloff};
+use creature::{Kind, Params, Params2d, generate, generate_2d};
+use criterion::{Criterion, criterion_group, criterion_main};
+
+const SEEDS: u64 = 16;
+
+fn bench(c: &mut Criterion) {
+    let mut group = c.benchmark_group("generate_2d");
+    let plain = Params2d::DEFAULT.with_texture(false);
+    let textured = Params2d::DEFAULT;
+    group.bench_function("no_texture_per_creature", |b| {
+        let mut seed = 0;
+        b.iter(|| {
+            seed = (seed + 1) % SEEDS;
+            black_box(generate_2d(black_box(seed), &plain).expect("valid"))
+        });
+    });
+    group.bench_function("texture_256_per_creature", |b| {
+        let mut seed = 0;
+        b.iter(|| {
+            seed = (seed + 1) % SEEDS;
+            black_box(generate_2d(black_box(seed), &textured).expect("valid"))
+        });
+    });
+    // Reference: the seed's texture pass, every ball at every pixel (value + colour blend),
+    // on creature 7.
+    let creature = generate_2d(7, &plain).expect("valid");
+    let balls: Vec<Ball2> = creature.balls.iter().map(|b| b.ball).collect();
+    let colours: Vec<creature::glam::Vec3> = creature.balls.iter().map(|b| b.colour).collect();
+    let (min, max) = creature.bounds;
+    group.sample_size(10);
+    group.bench_function("reference_texture_256_all_balls", |b| {
+        b.iter(|| {
+            let mut acc = 0.0f32;
+            for row in 0..256 {
+                for col in 0..256 {
+                    let p = min
+                        + (max - min)
+                            * Vec2::new((col as f32 + 0.5) / 256.0, (row as f32 + 0.5) / 256.0);
+                    let mut sum = 0.0;
+                    let mut colour = creature::glam::Vec3::ZERO;
+                    for (ball, c) in balls.iter().zip(&colours) {
+                        let f = Falloff::SEED.evaluate(ball.center.distance(p), ball.radius);
+                        sum += f;
+                        colour += *c * f;
+                    }
+                    acc += sum + colour.x / sum.max(1e-9);
+                }
+            }
+            black_box(acc)
+        });
+    });
+    group.finish();
+}
+
+/// `generate` (3D) end to end per kind: body, FFD, rig, skin, bend, head, limbs, gait set-up.
+fn bench_3d(c: &mut Criterion) {
+    let mut group = c.benchmark_group("generate_3d");
+    for (name, kind) in [
+        ("walker_per_creature", Kind::Walker),
+        ("flier_per_creature", Kind::Flier),
+        ("swimmer_per_creature", Kind::Swimmer),
+    ] {
+        // As the issue defines it: everything but baking the clips.
+        let params = Params::DEFAULT.with_kind(kind).with_clips(false);
+        group.bench_function(name, |b| {
+            let mut seed = 0;
+            b.iter(|| {
+                seed = (seed + 1) % SEEDS;
+                black_box(generate(black_box(seed), &params).expect("valid"))
+            });
+        });
+    }
+    // Baking 2 s of walk (61 frames after a 1 s warm-up) for walker 7.
+    let walker = generate(
+        7,
+        &Params::DEFAULT.with_kind(Kind::Walker).with_clips(false),
+    )
+    .expect("valid");
+    group.bench_function("bake_walk_2s", |b| {
+        b.iter(|| black_box(walker.bake_walk(black_box(2.0)).expect("walker")));
+    });
+    // Every clip of a kind (walkers: idle 4 s, looping walk from 4 s, turn 4 s), creature 7.
+    for (name, kind) in [
+        ("bake_clips_walker", Kind::Walker),
+        ("bake_clips_flier", Kind::Flier),
+        ("bake_clips_swimmer", Kind::Swimmer),
+    ] {
+        let creature =
+            generate(7, &Params::DEFAULT.with_kind(kind).with_clips(false)).expect("valid");
+        group.bench_function(name, |b| {
+            b.iter(|| black_box(black_box(&creature).bake_clips().expect("clips")));
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, bench, bench_3d);
+criterion_main!(benches);

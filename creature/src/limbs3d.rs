@@ -1,0 +1,469 @@
+//! Procedural limb meshes skinned to their own bones: tapered two-segment tubes for legs and
+//! arms (two-bone IK with the plan's knee direction), thin membranes on bone chains for wings,
+//! fins and tails.
+
+use alloc::vec::Vec;
+use core::f32::consts::{PI, TAU};
+
+use glam::Vec3;
+
+use creature_gait::solve_two_bone;
+use creature_limbs::{Knee, Limb, LimbKind, Side, Socket};
+
+use crate::math::{cos, sin};
+use crate::types3d::{Joint3d, Part};
+
+/// A growing skinned mesh: positions, colours, triangles, four joints and weights per vertex.
+#[derive(Debug, Default)]
+pub(crate) struct MeshBuilder {
+    pub(crate) positions: Vec<Vec3>,
+    pub(crate) colours: Vec<Vec3>,
+    pub(crate) indices: Vec<[u32; 3]>,
+    pub(crate) joints: Vec<[u16; 4]>,
+    pub(crate) weights: Vec<[f32; 4]>,
+}
+
+/// One or two joints sharing a vertex: `(joint, weight)` pairs.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Bind {
+    joints: [u16; 4],
+    weights: [f32; 4],
+}
+
+impl Bind {
+    pub(crate) fn one(joint: u16) -> Self {
+        Self {
+            joints: [joint, 0, 0, 0],
+            weights: [1.0, 0.0, 0.0, 0.0],
+        }
+    }
+
+    pub(crate) fn two(a: u16, b: u16) -> Self {
+        if a == b {
+            return Self::one(a);
+        }
+        Self {
+            joints: [a, b, 0, 0],
+            weights: [0.5, 0.5, 0.0, 0.0],
+        }
+    }
+
+    pub(crate) fn from_arrays(joints: [u16; 4], weights: [f32; 4]) -> Self {
+        Self { joints, weights }
+    }
+}
+
+impl MeshBuilder {
+    pub(crate) fn vertex(&mut self, p: Vec3, colour: Vec3, bind: Bind) -> u32 {
+        let index = self.positions.len() as u32;
+        self.positions.push(p);
+        self.colours.push(colour);
+        self.joints.push(bind.joints);
+        self.weights.push(bind.weights);
+        index
+    }
+
+    /// A closed tube through `centres` with radii `radii` and one bind per ring, cross-sections
+    /// square to `axis` (one frame for the whole tube, so a vertical leg's foot ring is flat on
+    /// the ground), capped at both ends.
+    pub(crate) fn tube(
+        &mut self,
+        centres: &[Vec3],
+        radii: &[f32],
+        binds: &[Bind],
+        axis: Vec3,
+        sides: usize,
+        colour: Vec3,
+    ) {
+        let axis = axis.try_normalize().unwrap_or(Vec3::NEG_Y);
+        let e1 = axis.any_orthonormal_vector();
+        let e2 = axis.cross(e1);
+        let first = self.positions.len() as u32;
+        let rings = centres.len().min(radii.len()).min(binds.len());
+        if rings < 2 || sides < 3 {
+            return;
+        }
+        for ((&c, &r), &b) in centres.iter().zip(radii).zip(binds).take(rings) {
+            for j in 0..sides {
+                let a = TAU * j as f32 / sides as f32;
+                self.vertex(c + (e1 * cos(a) + e2 * sin(a)) * r, colour, b);
+            }
+        }
+        let v = |i: usize, j: usize| first + (i * sides + j % sides) as u32;
+        for i in 0..rings - 1 {
+            for j in 0..sides {
+                self.indices.push([v(i, j), v(i, j + 1), v(i + 1, j + 1)]);
+                self.indices.push([v(i, j), v(i + 1, j + 1), v(i + 1, j)]);
+            }
+        }
+        let start = self.vertex(centres[0], colour, binds[0]);
+        let end = self.vertex(centres[rings - 1], colour, binds[rings - 1]);
+        for j in 0..sides {
+            self.indices.push([start, v(0, j + 1), v(0, j)]);
+            self.indices
+                .push([end, v(rings - 1, j), v(rings - 1, j + 1)]);
+        }
+    }
+
+    /// A thin two-sided membrane from `origin` along `along` (length `length`), `width` wide
+    /// across `across`, on a chain of `chain.len()` joints evenly spaced along it.
+    pub(crate) fn membrane(&mut self, shape: Membrane, chain: &[u16], colour: Vec3) {
+        let Membrane {
+            origin,
+            along,
+            across,
+            length,
+            width,
+        } = shape;
+        let n = chain.len();
+        if n == 0 {
+            return;
+        }
+        let normal = along.cross(across).normalize_or_zero();
+        let thickness = 0.02 * length;
+        for (side, offset) in [
+            (1.0f32, normal * thickness * 0.5),
+            (-1.0, -normal * thickness * 0.5),
+        ] {
+            let first = self.positions.len() as u32;
+            for (k, &joint) in chain.iter().enumerate() {
+                let t = k as f32 / n as f32;
+                let half = 0.5 * width * (0.4 + 0.6 * sin(PI * t));
+                let centre = origin + offset + along * (length * t);
+                let bind = Bind::one(joint);
+                self.vertex(centre - across * half, colour, bind);
+                self.vertex(centre + across * half, colour, bind);
+            }
+            let tip = self.vertex(
+                origin + offset + along * length,
+                colour,
+                Bind::one(chain[n - 1]),
+            );
+            let v = |k: usize, plus: bool| first + (2 * k + usize::from(plus)) as u32;
+            let mut push = |t: [u32; 3]| {
+                if side > 0.0 {
+                    self.indices.push(t);
+                } else {
+                    self.indices.push([t[0], t[2], t[1]]);
+                }
+            };
+            for k in 0..n - 1 {
+                push([v(k, false), v(k + 1, false), v(k + 1, true)]);
+                push([v(k, false), v(k + 1, true), v(k, true)]);
+            }
+            push([v(n - 1, false), tip, v(n - 1, true)]);
+        }
+    }
+}
+
+/// A membrane's shape: from `origin` along `along` (unit) for `length`, `width` wide across
+/// `across` (unit, square to `along`).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Membrane {
+    pub(crate) origin: Vec3,
+    pub(crate) along: Vec3,
+    pub(crate) across: Vec3,
+    pub(crate) length: f32,
+    pub(crate) width: f32,
+}
+
+/// How limbs look: the plan's knee direction, tube sides, colour.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct LimbStyle {
+    pub(crate) knee: Option<Knee>,
+    pub(crate) sides: usize,
+    pub(crate) colour: Vec3,
+}
+
+/// Where a limb attaches: the socket's point on the bent, grounded body.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Mount {
+    /// The socket point.
+    pub(crate) point: Vec3,
+    /// The spine joint that carries it.
+    pub(crate) joint: usize,
+    /// The body's width there.
+    pub(crate) width: f32,
+    /// The spine's centre there (the socket joint's position): side limbs point away from it
+    /// along X, whatever side the socket was labelled.
+    pub(crate) centre: Vec3,
+}
+
+/// The outward direction of a side: +X for the creature's left, −X for its right.
+fn outward(side: Side) -> f32 {
+    match side {
+        Side::Left => 1.0,
+        Side::Right => -1.0,
+        Side::Center => 0.0,
+    }
+}
+
+/// A leg's two segments together are this many times its hip-to-foot distance, so the knee
+/// bends at rest and the gait's strides (up to about 0.7 of that distance behind the rest
+/// position, escape steps included) stay within reach.
+pub(crate) const KNEE_SLACK: f32 = 1.3;
+
+/// A two-bone leg or arm as built: hip, rest end (foot or hand), segment lengths, knee pole.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct LegChain {
+    /// The hip joint's index in the skeleton (the knee and foot follow it).
+    pub(crate) hip_joint: usize,
+    pub(crate) hip: Vec3,
+    pub(crate) end: Vec3,
+    pub(crate) upper: f32,
+    pub(crate) lower: f32,
+    pub(crate) pole: Vec3,
+}
+
+/// Adds one limb's joints (parent: the mount's joint) and its mesh; joints are appended to
+/// `joints`, with the limb's index in the plan in their part. Legs and arms return their chain.
+pub(crate) fn add_limb(
+    mesh: &mut MeshBuilder,
+    joints: &mut Vec<Joint3d>,
+    limb_index: usize,
+    limb: &Limb,
+    mount: Mount,
+    style: LimbStyle,
+) -> Option<LegChain> {
+    let LimbStyle {
+        knee,
+        sides,
+        colour,
+    } = style;
+    // Outward from the body: for side sockets, the side the socket really lies on (robust to
+    // a rigger that labels sides the other way); otherwise the plan's side.
+    let dx = mount.point.x - mount.centre.x;
+    let side_socket = matches!(limb.socket, Socket::Left | Socket::Right);
+    let out = match limb.side {
+        Side::Center => 0.0,
+        _ if side_socket && dx.abs() > 1e-6 => dx.signum(),
+        side => outward(side),
+    };
+    let length = limb.length.max(1e-4);
+    let base = joints.len();
+    let mut push_joint = |position: Vec3, parent: usize| -> u16 {
+        let index = joints.len();
+        joints.push(Joint3d {
+            position,
+            parent: Some(parent),
+            part: Part::Limb(limb_index),
+        });
+        index as u16
+    };
+    match limb.kind {
+        LimbKind::Leg | LimbKind::Arm => {
+            let hip = mount.point;
+            let end = match (limb.kind, limb.foot) {
+                (LimbKind::Leg, Some(foot)) => foot,
+                (LimbKind::Leg, None) => {
+                    // A flier's dangling leg: down and a little back.
+                    hip + Vec3::new(0.15 * out, -1.0, -0.35).normalize() * length
+                }
+                _ => hip + Vec3::new(0.2 * out, -0.5, 1.0).normalize() * length,
+            };
+            let pole = match (limb.kind, knee) {
+                (LimbKind::Arm, _) => Vec3::new(0.0, -1.0, -0.3),
+                (_, Some(Knee::Backward)) => Vec3::NEG_Z,
+                (_, Some(Knee::Sideways)) if out != 0.0 => Vec3::X * out,
+                _ => Vec3::Z,
+            };
+            let reach = hip.distance(end);
+            let segment = KNEE_SLACK * 0.5 * reach.max(1e-4);
+            let ik = solve_two_bone(hip, end, segment, segment, pole);
+            let hip_joint = push_joint(hip, mount.joint);
+            let knee_joint = push_joint(ik.middle, base);
+            let foot_joint = push_joint(ik.end, base + 1);
+            let r = (0.09 * length).min(0.2 * mount.width).max(1e-3);
+            mesh.tube(
+                &[hip, ik.middle, ik.end],
+                &[r, 0.7 * r, 0.55 * r],
+                &[
+                    Bind::one(hip_joint),
+                    Bind::two(hip_joint, knee_joint),
+                    // The foot ring on the foot joint: clips keep it level, flat on the ground.
+                    Bind::one(foot_joint),
+                ],
+                ik.end - hip,
+                sides,
+                colour,
+            );
+            Some(LegChain {
+                hip_joint: usize::from(hip_joint),
+                hip,
+                end: ik.end,
+                upper: segment,
+                lower: segment,
+                pole,
+            })
+        }
+        LimbKind::BuzzingWing | LimbKind::FlappingWing => {
+            let (along, bones, width) = if limb.kind == LimbKind::BuzzingWing {
+                (
+                    Vec3::new(out, 0.35, -0.25).normalize_or(Vec3::X),
+                    2,
+                    0.5 * limb.scale.z.max(0.2 * length),
+                )
+            } else {
+                (
+                    Vec3::new(out, 0.05, 0.0).normalize_or(Vec3::X),
+                    4,
+                    0.45 * length,
+                )
+            };
+            let across = (Vec3::Z - along * along.z).normalize_or(Vec3::Z);
+            let chain = chain_joints(&mut push_joint, mount, along, length, bones, base);
+            mesh.membrane(
+                Membrane {
+                    origin: mount.point,
+                    along,
+                    across,
+                    length,
+                    width,
+                },
+                &chain,
+                colour,
+            );
+            None
+        }
+        LimbKind::DorsalFin | LimbKind::PectoralFin | LimbKind::Tail => {
+            let (along, across, width, bones) = match limb.kind {
+                LimbKind::DorsalFin => (
+                    Vec3::new(0.0, 1.0, -0.5).normalize(),
+                    Vec3::Z,
+                    0.8 * limb.scale.z.max(0.3 * length),
+                    3,
+                ),
+                LimbKind::PectoralFin => (
+                    Vec3::new(out, -0.3, -0.3).normalize_or(Vec3::NEG_Y),
+                    Vec3::Z,
+                    0.6 * limb.scale.z.max(0.3 * length),
+                    3,
+                ),
+                _ => (
+                    Vec3::NEG_Z,
+                    Vec3::Y,
+                    0.9 * limb.scale.y.max(0.3 * length),
+                    4,
+                ),
+            };
+            let across = (across - along * along.dot(across)).normalize_or(Vec3::Y);
+            let chain = chain_joints(&mut push_joint, mount, along, length, bones, base);
+            mesh.membrane(
+                Membrane {
+                    origin: mount.point,
+                    along,
+                    across,
+                    length,
+                    width,
+                },
+                &chain,
+                colour,
+            );
+            None
+        }
+    }
+}
+
+/// `bones` joints evenly spaced from the mount along `along`, each the parent of the next.
+fn chain_joints(
+    push_joint: &mut impl FnMut(Vec3, usize) -> u16,
+    mount: Mount,
+    along: Vec3,
+    length: f32,
+    bones: usize,
+    base: usize,
+) -> Vec<u16> {
+    (0..bones)
+        .map(|k| {
+            let parent = if k == 0 { mount.joint } else { base + k - 1 };
+            push_joint(
+                mount.point + along * (length * k as f32 / bones as f32),
+                parent,
+            )
+        })
+        .collect()
+}
+
+/// The socket point a limb attaches to.
+pub(crate) fn socket_point(socket: Socket, left: Vec3, right: Vec3, top: Vec3, tip: Vec3) -> Vec3 {
+    match socket {
+        Socket::Left => left,
+        Socket::Right => right,
+        Socket::Top => top,
+        Socket::Tip => tip,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use creature_limbs::Span;
+
+    fn wing(side: Side) -> Limb {
+        Limb {
+            kind: LimbKind::FlappingWing,
+            variant: 0,
+            bone: 0,
+            socket: if side == Side::Left {
+                Socket::Left
+            } else {
+                Socket::Right
+            },
+            side,
+            mirror: None,
+            scale: Vec3::ONE,
+            length: 1.0,
+            foot: None,
+            span: Span {
+                start: 0.0,
+                end: 1.0,
+                first_bone: 0,
+                last_bone: 0,
+            },
+        }
+    }
+
+    fn build(limb: &Limb, point: Vec3) -> (MeshBuilder, Vec<Joint3d>) {
+        let mut mesh = MeshBuilder::default();
+        let mut joints = alloc::vec![Joint3d {
+            position: Vec3::ZERO,
+            parent: None,
+            part: Part::Spine,
+        }];
+        let mount = Mount {
+            point,
+            joint: 0,
+            width: 0.6,
+            centre: Vec3::ZERO,
+        };
+        let style = LimbStyle {
+            knee: None,
+            sides: 5,
+            colour: Vec3::ONE,
+        };
+        let chain = add_limb(&mut mesh, &mut joints, 0, limb, mount, style);
+        assert!(chain.is_none(), "wings have no leg chain");
+        (mesh, joints)
+    }
+
+    #[test]
+    fn wings_point_away_from_the_body_whatever_the_side_label() {
+        // Labelled left, on the left (+X): out along +X (within the membrane's thickness).
+        let (mesh, joints) = build(&wing(Side::Left), Vec3::new(0.3, 0.0, 0.0));
+        assert_eq!(joints.len(), 5, "a flapping wing has 4 bones");
+        assert!(mesh.positions.iter().all(|p| p.x >= 0.3 - 1e-3));
+        // Labelled left but lying on −X (a rigger with the other convention): still outward.
+        let (mesh, _) = build(&wing(Side::Left), Vec3::new(-0.3, 0.0, 0.0));
+        assert!(mesh.positions.iter().all(|p| p.x <= -0.3 + 1e-3));
+        // Every membrane triangle has area, and every vertex one full weight.
+        for t in &mesh.indices {
+            let [a, b, c] = t.map(|i| mesh.positions[i as usize]);
+            assert!((b - a).cross(c - a).length() > 1e-6);
+        }
+        assert!(
+            mesh.weights
+                .iter()
+                .all(|w| (w.iter().sum::<f32>() - 1.0).abs() < 1e-6)
+        );
+    }
+}

@@ -1,0 +1,354 @@
+//! Parameters of the 3D generator, with the 3D seed's values as defaults.
+
+use creature_limbs::PlanOptions;
+
+use crate::Error;
+use crate::params::{IntSpan, Span};
+
+/// Which kind of creature [`generate`](crate::generate) makes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+#[non_exhaustive]
+pub enum Kind {
+    /// Walks on legs (maybe with arms); always statically stable.
+    Walker,
+    /// Flies on buzzing or flapping wings, legs dangling.
+    Flier,
+    /// Swims with dorsal fins, pectoral fins and a tail.
+    Swimmer,
+    /// One of the three, drawn from the seed (each with probability 1/3).
+    #[default]
+    Random,
+}
+
+/// Parameters of [`generate`](crate::generate): the random ranges of the 3D seed (thesis §4.1,
+/// "Procedural creature generation", Unity) as defaults, and the mesh resolution.
+///
+/// Lengths are in metres; the base pill is 2 long and about 0.7 across before the FFD and the
+/// body scale. Every range is drawn uniformly (`min + U·(max − min)`).
+///
+/// ```
+/// use creature::{Kind, Params, Span};
+///
+/// let params = Params::DEFAULT
+///     .with_kind(Kind::Walker)
+///     .with_body_scale(Span::new(1.0, 1.5));
+/// params.validate()?;
+/// assert!(Params::DEFAULT.with_body_scale(Span::new(2.0, 1.0)).validate().is_err());
+/// # Ok::<(), creature::Error>(())
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
+pub struct Params {
+    /// The creature kind. Default [`Kind::Random`].
+    pub kind: Kind,
+    /// How many of the nine body profiles are blended, with random weights. From 1 to 9.
+    /// Default 3 (the seed's).
+    pub profiles: u32,
+    /// Rings of the pill along the body (between its two tip vertices). From 4 to 64.
+    /// Default 16.
+    pub rings: u32,
+    /// Vertices around each ring. From 3 to 64. Default 10 (low poly).
+    pub segments: u32,
+    /// Sides of the limb tubes. From 3 to 32. Default 5.
+    pub limb_sides: u32,
+    /// Flat (per-face) normals, the seed's low-poly look: every triangle gets its own three
+    /// vertices. With `false` the mesh is shared and normals are smooth. Default `true`.
+    pub flat_normals: bool,
+    /// Scale of each FFD slice across the body (x) for walkers and fliers. From 0.1 to 10.
+    /// Default 0.7..1.4.
+    pub slice_width: Span,
+    /// Scale of each FFD slice in height (y) for walkers and fliers. From 0.1 to 10.
+    /// Default 0.7..1.4.
+    pub slice_height: Span,
+    /// Step from one FFD slice to the next along the body (z), as a fraction of the undeformed
+    /// step, for walkers and fliers: each slice is the previous one plus this (always positive),
+    /// so the body never folds. From 0.05 to 10. Default 0.7..1.5.
+    pub slice_step: Span,
+    /// Swimmers' slice width (narrower: fish are flat). From 0.1 to 10. Default 0.4..0.8.
+    pub swimmer_slice_width: Span,
+    /// Swimmers' slice height (taller). From 0.1 to 10. Default 1.0..1.8.
+    pub swimmer_slice_height: Span,
+    /// Swimmers' slice step (shorter). From 0.05 to 10. Default 0.6..1.1.
+    pub swimmer_slice_step: Span,
+    /// Uniform scale of the body. From 0.01 to 100. Default 0.5..2 (the seed's).
+    pub body_scale: Span,
+    /// Speed factor: the speed is the body scale times this (m/s); it is also the gait's speed
+    /// multiplier (above 1: longer, higher steps). From 0.01 to 10. Default 0.8..1.25.
+    pub speed_factor: Span,
+    /// Target spine bone length for the auto-rigger, in metres: longer bodies get more bones.
+    /// From 0.01 to 10. Default 0.25.
+    pub bone_length: f32,
+    /// Spine bones (bounds on the auto-rigger's count). From 5 to 60. Default 5..=24.
+    pub spine_bones: IntSpan,
+    /// Spine bend budget in degrees (walkers and fliers): the neck and the tail each bend by a
+    /// random per-bone angle of at most `spine_bend / bones`, and never more than half of this
+    /// in total. From 0 to 200. Default 200 (the seed's: neither passes 100°).
+    pub spine_bend: f32,
+    /// Head sphere radius, × half the body width at the second neck bone. From 0.1 to 10.
+    /// Default 0.9..1.3.
+    pub head_size: Span,
+    /// Height of the lowest body point above the ground, × body length (the seed's random
+    /// capsule collider height). From 0 to 10. Default 0.15..0.6.
+    pub ground_clearance: Span,
+    /// Options of the limb planner (`creature_limbs::plan`). Default
+    /// [`PlanOptions::DEFAULT`].
+    pub limbs: PlanOptions,
+    /// Bake the kind's animation clips into [`Creature::clips`](crate::Creature::clips)
+    /// (see [`Creature::bake_clips`](crate::Creature::bake_clips)). Default `true`; turn off
+    /// to generate faster and bake later, or never.
+    pub clips: bool,
+}
+
+impl Params {
+    /// The defaults listed on each field.
+    pub const DEFAULT: Self = Self {
+        kind: Kind::Random,
+        profiles: 3,
+        rings: 16,
+        segments: 10,
+        limb_sides: 5,
+        flat_normals: true,
+        slice_width: Span::new(0.7, 1.4),
+        slice_height: Span::new(0.7, 1.4),
+        slice_step: Span::new(0.7, 1.5),
+        swimmer_slice_width: Span::new(0.4, 0.8),
+        swimmer_slice_height: Span::new(1.0, 1.8),
+        swimmer_slice_step: Span::new(0.6, 1.1),
+        body_scale: Span::new(0.5, 2.0),
+        speed_factor: Span::new(0.8, 1.25),
+        bone_length: 0.25,
+        spine_bones: IntSpan::new(5, 24),
+        spine_bend: 200.0,
+        head_size: Span::new(0.9, 1.3),
+        ground_clearance: Span::new(0.15, 0.6),
+        limbs: PlanOptions::DEFAULT,
+        clips: true,
+    };
+
+    /// Sets [`kind`](Self::kind).
+    #[must_use]
+    pub const fn with_kind(mut self, kind: Kind) -> Self {
+        self.kind = kind;
+        self
+    }
+
+    /// Sets [`profiles`](Self::profiles).
+    #[must_use]
+    pub const fn with_profiles(mut self, profiles: u32) -> Self {
+        self.profiles = profiles;
+        self
+    }
+
+    /// Sets [`rings`](Self::rings) and [`segments`](Self::segments).
+    #[must_use]
+    pub const fn with_resolution(mut self, rings: u32, segments: u32) -> Self {
+        self.rings = rings;
+        self.segments = segments;
+        self
+    }
+
+    /// Sets [`limb_sides`](Self::limb_sides).
+    #[must_use]
+    pub const fn with_limb_sides(mut self, sides: u32) -> Self {
+        self.limb_sides = sides;
+        self
+    }
+
+    /// Sets [`flat_normals`](Self::flat_normals).
+    #[must_use]
+    pub const fn with_flat_normals(mut self, flat: bool) -> Self {
+        self.flat_normals = flat;
+        self
+    }
+
+    /// Sets [`slice_width`](Self::slice_width), [`slice_height`](Self::slice_height) and
+    /// [`slice_step`](Self::slice_step) (walkers and fliers).
+    #[must_use]
+    pub const fn with_slices(mut self, width: Span, height: Span, step: Span) -> Self {
+        self.slice_width = width;
+        self.slice_height = height;
+        self.slice_step = step;
+        self
+    }
+
+    /// Sets the swimmers' [`swimmer_slice_width`](Self::swimmer_slice_width),
+    /// [`swimmer_slice_height`](Self::swimmer_slice_height) and
+    /// [`swimmer_slice_step`](Self::swimmer_slice_step).
+    #[must_use]
+    pub const fn with_swimmer_slices(mut self, width: Span, height: Span, step: Span) -> Self {
+        self.swimmer_slice_width = width;
+        self.swimmer_slice_height = height;
+        self.swimmer_slice_step = step;
+        self
+    }
+
+    /// Sets [`body_scale`](Self::body_scale).
+    #[must_use]
+    pub const fn with_body_scale(mut self, scale: Span) -> Self {
+        self.body_scale = scale;
+        self
+    }
+
+    /// Sets [`speed_factor`](Self::speed_factor).
+    #[must_use]
+    pub const fn with_speed_factor(mut self, factor: Span) -> Self {
+        self.speed_factor = factor;
+        self
+    }
+
+    /// Sets [`bone_length`](Self::bone_length).
+    #[must_use]
+    pub const fn with_bone_length(mut self, length: f32) -> Self {
+        self.bone_length = length;
+        self
+    }
+
+    /// Sets [`spine_bones`](Self::spine_bones).
+    #[must_use]
+    pub const fn with_spine_bones(mut self, bones: IntSpan) -> Self {
+        self.spine_bones = bones;
+        self
+    }
+
+    /// Sets [`spine_bend`](Self::spine_bend).
+    #[must_use]
+    pub const fn with_spine_bend(mut self, degrees: f32) -> Self {
+        self.spine_bend = degrees;
+        self
+    }
+
+    /// Sets [`head_size`](Self::head_size).
+    #[must_use]
+    pub const fn with_head_size(mut self, size: Span) -> Self {
+        self.head_size = size;
+        self
+    }
+
+    /// Sets [`ground_clearance`](Self::ground_clearance).
+    #[must_use]
+    pub const fn with_ground_clearance(mut self, clearance: Span) -> Self {
+        self.ground_clearance = clearance;
+        self
+    }
+
+    /// Sets [`limbs`](Self::limbs).
+    #[must_use]
+    pub const fn with_limbs(mut self, limbs: PlanOptions) -> Self {
+        self.limbs = limbs;
+        self
+    }
+
+    /// Sets [`clips`](Self::clips).
+    #[must_use]
+    pub const fn with_clips(mut self, clips: bool) -> Self {
+        self.clips = clips;
+        self
+    }
+
+    /// Checks every field against its documented range; [`generate`](crate::generate) calls
+    /// this first.
+    ///
+    /// # Errors
+    /// [`Error::NonFinite`], [`Error::OutOfRange`] or [`Error::EmptyRange`] naming the field,
+    /// and [`Error::Limbs`] for bad [`limbs`](Self::limbs) options.
+    pub fn validate(&self) -> Result<(), Error> {
+        count("profiles", self.profiles, 1, 9)?;
+        count("rings", self.rings, 4, 64)?;
+        count("segments", self.segments, 3, 64)?;
+        count("limb_sides", self.limb_sides, 3, 32)?;
+        self.slice_width.check("slice_width", 0.1, 10.0)?;
+        self.slice_height.check("slice_height", 0.1, 10.0)?;
+        self.slice_step.check("slice_step", 0.05, 10.0)?;
+        self.swimmer_slice_width
+            .check("swimmer_slice_width", 0.1, 10.0)?;
+        self.swimmer_slice_height
+            .check("swimmer_slice_height", 0.1, 10.0)?;
+        self.swimmer_slice_step
+            .check("swimmer_slice_step", 0.05, 10.0)?;
+        self.body_scale.check("body_scale", 0.01, 100.0)?;
+        self.speed_factor.check("speed_factor", 0.01, 10.0)?;
+        scalar("bone_length", self.bone_length, 0.01, 10.0)?;
+        self.spine_bones.check("spine_bones", 5, 60)?;
+        scalar("spine_bend", self.spine_bend, 0.0, 200.0)?;
+        self.head_size.check("head_size", 0.1, 10.0)?;
+        self.ground_clearance.check("ground_clearance", 0.0, 10.0)?;
+        self.limbs.validate()?;
+        Ok(())
+    }
+}
+
+impl Default for Params {
+    fn default() -> Self {
+        Self::DEFAULT
+    }
+}
+
+fn count(what: &'static str, value: u32, min: u32, max: u32) -> Result<(), Error> {
+    if value < min || value > max {
+        return Err(Error::OutOfRange {
+            what,
+            value: value as f32,
+            min: min as f32,
+            max: max as f32,
+        });
+    }
+    Ok(())
+}
+
+fn scalar(what: &'static str, value: f32, min: f32, max: f32) -> Result<(), Error> {
+    if !value.is_finite() {
+        return Err(Error::NonFinite { what });
+    }
+    if !(min..=max).contains(&value) {
+        return Err(Error::OutOfRange {
+            what,
+            value,
+            min,
+            max,
+        });
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn defaults_are_valid() {
+        assert_eq!(Params::DEFAULT.validate(), Ok(()));
+        assert_eq!(Params::default(), Params::DEFAULT);
+    }
+
+    #[test]
+    fn bad_values_name_the_field() {
+        let e = Params::DEFAULT.with_profiles(0).validate();
+        assert!(matches!(
+            e,
+            Err(Error::OutOfRange {
+                what: "profiles",
+                ..
+            })
+        ));
+        let e = Params::DEFAULT
+            .with_body_scale(Span::new(f32::NAN, 1.0))
+            .validate();
+        assert_eq!(e, Err(Error::NonFinite { what: "body_scale" }));
+        let e = Params::DEFAULT
+            .with_spine_bones(IntSpan::new(10, 6))
+            .validate();
+        assert!(matches!(
+            e,
+            Err(Error::EmptyRange {
+                what: "spine_bones",
+                ..
+            })
+        ));
+        let e = Params::DEFAULT.with_spine_bend(f32::INFINITY).validate();
+        assert_eq!(e, Err(Error::NonFinite { what: "spine_bend" }));
+        let e = Params::DEFAULT
+            .with_limbs(PlanOptions::DEFAULT.with_sweep(-1.0))
+            .validate();
+        assert!(matches!(e, Err(Error::Limbs(_))));
+    }
+}

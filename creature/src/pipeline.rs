@@ -1,0 +1,353 @@
+//! The 2D pipeline: skeleton → metaballs → outline → mesh → UVs and depth → skin weights →
+//! texture (feature `std`: meshing uses `creature-march`'s `mesh` feature).
+
+use alloc::vec::Vec;
+
+use glam::{Vec2, Vec3};
+
+use creature_march::{MeshOptions, Ring, trace, triangulate};
+use creature_metaball::{
+    Ball2, CoverOptions, Falloff, Field2, ISO_LEVEL, MULTIPLIER_RANGE, cover_segment_with,
+};
+use creature_skin::{Influences, from_contributions, report};
+
+use crate::skeleton::skeleton_2d_from_seed;
+use crate::texture::{self, TextureOptions};
+use crate::types::{Ball2d, Creature2d, Mesh2d, Quality2d, Skeleton2d};
+use crate::{Error, Params2d};
+
+/// The most bones a skeleton may have (glTF joints are indexed with 16 bits; far beyond any
+/// generated creature).
+pub const MAX_BONES: usize = 4096;
+
+/// Generates a 2D creature from `seed`: the seed's skeleton generator ([`skeleton_2d`](crate::skeleton_2d),
+/// fed by `Pcg64Mcg::seed_from_u64(seed)`), then [`build_2d`]. Same seed and params, same
+/// creature, bit for bit.
+///
+/// Needs the `std` feature (meshing uses spade, which needs `std`).
+///
+/// ```
+/// use creature::{generate_2d, Params2d};
+///
+/// let creature = generate_2d(7, &Params2d::DEFAULT)?;
+/// assert!(creature.mesh.indices.len() > 50);
+/// assert!(creature.quality.min_angle >= 20.0);
+/// assert_eq!(creature, generate_2d(7, &Params2d::DEFAULT)?); // deterministic
+/// let texture = creature.texture.as_ref().map(|t| t.width);
+/// assert_eq!(texture, Some(256));
+/// # Ok::<(), creature::Error>(())
+/// ```
+///
+/// # Errors
+/// As [`build_2d`], and the errors of [`Params2d::validate`].
+pub fn generate_2d(seed: u64, params: &Params2d) -> Result<Creature2d, Error> {
+    let skeleton = skeleton_2d_from_seed(seed, params)?;
+    let mut creature = build(&skeleton, params, seed)?;
+    creature.seed = seed;
+    Ok(creature)
+}
+
+/// Builds a creature from any skeleton (generated, or made by hand as the thesis suggests):
+///
+/// 1. **Metaballs** — each bone with a thickness is covered from itself to its parent by
+///    [`cover_segment_with`] (ids = the parent: the segment moves with it); the last ball stops
+///    half a step short of a parent that has its own balls (the seed's last-ball rule); colours
+///    are lerped from the bone's to the parent's along the segment. With
+///    [`Params2d::connect_sockets`], the link from a thickness-0 socket bone to its parent is
+///    covered with its first child's thickness, so limbs stay attached.
+/// 2. **Outline** — [`trace`] of the culled field with every ball centre as a hint, at
+///    [`Params2d::outline_step`]. It must be one piece ([`Error::Detached`] otherwise) that
+///    holds every ball centre ([`Error::BallOutside`] otherwise).
+/// 3. **Mesh** — [`triangulate`] with interior points and refinement to
+///    [`Params2d::min_angle`]; UVs from the outline's box, `z = (y − min_y) / height`.
+/// 4. **Skin weights** — the field's top-4 bone shares at each vertex, through
+///    [`from_contributions`].
+/// 5. **Texture and normal map** — [`texture::render`] when [`Params2d::texture`] is set.
+///
+/// ```
+/// use creature::{build_2d, skeleton_2d_from_seed, Params2d};
+///
+/// let params = Params2d::DEFAULT.with_texture(false);
+/// let mut skeleton = skeleton_2d_from_seed(3, &params)?;
+/// for bone in &mut skeleton.bones {
+///     bone.thickness *= 1.2; // a chunkier variant of creature 3
+/// }
+/// let creature = build_2d(&skeleton, &params)?;
+/// assert!(creature.texture.is_none());
+/// assert!(creature.quality.max_weight_sum_error <= 1e-6);
+/// # Ok::<(), creature::Error>(())
+/// ```
+///
+/// # Errors
+/// - the errors of [`Params2d::validate`];
+/// - [`Error::BadParent`], [`Error::NonFinite`], [`Error::OutOfRange`],
+///   [`Error::TooManyBones`] or [`Error::EmptySkeleton`] for a bad skeleton;
+/// - [`Error::Detached`] or [`Error::BallOutside`] when the outline does not hold every ball;
+/// - the wrapped errors of the metaball, march and skin stages.
+pub fn build_2d(skeleton: &Skeleton2d, params: &Params2d) -> Result<Creature2d, Error> {
+    build(skeleton, params, 0)
+}
+
+fn build(skeleton: &Skeleton2d, params: &Params2d, seed: u64) -> Result<Creature2d, Error> {
+    params.validate()?;
+    validate_skeleton(skeleton)?;
+    let balls = cover(skeleton, params)?;
+    let plain: Vec<Ball2> = balls.iter().map(|b| b.ball).collect();
+    let field = Field2::new(&plain, Falloff::SEED)?;
+
+    // Outline.
+    let hints: Vec<Vec2> = plain.iter().map(|b| b.center).collect();
+    let mut rings = trace(|p| field.value(p), &hints, params.outline_step, ISO_LEVEL)?;
+    let outer = rings.iter().filter(|r| !r.hole).count();
+    if outer != 1 {
+        return Err(Error::Detached { components: outer });
+    }
+    // Outer ring first, holes after (a hole's parent is then 0).
+    rings.sort_by_key(|r| r.hole);
+    for r in &mut rings {
+        if r.hole {
+            r.parent = Some(0);
+        }
+    }
+    for (index, b) in plain.iter().enumerate() {
+        if !inside(&rings, b.center) {
+            return Err(Error::BallOutside {
+                ball: index,
+                bone: b.id as usize,
+                center: b.center,
+            });
+        }
+    }
+    let outline_points: usize = rings.iter().map(|r| r.points.len()).sum();
+    let (min, max) = rings
+        .first()
+        .and_then(Ring::bounds)
+        .ok_or(Error::Degenerate { what: "outline" })?;
+    let extent = max - min;
+    if !(extent.x > 0.0 && extent.y > 0.0) {
+        return Err(Error::Degenerate { what: "outline" });
+    }
+
+    // Mesh.
+    let options = MeshOptions::DEFAULT
+        .with_interior_spacing(params.interior_spacing)
+        .with_min_angle(params.min_angle)
+        .with_simplify(params.simplify);
+    let mesh = triangulate(&rings, &options)?;
+    if mesh.triangles.is_empty() {
+        return Err(Error::Degenerate { what: "mesh" });
+    }
+    let positions: Vec<Vec3> = mesh
+        .positions
+        .iter()
+        .map(|p| p.extend((p.y - min.y) / extent.y))
+        .collect();
+    let uvs: Vec<Vec2> = mesh
+        .positions
+        .iter()
+        .map(|p| Vec2::new((p.x - min.x) / extent.x, (max.y - p.y) / extent.y))
+        .collect();
+
+    // Skin weights: the top-4 bone shares of the field.
+    let mut influences: Vec<Influences> = Vec::with_capacity(mesh.positions.len());
+    for &p in &mesh.positions {
+        let shares = field.shares(p, 4);
+        let inf = if shares.is_empty() {
+            Influences::single(nearest_bone(&plain, p))
+        } else {
+            from_contributions(shares.iter().map(|s| (s.id, s.weight)), 4)?
+        };
+        influences.push(inf);
+    }
+    let skin = report(&influences);
+
+    // Quality of the outline: first-order distance of its vertices from the iso line.
+    let mut outline_error = 0.0f32;
+    for &p in mesh.positions.iter().take(mesh.outline_len) {
+        let (v, g) = field.value_and_gradient(p);
+        let slope = g.length();
+        if slope > 0.0 {
+            outline_error = outline_error.max((v - ISO_LEVEL).abs() / slope);
+        }
+    }
+
+    let (texture, normal_map) = if params.texture {
+        let options = TextureOptions::DEFAULT
+            .with_size(params.texture_size)
+            .with_depth_shading(params.depth_shading)
+            .with_normal_relief(params.normal_relief)
+            .with_noise_seed((seed ^ (seed >> 32)) as u32);
+        let (t, n) = texture::render(&balls, (min, max), &options)?;
+        (Some(t), Some(n))
+    } else {
+        (None, None)
+    };
+
+    Ok(Creature2d {
+        seed: 0,
+        bones: skeleton.bones.clone(),
+        eyes: skeleton.eyes.clone(),
+        balls,
+        outline: rings.into_iter().map(|r| r.points).collect(),
+        bounds: (min, max),
+        mesh: Mesh2d {
+            positions,
+            uvs,
+            indices: mesh.triangles,
+            joints: influences.iter().map(|i| i.joints).collect(),
+            weights: influences.iter().map(|i| i.weights).collect(),
+            outline_len: mesh.outline_len,
+        },
+        texture,
+        normal_map,
+        quality: Quality2d {
+            min_angle: mesh.quality.min_angle,
+            triangles_below_limit: mesh.quality.below_limit,
+            refinement_complete: mesh.quality.refinement_complete,
+            max_weight_sum_error: skin.max_weight_sum_error,
+            outline_points,
+            outline_error,
+        },
+    })
+}
+
+/// Even–odd inside test over all rings (holes excluded).
+pub(crate) fn inside(rings: &[Ring], p: Vec2) -> bool {
+    rings.iter().filter(|r| r.contains(p)).count() % 2 == 1
+}
+
+fn nearest_bone(balls: &[Ball2], p: Vec2) -> u16 {
+    let mut best = (f32::MAX, 0u32);
+    for b in balls {
+        let d = b.center.distance_squared(p) / (b.radius * b.radius);
+        if d < best.0 {
+            best = (d, b.id);
+        }
+    }
+    u16::try_from(best.1).unwrap_or(0)
+}
+
+fn validate_skeleton(skeleton: &Skeleton2d) -> Result<(), Error> {
+    let bones = &skeleton.bones;
+    if bones.is_empty() {
+        return Err(Error::EmptySkeleton);
+    }
+    if bones.len() > MAX_BONES {
+        return Err(Error::TooManyBones {
+            bones: bones.len(),
+            max: MAX_BONES,
+        });
+    }
+    for (i, b) in bones.iter().enumerate() {
+        match (i, b.parent) {
+            (0, None) => {}
+            (0, Some(p)) => {
+                return Err(Error::BadParent {
+                    bone: 0,
+                    parent: Some(p),
+                });
+            }
+            (_, Some(p)) if p < i => {}
+            (_, parent) => return Err(Error::BadParent { bone: i, parent }),
+        }
+        if !(b.offset.is_finite()
+            && b.position.is_finite()
+            && b.rotation.is_finite()
+            && b.thickness.is_finite()
+            && b.multiplier.is_finite()
+            && b.colour.is_finite()
+            && b.texture_weights.is_finite())
+        {
+            return Err(Error::NonFinite { what: "bone" });
+        }
+        if !(b.thickness >= 0.0 && b.thickness <= 1000.0) {
+            return Err(Error::OutOfRange {
+                what: "bone thickness",
+                value: b.thickness,
+                min: 0.0,
+                max: 1000.0,
+            });
+        }
+        let (lo, hi) = MULTIPLIER_RANGE;
+        if b.thickness > 0.0 && !(b.multiplier >= lo && b.multiplier <= hi) {
+            return Err(Error::OutOfRange {
+                what: "bone multiplier",
+                value: b.multiplier,
+                min: lo,
+                max: hi,
+            });
+        }
+    }
+    for e in &skeleton.eyes {
+        if !(e.position.is_finite() && e.radius.is_finite()) {
+            return Err(Error::NonFinite { what: "eye" });
+        }
+    }
+    if !bones.iter().skip(1).any(|b| b.thickness > 0.0) {
+        return Err(Error::EmptySkeleton);
+    }
+    Ok(())
+}
+
+/// Covers every bone with balls (see [`build_2d`]).
+fn cover(skeleton: &Skeleton2d, params: &Params2d) -> Result<Vec<Ball2d>, Error> {
+    let bones = &skeleton.bones;
+    let mut out: Vec<Ball2d> = Vec::new();
+    for (i, bone) in bones.iter().enumerate() {
+        let Some(p) = bone.parent else { continue };
+        let Some(parent) = bones.get(p) else { continue };
+        let id = u32::try_from(p).unwrap_or(u32::MAX);
+        let (thickness, multiplier, colour, interior, parent_colour) = if bone.thickness > 0.0 {
+            let parent_has_balls = parent.parent.is_some() && parent.thickness > 0.0;
+            (
+                bone.thickness,
+                bone.multiplier,
+                bone.colour,
+                parent_has_balls,
+                (parent.thickness > 0.0).then_some(parent.colour),
+            )
+        } else if params.connect_sockets {
+            // A socket: cover the link to the parent with the first child's thickness.
+            let child = bones
+                .iter()
+                .skip(i + 1)
+                .find(|c| c.parent == Some(i) && c.thickness > 0.0);
+            match child {
+                Some(c) => (c.thickness, c.multiplier, c.colour, false, None),
+                None => continue,
+            }
+        } else {
+            continue;
+        };
+        let options = CoverOptions::DEFAULT.with_interior_joint(interior);
+        let covering = cover_segment_with(
+            bone.position,
+            parent.position,
+            thickness,
+            multiplier,
+            id,
+            &options,
+        )?;
+        let length = bone.position.distance(parent.position);
+        for ball in covering {
+            let alpha = if length > 0.0 {
+                (ball.center.distance(bone.position) / length).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            let colour = match parent_colour {
+                Some(pc) => colour.lerp(pc, alpha),
+                None => colour,
+            };
+            out.push(Ball2d {
+                ball,
+                colour,
+                texture_weights: bone.texture_weights,
+            });
+        }
+    }
+    if out.is_empty() {
+        return Err(Error::EmptySkeleton);
+    }
+    Ok(out)
+}

@@ -1,0 +1,210 @@
+//! The plain data a 2D creature is made of.
+
+use alloc::vec::Vec;
+
+use glam::{Vec2, Vec3};
+
+use crate::texture::Image;
+
+/// What a bone is for; decides whether it animates and how the pipeline covers it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum BoneKind {
+    /// The skeleton's root, at the tail tip (no thickness).
+    Root,
+    /// A spine bone between the root and the head.
+    Spine,
+    /// The last spine bone: carries the eyes, owns no balls, does not animate.
+    Head,
+    /// The invisible first bone of a limb, at its socket just outside the body.
+    Socket,
+    /// A visible limb segment.
+    Limb,
+}
+
+/// One bone of a 2D skeleton, at rest. Bones are stored parents first.
+///
+/// A bone's thickness, multiplier, colour and texture weight describe the segment from its
+/// parent to itself; the balls covering that segment belong to the parent (they move with it).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Bone2 {
+    /// The parent's index (always smaller than this bone's), `None` for the root.
+    pub parent: Option<usize>,
+    /// Rest position relative to the parent's, in the parent's frame (world units).
+    pub offset: Vec2,
+    /// Rest position in the creature's frame (y up).
+    pub position: Vec2,
+    /// Rest rotation relative to the parent, radians, counter-clockwise (0: the seed's
+    /// skeletons are straight at rest).
+    pub rotation: f32,
+    /// Thickness of the segment from the parent to this bone; 0 gives it no balls.
+    pub thickness: f32,
+    /// Smoothness multiplier of that segment, from 1 (beads) to 1.6 (a smooth tube).
+    pub multiplier: f32,
+    /// Linear RGB colour, each channel in `[0, 1]`.
+    pub colour: Vec3,
+    /// Texture weights: `x` for the wood-like base texture, `y` for the ice-like one (sum 1).
+    pub texture_weights: Vec2,
+    /// What the bone is.
+    pub kind: BoneKind,
+}
+
+impl Bone2 {
+    /// Whether [`Creature2d::idle_rotations`] moves this bone (every bone but the root and the
+    /// head, as in the seed).
+    #[must_use]
+    pub fn animated(&self) -> bool {
+        !matches!(self.kind, BoneKind::Root | BoneKind::Head)
+    }
+}
+
+/// An eye: a sprite on the head, not part of the mesh (drawn by the exporters).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Eye {
+    /// Centre in the creature's frame.
+    pub position: Vec2,
+    /// Radius.
+    pub radius: f32,
+    /// The bone it rides on (the head).
+    pub bone: usize,
+}
+
+/// A skeleton plus its eyes: the input of [`build_2d`](crate::build_2d).
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Skeleton2d {
+    /// Bones, parents first; index 0 is the root.
+    pub bones: Vec<Bone2>,
+    /// Eyes on the head.
+    pub eyes: Vec<Eye>,
+}
+
+/// One metaball of a creature, with the attributes the texture blends.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Ball2d {
+    /// The ball (centre, radius, owning bone as `id`).
+    pub ball: creature_metaball::Ball2,
+    /// Linear RGB colour.
+    pub colour: Vec3,
+    /// Texture weights (wood, ice).
+    pub texture_weights: Vec2,
+}
+
+/// A skinned 2D triangle mesh, glTF-ready.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Mesh2d {
+    /// Vertex positions: `x, y` in the creature's frame and `z = (y − min_y) / height` of the
+    /// outline's box, in `[0, 1]`, so higher parts draw on top.
+    pub positions: Vec<Vec3>,
+    /// Texture coordinates in the outline's box, glTF convention: `u = (x − min_x) / width`,
+    /// `v = (max_y − y) / height` (row 0 of [`Creature2d::texture`] is the top).
+    pub uvs: Vec<Vec2>,
+    /// Triangles, counter-clockwise seen from +z.
+    pub indices: Vec<[u32; 3]>,
+    /// Up to four joints (bone indices) per vertex; unused slots are 0 with weight 0.
+    pub joints: Vec<[u16; 4]>,
+    /// The joints' weights, largest first, summing to 1.
+    pub weights: Vec<[f32; 4]>,
+    /// How many leading vertices lie on the outline.
+    pub outline_len: usize,
+}
+
+/// Measured quality of a creature.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[non_exhaustive]
+pub struct Quality2d {
+    /// Smallest triangle angle, degrees.
+    pub min_angle: f32,
+    /// Triangles below [`Params2d::min_angle`](crate::Params2d::min_angle).
+    pub triangles_below_limit: usize,
+    /// Whether Delaunay refinement reached the angle limit everywhere.
+    pub refinement_complete: bool,
+    /// Largest `|Σ weights − 1|` over the vertices.
+    pub max_weight_sum_error: f32,
+    /// Points of the traced outline (before simplification).
+    pub outline_points: usize,
+    /// Largest distance of an outline vertex from the iso line, measured as
+    /// `|field − 1| / |∇field|` (a first-order estimate), world units.
+    pub outline_error: f32,
+}
+
+/// A generated 2D creature: plain data, ready to draw, skin or export.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Creature2d {
+    /// The seed it was generated from (0 for [`build_2d`](crate::build_2d)).
+    pub seed: u64,
+    /// Bones, parents first; joint `i` of the mesh is bone `i`.
+    pub bones: Vec<Bone2>,
+    /// Eyes on the head.
+    pub eyes: Vec<Eye>,
+    /// The metaballs the shape, weights and texture come from.
+    pub balls: Vec<Ball2d>,
+    /// The outline: outer ring first (counter-clockwise), then holes (clockwise).
+    pub outline: Vec<Vec<Vec2>>,
+    /// The outline's bounding box `(min, max)`: the UV and texture frame.
+    pub bounds: (Vec2, Vec2),
+    /// The skinned mesh.
+    pub mesh: Mesh2d,
+    /// Albedo texture (RGBA8, row 0 at the top), if [`Params2d::texture`](crate::Params2d::texture).
+    pub texture: Option<Image>,
+    /// Tangent-space normal map (`n · 0.5 + 0.5`), same size as the texture.
+    pub normal_map: Option<Image>,
+    /// Measured quality.
+    pub quality: Quality2d,
+}
+
+impl Creature2d {
+    /// The seed's idle wiggle: each bone's rotation (radians, relative to its rest rotation)
+    /// at time `t` seconds: `sin(t (i / 0.23 + 1) / 10)` for bone `i`, 0 for the root and the
+    /// head.
+    ///
+    /// ```
+    /// # fn main() -> Result<(), creature::Error> {
+    /// # #[cfg(feature = "std")] {
+    /// let creature = creature::generate_2d(7, &creature::Params2d::DEFAULT.with_texture(false))?;
+    /// let pose = creature.idle_rotations(1.5);
+    /// assert_eq!(pose.len(), creature.bones.len());
+    /// assert_eq!(pose[0], 0.0);
+    /// # }
+    /// # Ok(()) }
+    /// ```
+    #[must_use]
+    pub fn idle_rotations(&self, t: f32) -> Vec<f32> {
+        idle_rotations(&self.bones, t)
+    }
+
+    /// World transforms of the bones posed with `rotations` (radians, added to each bone's
+    /// rest rotation), as `(position, angle)`; missing rotations count as 0.
+    #[must_use]
+    pub fn pose(&self, rotations: &[f32]) -> Vec<(Vec2, f32)> {
+        let mut out: Vec<(Vec2, f32)> = Vec::with_capacity(self.bones.len());
+        for (i, bone) in self.bones.iter().enumerate() {
+            let local = bone.rotation + rotations.get(i).copied().unwrap_or(0.0);
+            let local = if local.is_finite() { local } else { 0.0 };
+            let world = match bone.parent.and_then(|p| out.get(p)) {
+                Some(&(pos, angle)) => (
+                    pos + Vec2::from_angle(angle).rotate(bone.offset),
+                    angle + local,
+                ),
+                None => (bone.position, local),
+            };
+            out.push(world);
+        }
+        out
+    }
+}
+
+/// The seed's idle wiggle for any bone list (see [`Creature2d::idle_rotations`]).
+#[must_use]
+pub(crate) fn idle_rotations(bones: &[Bone2], t: f32) -> Vec<f32> {
+    bones
+        .iter()
+        .enumerate()
+        .map(|(i, b)| {
+            if b.animated() && t.is_finite() {
+                crate::math::sin(t * (i as f32 / 0.23 + 1.0) / 10.0)
+            } else {
+                0.0
+            }
+        })
+        .collect()
+}

@@ -1,0 +1,48 @@
+//! 3D previews: three views with something drawn in each. With `CREATURE_PREVIEW_DIR` set,
+//! writes `walker-N.png`, `flier-N.png` and `swimmer-N.png` there to look at.
+
+#![cfg(feature = "export")]
+#![allow(clippy::unwrap_used)]
+
+use creature::{Kind, PREVIEW_BACKGROUND, Params, generate, preview_3d};
+
+#[test]
+fn every_view_shows_the_creature() {
+    let dir = std::env::var_os("CREATURE_PREVIEW_DIR");
+    for (name, kind) in [
+        ("walker", Kind::Walker),
+        ("flier", Kind::Flier),
+        ("swimmer", Kind::Swimmer),
+    ] {
+        for seed in 0..4 {
+            let c = generate(seed, &Params::DEFAULT.with_kind(kind)).unwrap();
+            let image = preview_3d(&c, 96).unwrap();
+            assert_eq!((image.width, image.height), (288, 96));
+            for view in 0..3 {
+                let drawn = (0..96u32)
+                    .flat_map(|y| (view * 96..(view + 1) * 96).map(move |x| (x, y)))
+                    .filter(|&(x, y)| image.pixel(x, y) != Some(PREVIEW_BACKGROUND))
+                    .count();
+                assert!(drawn > 200, "{name} {seed} view {view}: {drawn} pixels");
+            }
+            if let Some(dir) = &dir {
+                let png = creature::export::image_png(&image).unwrap();
+                std::fs::write(
+                    std::path::Path::new(dir).join(format!("{name}-{seed}.png")),
+                    png,
+                )
+                .unwrap();
+                // A posed frame of each clip, to look at.
+                for clip in &c.clips {
+                    let mut posed = c.clone();
+                    posed.mesh.positions = c.posed_positions(clip, clip.frames / 3).unwrap();
+                    let image = preview_3d(&posed, 96).unwrap();
+                    let png = creature::export::image_png(&image).unwrap();
+                    let file = format!("{name}-{seed}-{}.png", clip.name);
+                    std::fs::write(std::path::Path::new(dir).join(file), png).unwrap();
+                }
+            }
+        }
+    }
+    assert!(preview_3d(&generate(0, &Params::DEFAULT).unwrap(), 8).is_err());
+}

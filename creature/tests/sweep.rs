@@ -1,0 +1,98 @@
+//! The sweep: every creature of many seeds must be valid. Runs `CREATURE_SWEEP_SEEDS` seeds
+//! (default 60 in a debug build; `cargo xtask sweep` runs 10,000 in release) of 2D creatures
+//! and of each 3D kind, and prints the counts.
+
+#![cfg(feature = "std")]
+#![allow(clippy::unwrap_used)]
+
+mod support;
+
+use creature::{Kind, Params, Params2d, generate, generate_2d};
+
+#[test]
+fn sweep() {
+    let seeds: u64 = std::env::var("CREATURE_SWEEP_SEEDS")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(60);
+    let params = Params2d::DEFAULT.with_texture_size(64);
+    let mut stats = support::SweepStats::default();
+    let mut failures = Vec::new();
+    for seed in 0..seeds {
+        match generate_2d(seed, &params) {
+            Ok(c) => {
+                let problems = support::check(&c);
+                stats.add(&c);
+                if !problems.is_empty() {
+                    failures.push(format!("seed {seed}: {}", problems.join("; ")));
+                }
+            }
+            Err(e) => failures.push(format!("seed {seed}: error: {e}")),
+        }
+    }
+    println!("sweep: {seeds} seeds, {} invalid", failures.len());
+    println!("{stats}");
+    for f in failures.iter().take(20) {
+        println!("  {f}");
+    }
+    assert!(
+        failures.is_empty(),
+        "{} of {seeds} creatures invalid",
+        failures.len()
+    );
+}
+
+fn sweep_3d(kind: Kind) {
+    let seeds: u64 = std::env::var("CREATURE_SWEEP_SEEDS")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(60);
+    let params = Params::DEFAULT.with_kind(kind);
+    let mut failures = Vec::new();
+    let (mut vertices, mut joints, mut pairs) = (0usize, 0usize, 0usize);
+    for seed in 0..seeds {
+        match generate(seed, &params) {
+            Ok(c) => {
+                vertices += c.mesh.positions.len();
+                joints += c.skeleton.joints.len();
+                pairs += c.plan.leg_pairs();
+                let problems = support::check_3d(&c);
+                if !problems.is_empty() {
+                    failures.push(format!("seed {seed}: {}", problems.join("; ")));
+                }
+            }
+            Err(e) => failures.push(format!("seed {seed}: error: {e}")),
+        }
+    }
+    let n = seeds.max(1) as usize;
+    println!(
+        "sweep {kind:?}: {seeds} seeds, {} invalid; mean vertices {}, joints {}, leg pairs {:.2}",
+        failures.len(),
+        vertices / n,
+        joints / n,
+        pairs as f32 / n as f32
+    );
+    for f in failures.iter().take(20) {
+        println!("  {f}");
+    }
+    assert!(
+        failures.is_empty(),
+        "{} of {seeds} {kind:?}s invalid",
+        failures.len()
+    );
+}
+
+#[test]
+fn sweep_walkers() {
+    sweep_3d(Kind::Walker);
+}
+
+#[test]
+fn sweep_fliers() {
+    sweep_3d(Kind::Flier);
+}
+
+#[test]
+fn sweep_swimmers() {
+    sweep_3d(Kind::Swimmer);
+}

@@ -29,6 +29,9 @@ mod params3d;
 mod pipeline;
 mod preview3d;
 mod skeleton;
+#[cfg(feature = "proptest")]
+#[cfg_attr(docsrs, doc(cfg(feature = "proptest")))]
+pub mod strategies;
 pub mod texture;
 mod types;
 mod types3d;

@@ -19,24 +19,24 @@ use creature::{Creature2d, Params2d, generate_2d};
 /// `cargo xtask bless` regenerates them too.
 mod golden3d;
 
-const SEEDS: [u64; 10] = [0, 1, 2, 3, 7, 42, 99, 1234, 65_535, u64::MAX];
+pub(crate) const SEEDS: [u64; 10] = [0, 1, 2, 3, 7, 42, 99, 1234, 65_535, u64::MAX];
 
 /// FNV-1a over every number of the creature, in a fixed order.
-struct Fnv(u64);
+pub(crate) struct Fnv(pub(crate) u64);
 
 impl Fnv {
-    fn bytes(&mut self, bytes: &[u8]) {
+    pub(crate) fn bytes(&mut self, bytes: &[u8]) {
         for &b in bytes {
             self.0 ^= u64::from(b);
             self.0 = self.0.wrapping_mul(0x0100_0000_01b3);
         }
     }
-    fn f32s(&mut self, values: impl IntoIterator<Item = f32>) {
+    pub(crate) fn f32s(&mut self, values: impl IntoIterator<Item = f32>) {
         for v in values {
             self.bytes(&v.to_bits().to_le_bytes());
         }
     }
-    fn u32s(&mut self, values: impl IntoIterator<Item = u32>) {
+    pub(crate) fn u32s(&mut self, values: impl IntoIterator<Item = u32>) {
         for v in values {
             self.bytes(&v.to_le_bytes());
         }
@@ -89,10 +89,17 @@ fn golden_hashes() {
         )
         .unwrap();
     }
-    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/golden/2d.txt");
+    check_or_bless("2d.txt", &text);
+}
+
+/// Compares `text` with `tests/golden/{file}`, or rewrites the file when `CREATURE_BLESS=1`.
+pub(crate) fn check_or_bless(file: &str, text: &str) {
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/golden")
+        .join(file);
     if std::env::var_os("CREATURE_BLESS").is_some_and(|v| v == "1") {
         std::fs::create_dir_all(path.parent().unwrap()).unwrap();
-        std::fs::write(&path, &text).unwrap();
+        std::fs::write(&path, text).unwrap();
         return;
     }
     let stored = std::fs::read_to_string(&path).unwrap_or_default();

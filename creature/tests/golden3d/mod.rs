@@ -7,33 +7,9 @@
 //! promise. The hashes are of exact bits with the `std` float backend on x86_64.
 
 use core::fmt::Write as _;
-use std::path::PathBuf;
-
 use creature::{Creature, Kind, Params, generate};
 
-const SEEDS: [u64; 10] = [0, 1, 2, 3, 7, 42, 99, 1234, 65_535, u64::MAX];
-
-/// FNV-1a over every number of the creature, in a fixed order.
-struct Fnv(u64);
-
-impl Fnv {
-    fn bytes(&mut self, bytes: &[u8]) {
-        for &b in bytes {
-            self.0 ^= u64::from(b);
-            self.0 = self.0.wrapping_mul(0x0100_0000_01b3);
-        }
-    }
-    fn f32s(&mut self, values: impl IntoIterator<Item = f32>) {
-        for v in values {
-            self.bytes(&v.to_bits().to_le_bytes());
-        }
-    }
-    fn u32s(&mut self, values: impl IntoIterator<Item = u32>) {
-        for v in values {
-            self.bytes(&v.to_le_bytes());
-        }
-    }
-}
+use super::{Fnv, SEEDS, check_or_bless};
 
 fn hash(c: &Creature) -> u64 {
     let mut h = Fnv(0xcbf2_9ce4_8422_2325);
@@ -92,17 +68,5 @@ fn golden_hashes() {
             .unwrap();
         }
     }
-    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/golden/3d.txt");
-    if std::env::var_os("CREATURE_BLESS").is_some_and(|v| v == "1") {
-        std::fs::create_dir_all(path.parent().unwrap()).unwrap();
-        std::fs::write(&path, &text).unwrap();
-        return;
-    }
-    let stored = std::fs::read_to_string(&path).unwrap_or_default();
-    assert!(
-        stored == text,
-        "{} differs from the output; if the change is intended, run `cargo xtask bless`, \
-         review the diff and add a CHANGELOG line\n--- stored\n{stored}--- now\n{text}",
-        path.display()
-    );
+    check_or_bless("3d.txt", &text);
 }

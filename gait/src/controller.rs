@@ -223,7 +223,7 @@ const ESCAPE: u8 = 2;
 impl Controller {
     /// A controller for `legs` (any number ≥ 1, arms included) with `options`. The feet are
     /// placed on the ground at the first [`update`](Self::update) (or by
-    /// [`reset`](Self::reset)).
+    /// [`reset`](Self::reset)). A body without legs takes [`chains_only`](Self::chains_only).
     ///
     /// # Errors
     /// [`GaitError::NoLegs`], the first leg's error from [`Leg::validate`],
@@ -235,9 +235,54 @@ impl Controller {
         for (i, leg) in legs.iter().enumerate() {
             leg.validate(i)?;
         }
+        let mean_size = legs.iter().map(|l| l.size).sum::<f32>() / legs.len() as f32;
+        Self::build(legs, mean_size, options)
+    }
+
+    /// A controller without legs, for bodies that fly or swim: it drives follow-through
+    /// [`Chain`]s (dangling legs, tails, fins: add them with [`add_chain`](Self::add_chain)),
+    /// breathing and the head's look-at, with no stepping and no body reaction to feet.
+    /// `size` (metres) stands in for the mean leg size of [`new`](Self::new): it scales the
+    /// breathing amplitude and the look-at distance.
+    ///
+    /// ```
+    /// use creature_gait::glam::Vec3;
+    /// use creature_gait::{Chain, Controller, GaitOptions, Plane, Pose};
+    ///
+    /// // A hovering body with one dangling leg: gravity pulls it down, it swings behind when
+    /// // the body flies forward.
+    /// let mut c = Controller::chains_only(0.5, &GaitOptions::DEFAULT)?;
+    /// let leg = c.add_chain(Chain::new(Vec3::new(0.1, 0.0, 0.0), Vec3::NEG_Y, 2, 0.2).with_gravity(9.81))?;
+    /// let ground = Plane::horizontal(-10.0);
+    /// for i in 0..60 {
+    ///     let t = i as f32 / 30.0;
+    ///     c.update(1.0 / 30.0, Pose::from_yaw(Vec3::Z * (2.0 * t), 0.0), Vec3::Z * 2.0, Vec3::ZERO, &ground)?;
+    /// }
+    /// let joints = c.chain(leg)?;
+    /// assert_eq!(joints.len(), 3);
+    /// // The tip trails behind its root.
+    /// assert!(joints[2].z < joints[0].z);
+    /// # Ok::<(), creature_gait::GaitError>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`GaitError::NonFinite`] or [`GaitError::NotPositive`] for `size`, or the options' error
+    /// from [`GaitOptions::validate`].
+    pub fn chains_only(size: f32, options: &GaitOptions) -> Result<Self, GaitError> {
+        finite(size, "size", 0)?;
+        if !(size > 0.0) {
+            return Err(GaitError::NotPositive {
+                what: "size",
+                index: 0,
+                value: size,
+            });
+        }
+        Self::build(&[], size, options)
+    }
+
+    fn build(legs: &[Leg], mean_size: f32, options: &GaitOptions) -> Result<Self, GaitError> {
         options.validate()?;
         let layout = layout(legs)?;
-        let mean_size = legs.iter().map(|l| l.size).sum::<f32>() / legs.len() as f32;
         let swing_fraction = 1.0 / f32::from(layout.group_count.max(2));
         let hip_width = legs
             .iter()

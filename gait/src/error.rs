@@ -106,7 +106,10 @@ impl fmt::Display for GaitError {
                 f,
                 "{what} {index} is zero or too short to give a direction: pass a non-zero vector"
             ),
-            Self::NoLegs => write!(f, "no legs were given: a controller needs at least one leg"),
+            Self::NoLegs => write!(
+                f,
+                "no legs were given: a controller needs at least one leg (use `Controller::chains_only` for a legless body)"
+            ),
             Self::MixedGroups { leg } => write!(
                 f,
                 "leg {leg} has no group while other legs have one: set every leg's group, or \

@@ -364,6 +364,52 @@ fn a_dangling_chain_hangs_under_gravity() {
 }
 
 #[test]
+fn a_legless_controller_drives_chains_and_breathes_without_nan() {
+    assert!(matches!(
+        Controller::chains_only(0.0, &GaitOptions::DEFAULT),
+        Err(GaitError::NotPositive { what: "size", .. })
+    ));
+    assert!(matches!(
+        Controller::chains_only(f32::NAN, &GaitOptions::DEFAULT),
+        Err(GaitError::NonFinite { what: "size", .. })
+    ));
+    let mut c = Controller::chains_only(0.5, &GaitOptions::DEFAULT).unwrap();
+    let leg = c
+        .add_chain(
+            Chain::new(Vec3::new(0.2, -0.1, 0.0), Vec3::new(0.0, -1.0, 1.0), 2, 0.2)
+                .with_gravity(9.81),
+        )
+        .unwrap();
+    let tail = c
+        .add_chain(Chain::new(Vec3::new(0.0, 0.0, -0.5), Vec3::NEG_Z, 4, 0.1))
+        .unwrap();
+    let g = Plane::horizontal(-5.0);
+    let dt = 1.0 / 60.0;
+    let mut heights = Vec::new();
+    for i in 0..600 {
+        let t = i as f32 * dt;
+        // Hover: a bob of 5 cm, no travel.
+        let pose = Pose::from_yaw(Vec3::Y * (0.05 * (t * 6.0).sin()), 0.0);
+        c.update(dt, pose, Vec3::ZERO, Vec3::ZERO, &g).unwrap();
+        heights.push(c.reacted_pose().translation.y);
+        for chain in [leg, tail] {
+            assert!(c.chain(chain).unwrap().iter().all(|p| p.is_finite()));
+        }
+    }
+    assert!(c.leg_states().is_empty());
+    assert_eq!(c.metrics().legs_in_air, 0);
+    assert!(heights.iter().all(|h| h.is_finite()));
+    // Gravity pulls the dangling leg's tip below its rest direction (45° forward-down).
+    let joints = c.chain(leg).unwrap();
+    let d = (joints[2] - joints[0]).normalize();
+    assert!(d.y < -(0.5f32.sqrt()) + 1e-3, "{d}");
+    // Segment lengths are kept.
+    for w in joints.windows(2) {
+        assert_relative_eq!(w[0].distance(w[1]), 0.2, max_relative = 1e-3);
+    }
+}
+
+#[test]
 fn blending_out_returns_the_rest_pose_and_blending_in_ramps() {
     let mut c = quadruped();
     let pose = Pose::new(Vec3::new(0.0, 0.8, 0.0), Quat::IDENTITY);

@@ -212,7 +212,7 @@ pub fn generate(seed: u64, params: &Params) -> Result<Creature, Error> {
             Mount {
                 point,
                 joint,
-                width: socket.width,
+                width: body_width(&body_rig, socket.bone),
                 centre: body_rig.joints.get(joint).map_or(point, |j| j.position),
             },
             LimbStyle {
@@ -419,6 +419,25 @@ fn bend_spine(
     ])
 }
 
+/// The body's width at spine bone `bone`: its socket's; if that has no width (a coarse
+/// cross-section, e.g. 3 segments, can have a single vertex beside a bone), the widest of its
+/// neighbours', else the widest socket's, else the base body's.
+fn body_width(body: &creature_autorig::Rig, bone: usize) -> f32 {
+    let widest = |reach: usize| {
+        body.sockets
+            .iter()
+            .filter(|s| s.bone.abs_diff(bone) <= reach)
+            .map(|s| s.width)
+            .filter(|w| w.is_finite())
+            .fold(0.0f32, f32::max)
+    };
+    let floor = 1e-3 * body.spine_length().max(1e-6);
+    [widest(0), widest(1), widest(usize::MAX)]
+        .into_iter()
+        .find(|&w| w > floor)
+        .unwrap_or(2.0 * BASE_RADIUS)
+}
+
 /// A low-poly sphere on the neck tip, bound to the last neck bone's joint.
 fn add_head(mesh: &mut MeshBuilder, body: &creature_autorig::Rig, size: f32, colour: Vec3) {
     let spine = &body.spine;
@@ -433,13 +452,8 @@ fn add_head(mesh: &mut MeshBuilder, body: &creature_autorig::Rig, size: f32, col
         .root()
         .and_then(|r| spine.iter().position(|&j| j == r))
         .unwrap_or(0);
-    // The second neck bone counted from the root, or the frontmost socket.
-    let width = body
-        .sockets
-        .iter()
-        .find(|s| s.bone == centre_index + 1)
-        .or_else(|| body.sockets.last())
-        .map_or(2.0 * BASE_RADIUS, |s| s.width);
+    // The body's width at the second neck bone counted from the root.
+    let width = body_width(body, centre_index + 1);
     let radius = 0.5 * width * size;
     let direction = (tip - pos(carrier)).normalize_or(Vec3::Z);
     let centre = tip + direction * (0.5 * radius);

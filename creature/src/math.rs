@@ -18,6 +18,10 @@ mod backend {
     pub(crate) fn sqrt(x: f32) -> f32 {
         x.sqrt()
     }
+    #[inline]
+    pub(crate) fn asin(x: f32) -> f32 {
+        x.asin()
+    }
 }
 
 #[cfg(not(feature = "std"))]
@@ -38,9 +42,13 @@ mod backend {
     pub(crate) fn sqrt(x: f32) -> f32 {
         libm::sqrtf(x)
     }
+    #[inline]
+    pub(crate) fn asin(x: f32) -> f32 {
+        libm::asinf(x)
+    }
 }
 
-pub(crate) use backend::{cos, exp, sin, sqrt};
+pub(crate) use backend::{asin, cos, exp, sin, sqrt};
 
 /// Rounds half away from zero, for non-negative finite input of moderate size.
 #[inline]

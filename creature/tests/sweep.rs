@@ -50,9 +50,16 @@ fn sweep_3d(kind: Kind) {
     let params = Params::DEFAULT.with_kind(kind);
     let mut failures = Vec::new();
     let (mut vertices, mut joints, mut pairs) = (0usize, 0usize, 0usize);
+    // Clips whose loop closes (loop error under 1e-3), and all clips, by name.
+    let mut loops: std::collections::BTreeMap<&str, (usize, usize)> = Default::default();
     for seed in 0..seeds {
         match generate(seed, &params) {
             Ok(c) => {
+                for clip in &c.clips {
+                    let entry = loops.entry(clip.name).or_default();
+                    entry.0 += usize::from(clip.loop_error < 1e-3);
+                    entry.1 += 1;
+                }
                 vertices += c.mesh.positions.len();
                 joints += c.skeleton.joints.len();
                 pairs += c.plan.leg_pairs();
@@ -72,6 +79,11 @@ fn sweep_3d(kind: Kind) {
         joints / n,
         pairs as f32 / n as f32
     );
+    let looping: Vec<String> = loops
+        .iter()
+        .map(|(name, (closed, all))| format!("{name} {closed}/{all}"))
+        .collect();
+    println!("  clips that loop (error < 1e-3): {}", looping.join(", "));
     for f in failures.iter().take(20) {
         println!("  {f}");
     }

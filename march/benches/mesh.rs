@@ -9,6 +9,9 @@
 //! mesher, spade's plain Delaunay bulk load of the outline points alone (no constraint edges,
 //! no interior points, no refinement).
 //!
+//! `outline_trace_tiles` traces through `trace_field` with `tests/support`'s `TiledField`
+//! (each 8×8 node tile filled by one `Field2::sample_block` call).
+//!
 //! Run: `cargo bench -p creature-march --features mesh --bench mesh`
 
 #![allow(clippy::expect_used)]
@@ -18,7 +21,7 @@ extern crate alloc;
 use core::hint::black_box;
 
 use creature_march::glam::Vec2;
-use creature_march::{MarchOptions, MeshOptions, trace, trace_with, triangulate};
+use creature_march::{MarchOptions, MeshOptions, trace, trace_field, trace_with, triangulate};
 use creature_metaball::{Ball2, Falloff, Field2};
 use criterion::{Criterion, criterion_group, criterion_main};
 use spade::{DelaunayTriangulation, Point2, Triangulation};
@@ -82,6 +85,10 @@ fn bench(c: &mut Criterion) {
     });
     group.bench_function("outline_trace_no_hole_scan", |b| {
         b.iter(|| trace_with(culled, black_box(&hints), 5.0, 1.0, &no_holes));
+    });
+    let tiled = support::TiledField(&field);
+    group.bench_function("outline_trace_tiles", |b| {
+        b.iter(|| trace_field(&tiled, black_box(&hints), 5.0, 1.0, &MarchOptions::DEFAULT));
     });
     group.bench_function("triangulate", |b| {
         b.iter(|| triangulate(black_box(&rings), &options));

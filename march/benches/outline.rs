@@ -15,6 +15,9 @@
 //! - `trace_field` calls `Field2::value` itself, only along the outline (and the nodes a hole
 //!   scan needs); `trace_grid_lookup` reads the pre-sampled grid instead, to separate the
 //!   following from the sampling. Both trace on the grid's own nodes (same step, same origin).
+//! - `trace_tiles_field` (and `_no_hole_scan`) trace through `trace_field` with
+//!   `tests/support`'s `TiledField` newtype, which fills each 8×8 node tile the trace touches
+//!   with one `Field2::sample_block` call.
 //! - `sample_grid_then_march_grid` and `sample_grid_then_contour_rs` are the full-grid
 //!   pipelines `trace_field` replaces.
 //!
@@ -29,7 +32,7 @@ use core::hint::black_box;
 
 use contour::ContourBuilder;
 use creature_march::glam::Vec2;
-use creature_march::{MarchOptions, march_grid, trace, trace_with};
+use creature_march::{MarchOptions, march_grid, trace, trace_field, trace_with};
 use creature_metaball::{Ball2, Falloff, Field2};
 use criterion::{Criterion, criterion_group, criterion_main};
 
@@ -90,6 +93,9 @@ fn bench(c: &mut Criterion) {
     let grid = march_grid(&values, SIZE, SIZE, 1.0).expect("valid grid");
     let looked_up = trace(lookup, &hints, step, 1.0).expect("valid trace");
     let traced = trace(culled, &hints, step, 1.0).expect("valid trace");
+    let tiled = support::TiledField(&field);
+    let traced_tiles =
+        trace_field(&tiled, &hints, step, 1.0, &MarchOptions::DEFAULT).expect("valid trace");
     let theirs = builder
         .contours(&values64, &[1.0])
         .expect("valid contour-rs grid");
@@ -103,15 +109,17 @@ fn bench(c: &mut Criterion) {
         .sum();
     assert_eq!(grid.len(), looked_up.len(), "same rings");
     assert_eq!(grid.len(), traced.len(), "same rings");
+    assert_eq!(grid.len(), traced_tiles.len(), "same rings");
     assert_eq!(grid.len(), their_rings, "same rings as contour-rs");
     let points =
         |rings: &[creature_march::Ring]| rings.iter().map(|r| r.points.len()).sum::<usize>();
     eprintln!(
-        "{} balls, step {step:.3}, {} rings; outline points: march_grid {}, trace {}, contour-rs {}",
+        "{} balls, step {step:.3}, {} rings; outline points: march_grid {}, trace {}, trace_field {}, contour-rs {}",
         balls.0.len(),
         grid.len(),
         points(&grid),
         points(&traced),
+        points(&traced_tiles),
         their_points,
     );
 
@@ -135,6 +143,12 @@ fn bench(c: &mut Criterion) {
     let no_holes = MarchOptions::DEFAULT.with_holes(false);
     group.bench_function("trace_field_no_hole_scan", |b| {
         b.iter(|| trace_with(culled, black_box(&hints), step, 1.0, &no_holes));
+    });
+    group.bench_function("trace_tiles_field", |b| {
+        b.iter(|| trace_field(&tiled, black_box(&hints), step, 1.0, &MarchOptions::DEFAULT));
+    });
+    group.bench_function("trace_tiles_field_no_hole_scan", |b| {
+        b.iter(|| trace_field(&tiled, black_box(&hints), step, 1.0, &no_holes));
     });
     group.bench_function("trace_grid_lookup", |b| {
         b.iter(|| trace(lookup, black_box(&hints), step, 1.0));

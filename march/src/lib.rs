@@ -22,6 +22,7 @@ mod ring;
 #[cfg(feature = "proptest")]
 #[cfg_attr(docsrs, doc(cfg(feature = "proptest")))]
 pub mod strategies;
+mod tile;
 mod trace;
 
 pub use error::MarchError;
@@ -31,7 +32,8 @@ pub use grid::{MAX_GRID_SAMPLES, march_grid, march_grid_with};
 pub use mesh::{Mesh2, MeshOptions, MeshQuality, triangulate};
 pub use options::{MAX_CELLS, MAX_GRID_COORDINATE, MarchOptions, Saddle};
 pub use ring::{Ring, validate_rings};
-pub use trace::{trace, trace_with};
+pub use tile::{TILE_NODES, TILE_SIZE, TileField, node_point};
+pub use trace::{trace, trace_field, trace_with};
 
 /// The `glam` version this crate's signatures use.
 pub use glam;

@@ -6,6 +6,7 @@ use glam::Vec2;
 
 use crate::cell::{self, ACROSS, CORNERS};
 use crate::options::MAX_GRID_COORDINATE;
+use crate::tile::{TILE_NODES, TileField, node_point};
 use crate::{MarchError, MarchOptions, Ring, Saddle};
 
 /// Every component of `field ≥ iso` that contains a hint, outlined by contour-following
@@ -28,7 +29,8 @@ use crate::{MarchError, MarchOptions, Ring, Saddle};
 ///
 /// Samples are cached in dense 8 × 8 tiles of nodes (a hash table finds the tiles), so the
 /// field is called once per node and once per saddle centre, plus once per hint and
-/// [`MarchOptions::refine_steps`] times per ring point.
+/// [`MarchOptions::refine_steps`] times per ring point. For a field that can fill a whole tile
+/// in one cheap call, see [`trace_field`] and [`TileField`](crate::TileField).
 ///
 /// So unlike the seed, which traces only the component above its top-most ball, every
 /// component holding a hint is found: pass every ball centre as a hint. Features smaller than a
@@ -104,6 +106,80 @@ pub fn trace_with(
     iso: f32,
     options: &MarchOptions,
 ) -> Result<Vec<Ring>, MarchError> {
+    trace_field(&field, hints, step, iso, options)
+}
+
+/// [`trace_with`] on any [`TileField`]: a field that can fill a tile of `8 × 8` grid nodes
+/// in one call ([`TileField::sample_tile`], used when [`TileField::prefers_tiles`] is true)
+/// has each tile the trace touches filled that way, instead of node by node.
+///
+/// Sampling by tiles pays off where most of a tile's nodes are needed — the hole scan reads
+/// every node an outer ring encloses — and costs extra samples along the outline, which
+/// needs only the nodes near it. For a field whose `sample_tile` is
+/// [`TileField`]'s default (64 [`value`](TileField::value) calls), `prefers_tiles` should
+/// stay `false`; even so, the rings are the same, bit for bit, either way, since every node's
+/// sample is the same. For a field whose `sample_tile` rounds differently from its `value`,
+/// the rings are those of its tile samples.
+///
+/// Closures are `TileField`s (point by point): `trace_with(f, ..)` is
+/// `trace_field(&f, ..)`.
+///
+/// # Errors
+///
+/// As [`trace_with`].
+///
+/// ```
+/// use creature_march::{glam::Vec2, trace_field, MarchOptions, TileField, TILE_NODES};
+///
+/// /// A lookup into a pre-sampled image of 64 × 64 nodes (zero outside it), which fills a
+/// /// tile by copying rows.
+/// struct Image(Vec<f32>);
+///
+/// impl TileField for Image {
+///     fn value(&self, p: Vec2) -> f32 {
+///         // Between nodes: the nearest node (enough for hints and saddle centres).
+///         let (x, y) = (p.x.round() as i64, p.y.round() as i64);
+///         if (0..64).contains(&x) && (0..64).contains(&y) {
+///             self.0[(y * 64 + x) as usize]
+///         } else {
+///             0.0
+///         }
+///     }
+///     fn prefers_tiles(&self) -> bool {
+///         true
+///     }
+///     fn sample_tile(&self, [i, j]: [i32; 2], _step: f32, out: &mut [f32; TILE_NODES]) {
+///         for (row, samples) in out.chunks_exact_mut(8).enumerate() {
+///             for (col, sample) in samples.iter_mut().enumerate() {
+///                 let (x, y) = (i + col as i32, j + row as i32);
+///                 *sample = if (0..64).contains(&x) && (0..64).contains(&y) {
+///                     self.0[(y * 64 + x) as usize]
+///                 } else {
+///                     0.0
+///                 };
+///             }
+///         }
+///     }
+/// }
+///
+/// // A disc of radius 20 around node (32, 32).
+/// let image = Image(
+///     (0..64 * 64)
+///         .map(|n| 1.0 - Vec2::new((n % 64) as f32, (n / 64) as f32).distance(Vec2::splat(32.0)) / 20.0)
+///         .collect(),
+/// );
+/// let rings = trace_field(&image, &[Vec2::splat(32.0)], 1.0, 0.0, &MarchOptions::DEFAULT)?;
+/// assert_eq!(rings.len(), 1);
+/// assert!((rings[0].signed_area() - core::f32::consts::PI * 400.0).abs() < 10.0);
+/// # Ok::<(), creature_march::MarchError>(())
+/// ```
+pub fn trace_field<F: TileField + ?Sized>(
+    field: &F,
+    hints: &[Vec2],
+    step: f32,
+    iso: f32,
+    options: &MarchOptions,
+) -> Result<Vec<Ring>, MarchError> {
     options.validate()?;
     if !iso.is_finite() {
         return Err(MarchError::NonFinite {
@@ -140,7 +216,8 @@ pub fn trace_with(
         }
     }
     let mut tracer = Tracer {
-        field: &field,
+        field,
+        tiled: field.prefers_tiles(),
         step,
         iso,
         options,
@@ -186,8 +263,10 @@ impl Traced {
     }
 }
 
-struct Tracer<'a, F> {
+struct Tracer<'a, F: ?Sized> {
     field: &'a F,
+    /// Fill whole tiles with [`TileField::sample_tile`].
+    tiled: bool,
     step: f32,
     iso: f32,
     options: &'a MarchOptions,
@@ -201,7 +280,7 @@ struct Tracer<'a, F> {
     scanned: usize,
 }
 
-impl<F: Fn(Vec2) -> f32> Tracer<'_, F> {
+impl<F: TileField + ?Sized> Tracer<'_, F> {
     fn tick(&mut self, hint: usize) -> Result<(), MarchError> {
         self.cells += 1;
         if self.cells > self.options.max_cells {
@@ -217,10 +296,23 @@ impl<F: Fn(Vec2) -> f32> Tracer<'_, F> {
     #[inline]
     fn node(&mut self, i: i32, j: i32) -> f32 {
         let (tile, slot) = self.nodes.locate(i, j);
+        self.cached(tile, slot, i, j)
+    }
+
+    /// The sample at node `(i, j)`, which lies in `slot` of `tile`: the node alone on first
+    /// use, or (tiled) the whole tile on first use of any of its nodes.
+    #[inline]
+    fn cached(&mut self, tile: usize, slot: usize, i: i32, j: i32) -> f32 {
         let field = self.field;
         let step = self.step;
-        self.nodes
-            .value_or(tile, slot, || field(Vec2::new(i as f32, j as f32) * step))
+        if self.tiled {
+            let first = [i & !TILE_MASK, j & !TILE_MASK];
+            self.nodes
+                .filled(tile, slot, |out| field.sample_tile(first, step, out))
+        } else {
+            self.nodes
+                .value_or(tile, slot, || field.value(node_point([i, j], step)))
+        }
     }
 
     #[inline]
@@ -273,7 +365,7 @@ impl<F: Fn(Vec2) -> f32> Tracer<'_, F> {
         if self.covered(corners[0].0, corners[0].1) {
             return Ok(());
         }
-        if !cell::is_inside((self.field)(hint), self.iso) {
+        if !cell::is_inside(self.field.value(hint), self.iso) {
             return Ok(());
         }
         let mut start = None;
@@ -338,19 +430,33 @@ impl<F: Fn(Vec2) -> f32> Tracer<'_, F> {
     /// crossing between two of them that no ring has crossed yet. Runs tile by tile, reading
     /// the samples straight from each tile.
     fn scan_column(&mut self, x: i32, bottom: i32, top: i32) -> Result<(), MarchError> {
-        let field = self.field;
-        let (step, iso) = (self.step, self.iso);
+        let iso = self.iso;
         let mut below = self.inside(x, bottom + 1);
         let mut y = bottom + 1;
         while y < top {
             // Nodes y + 1 ..= last lie in one tile.
             let (tile, _) = self.nodes.locate(x, y + 1);
             let last = ((y + 1) | TILE_MASK).min(top);
+            if self.tiled {
+                // The whole tile is filled by its first use: count the segment's nodes at once
+                // (the same total, so the same budget outcome and error) and read the samples
+                // straight from the tile.
+                self.cells += (last - y) as usize;
+                if self.cells > self.options.max_cells {
+                    return Err(MarchError::BudgetExceeded {
+                        hint: usize::MAX,
+                        cells: self.options.max_cells,
+                    });
+                }
+                self.cached(tile, Nodes::slot(x, y + 1), x, y + 1);
+            }
             for up in y + 1..=last {
-                self.tick(usize::MAX)?;
-                let v = self.nodes.value_or(tile, Nodes::slot(x, up), || {
-                    field(Vec2::new(x as f32, up as f32) * step)
-                });
+                let v = if self.tiled {
+                    self.nodes.sampled(tile, Nodes::slot(x, up))
+                } else {
+                    self.tick(usize::MAX)?;
+                    self.cached(tile, Nodes::slot(x, up), x, up)
+                };
                 let above = cell::is_inside(v, iso);
                 if above != below && self.nodes.vertical(x, up - 1).is_none() {
                     if below {
@@ -373,7 +479,7 @@ impl<F: Fn(Vec2) -> f32> Tracer<'_, F> {
                     Some(v) => v,
                     None => {
                         let p = (Vec2::new(i as f32, j as f32) + 0.5) * self.step;
-                        let v = (self.field)(p);
+                        let v = self.field.value(p);
                         self.centres.insert((i, j), v);
                         v
                     }
@@ -472,7 +578,7 @@ impl<F: Fn(Vec2) -> f32> Tracer<'_, F> {
         let mut t = t0;
         let mut side = 0i8;
         for _ in 0..steps {
-            let v = (self.field)((pa + (pb - pa) * t) * self.step);
+            let v = self.field.value((pa + (pb - pa) * t) * self.step);
             if v == self.iso {
                 return t;
             }
@@ -550,7 +656,7 @@ fn sort_by_column(crossings: &mut Vec<(i32, i32)>) {
 /// Side of a node tile: tiles hold `TILE × TILE` nodes.
 const TILE_SHIFT: i32 = 3;
 const TILE_MASK: i32 = (1 << TILE_SHIFT) - 1;
-const TILE_NODES: usize = 1 << (2 * TILE_SHIFT);
+const _: () = assert!(TILE_NODES == 1 << (2 * TILE_SHIFT));
 
 /// No ring crosses this vertical edge.
 const NO_RING: u32 = u32::MAX;
@@ -642,6 +748,35 @@ impl Nodes {
             t.sampled |= bit;
         }
         v
+    }
+
+    /// The sample in `slot` of `tile`, after filling the whole tile with `fill` if it has not
+    /// been filled yet.
+    #[inline]
+    fn filled(
+        &mut self,
+        tile: usize,
+        slot: usize,
+        fill: impl FnOnce(&mut [f32; TILE_NODES]),
+    ) -> f32 {
+        let Some(t) = self.tiles.get_mut(tile) else {
+            return f32::NAN;
+        };
+        if t.sampled != u64::MAX {
+            fill(&mut t.values);
+            t.sampled = u64::MAX;
+        }
+        t.values.get(slot).copied().unwrap_or(f32::NAN)
+    }
+
+    /// The sample in `slot` of `tile`, which has been filled (NaN, outside, otherwise).
+    #[inline]
+    fn sampled(&self, tile: usize, slot: usize) -> f32 {
+        self.tiles
+            .get(tile)
+            .and_then(|t| t.values.get(slot))
+            .copied()
+            .unwrap_or(f32::NAN)
     }
 
     /// The ring crossing the edge from node `(i, j)` up to `(i, j + 1)`.
@@ -832,6 +967,140 @@ mod tests {
         assert_eq!(rings.iter().filter(|r| r.hole).count(), 1);
         let (distinct, calls) = &*seen.borrow();
         assert_eq!(distinct.len(), *calls, "a point was sampled twice");
+    }
+
+    /// A point-by-point field read tile by tile, counting its calls.
+    struct Tiled<F> {
+        field: F,
+        tiles: core::cell::RefCell<Vec<[i32; 2]>>,
+        values: core::cell::Cell<usize>,
+    }
+
+    impl<F: Fn(Vec2) -> f32> TileField for Tiled<F> {
+        fn value(&self, p: Vec2) -> f32 {
+            self.values.set(self.values.get() + 1);
+            (self.field)(p)
+        }
+        fn prefers_tiles(&self) -> bool {
+            true
+        }
+    }
+
+    fn tiled<F>(field: F) -> Tiled<F> {
+        Tiled {
+            field,
+            tiles: core::cell::RefCell::new(Vec::new()),
+            values: core::cell::Cell::new(0),
+        }
+    }
+
+    impl<F: Fn(Vec2) -> f32> Tiled<F> {
+        fn count(&self, first: [i32; 2]) {
+            self.tiles.borrow_mut().push(first);
+        }
+    }
+
+    /// The same, but recording each tile it is asked for.
+    struct Recording<F>(Tiled<F>);
+
+    impl<F: Fn(Vec2) -> f32> TileField for Recording<F> {
+        fn value(&self, p: Vec2) -> f32 {
+            self.0.value(p)
+        }
+        fn prefers_tiles(&self) -> bool {
+            true
+        }
+        fn sample_tile(&self, first: [i32; 2], step: f32, out: &mut [f32; TILE_NODES]) {
+            self.0.count(first);
+            // The default, through `value`.
+            for (n, v) in out.iter_mut().enumerate() {
+                let node = [first[0] + (n % 8) as i32, first[1] + (n / 8) as i32];
+                *v = self.0.value(node_point(node, step));
+            }
+        }
+    }
+
+    fn annulus_and_disc(p: Vec2) -> f32 {
+        let ring = (p.length() - 10.0).min(25.0 - p.length());
+        let disc = 8.0 - p.distance(Vec2::new(60.0, -20.0));
+        ring.max(disc)
+    }
+
+    #[test]
+    fn tiles_are_filled_once_each_aligned_and_give_the_same_rings() {
+        let hints = [Vec2::new(-17.3, 0.1), Vec2::new(60.1, -19.9)];
+        let expected = trace(annulus_and_disc, &hints, 1.3, 0.0).unwrap();
+        let field = Recording(tiled(annulus_and_disc));
+        let rings = trace_field(&field, &hints, 1.3, 0.0, &MarchOptions::DEFAULT).unwrap();
+        assert_eq!(rings, expected);
+        let tiles = field.0.tiles.borrow();
+        assert!(tiles.len() > 10);
+        let mut sorted = tiles.clone();
+        sorted.sort_unstable();
+        sorted.dedup();
+        assert_eq!(sorted.len(), tiles.len(), "a tile was filled twice");
+        assert!(tiles.iter().all(|t| t[0] % 8 == 0 && t[1] % 8 == 0));
+        assert!(tiles.iter().any(|t| t[0] < 0) && tiles.iter().any(|t| t[1] < 0));
+        // Point samples: 64 per tile plus one per hint (no saddles, no refinement here).
+        assert_eq!(field.0.values.get(), 64 * tiles.len() + hints.len());
+    }
+
+    #[test]
+    fn the_budget_runs_out_alike_point_by_point_and_by_tiles() {
+        // Every budget from far too small to enough, including ones that run out in the
+        // middle of the hole scan (which counts a tile's nodes at once when tiled).
+        let hints = [Vec2::new(-17.3, 0.1), Vec2::new(60.1, -19.9)];
+        let field = tiled(annulus_and_disc);
+        let mut outcomes = (0, 0);
+        for max_cells in (1..3000).step_by(7) {
+            let options = MarchOptions::DEFAULT.with_max_cells(max_cells);
+            let by_nodes = trace_with(annulus_and_disc, &hints, 1.3, 0.0, &options);
+            let by_tiles = trace_field(&field, &hints, 1.3, 0.0, &options);
+            assert_eq!(by_nodes, by_tiles, "max_cells {max_cells}");
+            if by_nodes.is_ok() {
+                outcomes.0 += 1;
+            } else {
+                outcomes.1 += 1;
+            }
+        }
+        assert!(outcomes.0 > 0 && outcomes.1 > 0, "{outcomes:?}");
+    }
+
+    #[test]
+    fn point_by_point_fields_never_fill_tiles() {
+        let field = tiled(annulus_and_disc);
+        // `Tiled` prefers tiles; a closure does not.
+        assert!(field.prefers_tiles());
+        assert!(!TileField::prefers_tiles(&annulus_and_disc));
+        let hints = [Vec2::new(-17.3, 0.1)];
+        let by_tiles = trace_field(&field, &hints, 1.3, 0.0, &MarchOptions::DEFAULT).unwrap();
+        let by_nodes =
+            trace_field(&annulus_and_disc, &hints, 1.3, 0.0, &MarchOptions::DEFAULT).unwrap();
+        assert_eq!(by_tiles, by_nodes);
+    }
+
+    #[test]
+    fn nan_tile_samples_are_outside() {
+        // A disc whose tiles report NaN everywhere outside radius 10 (and on a stripe inside).
+        let field = Recording(tiled(|p: Vec2| {
+            if p.length() > 10.0 || (p.x > 2.0 && p.x < 3.0) {
+                f32::NAN
+            } else {
+                1.0
+            }
+        }));
+        let rings = trace_field(
+            &field,
+            &[Vec2::new(-5.0, 0.0)],
+            0.5,
+            0.5,
+            &MarchOptions::DEFAULT,
+        )
+        .unwrap();
+        assert!(!rings.is_empty());
+        assert!(rings.iter().all(|r| r.points.iter().all(|p| p.is_finite())));
+        // The stripe cuts the disc: the hint's component stays left of it.
+        assert!(rings[0].points.iter().all(|p| p.x <= 3.0));
     }
 
     #[test]

@@ -8,12 +8,24 @@ mod support;
 
 use creature_march::glam::Vec2;
 use creature_march::{
-    MarchError, MarchOptions, Ring, Saddle, march_grid, march_grid_with, strategies, trace,
-    trace_with, validate_rings,
+    MarchError, MarchOptions, Ring, Saddle, TILE_NODES, TILE_SIZE, TileField, march_grid,
+    march_grid_with, node_point, strategies, trace, trace_field, trace_with, validate_rings,
 };
 use proptest::prelude::*;
 use proptest::test_runner::FileFailurePersistence;
 use support::{hausdorff, is_simple, sample, to_world};
+
+/// A blob field read tile by tile through [`TileField`]'s default `sample_tile`.
+struct DefaultTiles(strategies::Blobs);
+
+impl TileField for DefaultTiles {
+    fn value(&self, p: Vec2) -> f32 {
+        self.0.value(p)
+    }
+    fn prefers_tiles(&self) -> bool {
+        true
+    }
+}
 
 fn well_formed(rings: &[Ring]) -> Result<(), TestCaseError> {
     prop_assert!(validate_rings(rings).is_ok(), "{:?}", validate_rings(rings));
@@ -102,6 +114,41 @@ proptest! {
         let (traced_outer, grid_outer) = (traced, grid);
         let h = hausdorff(&traced_outer, &grid_outer);
         prop_assert!(h <= step, "hausdorff {} > step {}", h, step);
+    }
+
+    #[test]
+    fn the_default_tile_sampler_is_point_sampling(
+        blobs in strategies::blobs(1..6),
+        first in (-40i32..40, -40i32..40),
+        step in 0.1f32..5.0,
+    ) {
+        let field = DefaultTiles(blobs);
+        let first = [first.0 * TILE_SIZE as i32, first.1 * TILE_SIZE as i32];
+        let mut tile = [f32::NAN; TILE_NODES];
+        field.sample_tile(first, step, &mut tile);
+        for row in 0..TILE_SIZE {
+            for col in 0..TILE_SIZE {
+                let node = [first[0] + col as i32, first[1] + row as i32];
+                let expected = field.0.value(node_point(node, step));
+                prop_assert_eq!(tile[row * TILE_SIZE + col].to_bits(), expected.to_bits());
+            }
+        }
+    }
+
+    #[test]
+    fn tracing_tile_by_tile_with_the_default_sampler_is_tracing_the_closure(
+        blobs in strategies::blobs(1..10),
+        step in 1.0f32..4.0,
+        holes in any::<bool>(),
+        asymptotic in any::<bool>(),
+    ) {
+        let saddle = if asymptotic { Saddle::Asymptotic } else { Saddle::Centre };
+        let options = MarchOptions::DEFAULT.with_holes(holes).with_saddle(saddle);
+        let hints = blobs.centres();
+        let closure = trace_with(|p| blobs.value(p), &hints, step, 1.0, &options).unwrap();
+        let tiles = trace_field(&DefaultTiles(blobs), &hints, step, 1.0, &options).unwrap();
+        // The same rings, bit for bit.
+        prop_assert_eq!(closure, tiles);
     }
 
     #[test]

@@ -1,7 +1,8 @@
 //! Sampling a 256×256 grid over a 50-ball creature-like field (the seed's median creature has
 //! 49 balls): the culled field against the plain all-balls reference in
 //! `tests/support/reference.rs` (every ball at every sample, as the seed does) and against the
-//! crate's own exact sum.
+//! crate's own exact sum; and the same grid filled block by block with `Field2::sample_block`
+//! (8 × 8 blocks, as `creature-march`'s tile cache asks for them).
 //!
 //! Run: `cargo bench -p creature-metaball --bench field`
 
@@ -44,6 +45,26 @@ fn bench(c: &mut Criterion) {
             field
                 .sample_grid(black_box(origin), black_box(step), SIDE, SIDE)
                 .expect("valid grid")
+        });
+    });
+    group.bench_function("culled_sample_block_8x8", |b| {
+        // The same samples, as 1,024 blocks of 8 × 8 (as a contour tracer's tile cache asks).
+        let mut samples = vec![0.0f32; SIDE * SIDE];
+        b.iter(|| {
+            let mut block = [0.0f32; 64];
+            for by in 0..SIDE / 8 {
+                for bx in 0..SIDE / 8 {
+                    let corner = origin + step * Vec2::new((bx * 8) as f32, (by * 8) as f32);
+                    field
+                        .sample_block(black_box(corner), black_box(step), 8, 8, &mut block)
+                        .expect("valid block");
+                    for (row, chunk) in block.chunks_exact(8).enumerate() {
+                        let at = (by * 8 + row) * SIDE + bx * 8;
+                        samples[at..at + 8].copy_from_slice(chunk);
+                    }
+                }
+            }
+            black_box(&samples);
         });
     });
     group.bench_function("culled_value_per_point", |b| {

@@ -43,7 +43,8 @@ pub enum MetaballError {
     NoBalls,
     /// A list had the wrong length.
     WrongLength {
-        /// Which list, e.g. `"attributes"`.
+        /// Which list: `"attributes"` (one per ball) or `"block samples"` (columns × rows,
+        /// [`Field2::sample_block`](crate::Field2::sample_block)).
         what: &'static str,
         /// The length it must have.
         expected: usize,
@@ -92,6 +93,14 @@ impl fmt::Display for MetaballError {
                 "{what} {index} is {value:e}: pass a value from {min:e} to {max:e}"
             ),
             Self::NoBalls => write!(f, "no balls were given: pass at least one ball"),
+            Self::WrongLength {
+                what,
+                expected,
+                found,
+            } if what.starts_with("block") => write!(
+                f,
+                "{what} has {found} entries: pass exactly {expected} (columns × rows)"
+            ),
             Self::WrongLength {
                 what,
                 expected,

@@ -578,39 +578,106 @@ impl Field2 {
         width: usize,
         height: usize,
     ) -> Result<Vec<f32>, MetaballError> {
-        if !origin.is_finite() {
-            return Err(MetaballError::NonFinite {
-                what: "grid origin",
-                index: 0,
-            });
-        }
-        if !step.is_finite() {
-            return Err(MetaballError::NonFinite {
-                what: "grid step",
-                index: 0,
-            });
-        }
-        if !(step > 0.0) {
-            return Err(MetaballError::NotPositive {
-                what: "grid step",
-                index: 0,
-                value: step,
-            });
-        }
-        let count = width.saturating_mul(height);
-        if count > MAX_GRID_SAMPLES {
-            return Err(MetaballError::OutOfRange {
-                what: "grid sample count",
-                index: 0,
-                value: count as f32,
-                min: 0.0,
-                max: MAX_GRID_SAMPLES as f32,
-            });
-        }
+        check_grid(origin, step, width, height)?;
         Ok(self
             .core
             .sample_grid(origin.to_array(), step, width, height))
     }
+
+    /// Samples the culled field on a small `cols × rows` block with spacing `step` into `out`:
+    /// `out[row * cols + col]` is the field at `origin + step * (col, row)` (x = column,
+    /// y = row, the layout of [`sample_grid`](Self::sample_grid)). Meant for many small
+    /// blocks, such as the 8 × 8 node tiles a contour tracer caches: it allocates nothing
+    /// (for blocks up to 16 columns wide) and visits only the balls listed by the culling
+    /// cells the block overlaps, so a block costs O(balls near it), not O(all balls).
+    ///
+    /// It uses the separable evaluation of [`sample_grid`](Self::sample_grid) (one `exp` per
+    /// ball per row and per column for the Gaussian falloffs), with the row and column
+    /// factors of a ball computed together by a branch-free `exp` the compiler vectorises
+    /// (within `1.5e-7` relative of the true `exp`; the same bits on every platform). Against
+    /// [`value`](Self::value) at the same point it sums the same balls in the same order (so
+    /// a sample is 0 exactly where `value` is) and differs only by rounding: within
+    /// `1e-6 × max(value, 1)` (tested), and it obeys the same
+    /// [`error_bound`](Self::error_bound) against the exact sum. It is **not** bit-identical
+    /// to `value`, nor to `sample_grid` (which uses the platform's `exp`). For
+    /// [`Falloff::Wyvill`] (no separable form) each sample is `value` itself.
+    ///
+    /// ```
+    /// use creature_metaball::{Ball2, Falloff, Field2, glam::Vec2};
+    ///
+    /// let field = Field2::new(&[Ball2::new(Vec2::ZERO, 10.0, 0)], Falloff::SEED)?;
+    /// let (origin, step) = (Vec2::new(-8.0, -8.0), 2.0);
+    /// let mut tile = [0.0f32; 8 * 8];
+    /// field.sample_block(origin, step, 8, 8, &mut tile)?;
+    /// for row in 0..8 {
+    ///     for col in 0..8 {
+    ///         let p = origin + step * Vec2::new(col as f32, row as f32);
+    ///         let v = field.value(p);
+    ///         assert!((tile[row * 8 + col] - v).abs() <= 1e-6 * v.max(1.0));
+    ///     }
+    /// }
+    /// # Ok::<(), creature_metaball::MetaballError>(())
+    /// ```
+    ///
+    /// # Errors
+    /// As [`sample_grid`](Self::sample_grid), plus [`MetaballError::WrongLength`] when
+    /// `out.len()` is not `cols × rows`. On error `out` is left untouched.
+    pub fn sample_block(
+        &self,
+        origin: Vec2,
+        step: f32,
+        cols: usize,
+        rows: usize,
+        out: &mut [f32],
+    ) -> Result<(), MetaballError> {
+        check_grid(origin, step, cols, rows)?;
+        let expected = cols * rows;
+        if out.len() != expected {
+            return Err(MetaballError::WrongLength {
+                what: "block samples",
+                expected,
+                found: out.len(),
+            });
+        }
+        self.core
+            .sample_block(origin.to_array(), step, cols, rows, out);
+        Ok(())
+    }
+}
+
+/// Checks a sampling grid: finite origin, finite positive step, at most [`MAX_GRID_SAMPLES`]
+/// samples.
+fn check_grid(origin: Vec2, step: f32, width: usize, height: usize) -> Result<(), MetaballError> {
+    if !origin.is_finite() {
+        return Err(MetaballError::NonFinite {
+            what: "grid origin",
+            index: 0,
+        });
+    }
+    if !step.is_finite() {
+        return Err(MetaballError::NonFinite {
+            what: "grid step",
+            index: 0,
+        });
+    }
+    if !(step > 0.0) {
+        return Err(MetaballError::NotPositive {
+            what: "grid step",
+            index: 0,
+            value: step,
+        });
+    }
+    let count = width.saturating_mul(height);
+    if count > MAX_GRID_SAMPLES {
+        return Err(MetaballError::OutOfRange {
+            what: "grid sample count",
+            index: 0,
+            value: count as f32,
+            min: 0.0,
+            max: MAX_GRID_SAMPLES as f32,
+        });
+    }
+    Ok(())
 }
 
 /// A 3D metaball field: [`Field2`] with [`Vec3`] points (a cubic grid culls the balls).

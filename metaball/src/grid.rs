@@ -51,6 +51,209 @@ impl Core<2> {
         width: usize,
         height: usize,
     ) -> Vec<f32> {
+        let mut out = vec![0.0f32; width * height];
+        let mut scratch = vec![0.0f32; 2 * width];
+        self.sample_into::<false>(
+            origin,
+            step,
+            [width, height],
+            self.balls.iter(),
+            &mut scratch,
+            &mut out,
+        );
+        out
+    }
+
+    /// [`sample_grid`](Core::sample_grid) into `out` (`cols × rows` samples, row-major), for a
+    /// small block: only the balls listed by the culling cells the block overlaps are visited
+    /// (every ball whose cutoff reaches a sample of the block is among them), in ball order,
+    /// so each sample sums the balls `value` sums; the factors come from the batched `exp`.
+    /// The caller checks that `out` holds `cols × rows` samples.
+    pub(crate) fn sample_block(
+        &self,
+        origin: [f32; 2],
+        step: f32,
+        cols: usize,
+        rows: usize,
+        out: &mut [f32],
+    ) {
+        out.fill(0.0);
+        if cols == 0 || rows == 0 {
+            return;
+        }
+        let mut inline = [0.0f32; 3 * BLOCK_INLINE_SIDE];
+        let mut heap = Vec::new();
+        let scratch: &mut [f32] = if cols <= BLOCK_INLINE_SIDE && rows <= BLOCK_INLINE_SIDE {
+            &mut inline
+        } else {
+            heap.resize(2 * cols.max(rows) + rows, 0.0);
+            &mut heap
+        };
+        let far = [
+            origin[0] + step * (cols - 1) as f32,
+            origin[1] + step * (rows - 1) as f32,
+        ];
+        let (x0, x1) = (self.clamp_axis(0, origin[0]), self.clamp_axis(0, far[0]));
+        let (y0, y1) = (self.clamp_axis(1, origin[1]), self.clamp_axis(1, far[1]));
+        let spanned = (x1 - x0 + 1) * (y1 - y0 + 1);
+        let cell_entries = |c: usize| match (self.starts.get(c), self.starts.get(c + 1)) {
+            (Some(&a), Some(&b)) => self.entries.get(a as usize..b as usize).unwrap_or(&[]),
+            _ => &[],
+        };
+        let size = [cols, rows];
+        let mut sample = |balls: &mut dyn Iterator<Item = &Entry<2>>, out: &mut [f32]| {
+            if cols <= TILE && rows <= TILE {
+                self.sample_tile(origin, step, size, balls, out);
+            } else {
+                self.sample_into::<true>(origin, step, size, balls, scratch, out);
+            }
+        };
+        if spanned == 1 {
+            // One cell: its list is already the balls in ball order, each once.
+            let list = cell_entries(y0 * self.dims[0] + x0);
+            sample(&mut list.iter(), out);
+        } else if spanned <= MAX_BLOCK_CELLS {
+            // The union of the cells' lists, in ball order, each ball once: a bit per ball.
+            let mut seen: SmallVec<[u64; 8]> = SmallVec::new();
+            seen.resize(self.balls.len().div_ceil(64), 0);
+            for y in y0..=y1 {
+                for x in x0..=x1 {
+                    for e in cell_entries(y * self.dims[0] + x) {
+                        let i = e.index as usize;
+                        if let Some(word) = seen.get_mut(i / 64) {
+                            *word |= 1 << (i % 64);
+                        }
+                    }
+                }
+            }
+            let mut balls = seen.iter().enumerate().flat_map(|(w, &bits)| {
+                let mut bits = bits;
+                core::iter::from_fn(move || {
+                    if bits == 0 {
+                        return None;
+                    }
+                    let bit = bits.trailing_zeros() as usize;
+                    bits &= bits - 1;
+                    Some(w * 64 + bit)
+                })
+                .filter_map(|i| self.balls.get(i))
+            });
+            sample(&mut balls, out);
+        } else {
+            sample(&mut self.balls.iter(), out);
+        }
+    }
+
+    /// [`sample_into`](Core::sample_into) with `BATCH` for blocks of at most
+    /// [`TILE`] × [`TILE`] samples, on fixed-size arrays so that every step runs
+    /// [`TILE`] lanes wide: each ball's column and row exponents in one batch each, and each
+    /// row's cutoff test and accumulation over all [`TILE`] columns (columns past `width` get
+    /// an infinite distance, so they fail the test). Each sample gets the terms of exactly the
+    /// balls whose `dx² + dy² < r_c²`, in ball order, as in `sample_into`.
+    fn sample_tile(
+        &self,
+        origin: [f32; 2],
+        step: f32,
+        [width, height]: [usize; 2],
+        balls: &mut dyn Iterator<Item = &Entry<2>>,
+        out: &mut [f32],
+    ) {
+        let (scale, sharpness) = match self.kernel {
+            Kernel::Exponential { b } => (math::exp(-b), -b),
+            Kernel::Gauss {
+                strength,
+                sharpness,
+            } => (strength, sharpness),
+            Kernel::Wyvill { .. } => {
+                let mut scratch = [0.0f32; 0];
+                return self.sample_into::<true>(
+                    origin,
+                    step,
+                    [width, height],
+                    balls,
+                    &mut scratch,
+                    out,
+                );
+            }
+        };
+        if width == 0 || height == 0 {
+            return;
+        }
+        let mut xs = [0.0f32; TILE];
+        let mut ys = [0.0f32; TILE];
+        for k in 0..TILE {
+            xs[k] = origin[0] + step * k as f32;
+            ys[k] = origin[1] + step * k as f32;
+        }
+        let far = [
+            xs[(width - 1).min(TILE - 1)],
+            ys[(height - 1).min(TILE - 1)],
+        ];
+        let mut acc = [[0.0f32; TILE]; TILE];
+        for ball in balls {
+            if !(ball.cutoff_d2 > 0.0) {
+                continue;
+            }
+            let center = ball.center;
+            // A ball whose padded cutoff disc misses the block's rectangle reaches none of its
+            // samples (the padding dwarfs the rounding of these differences).
+            let gap_x = (origin[0] - center[0]).max(center[0] - far[0]).max(0.0);
+            let gap_y = (origin[1] - center[1]).max(center[1] - far[1]).max(0.0);
+            let reach = pad(math::sqrt(ball.cutoff_d2));
+            if !(gap_x * gap_x + gap_y * gap_y <= reach * reach) {
+                continue;
+            }
+            let mut dx2 = [0.0f32; TILE];
+            let mut dy2 = [0.0f32; TILE];
+            // Column exponents, then row exponents.
+            let mut factors = [0.0f32; 2 * TILE];
+            for k in 0..TILE {
+                let dx = xs[k] - center[0];
+                let d = dx * dx;
+                dx2[k] = if k < width { d } else { f32::INFINITY };
+                factors[k] = -sharpness * (d * ball.inv_r2);
+                let dy = ys[k] - center[1];
+                let d = dy * dy;
+                dy2[k] = d;
+                factors[TILE + k] = -sharpness * (d * ball.inv_r2);
+            }
+            math::exp_nonpositive_lanes(&mut factors);
+            let (fx, fy) = factors.split_at(TILE);
+            for ((row, &dy2), &fy) in acc.iter_mut().zip(&dy2).zip(fy).take(height) {
+                let row_factor = scale * fy;
+                for ((sample, &dx2), &fx) in row.iter_mut().zip(&dx2).zip(fx) {
+                    // Same expression as `distance2`: (0 + dx²) + dy²; +0 for the others
+                    // keeps the bits (a sample starts at +0 and only grows).
+                    let term = if dx2 + dy2 < ball.cutoff_d2 {
+                        row_factor * fx
+                    } else {
+                        0.0
+                    };
+                    *sample += term;
+                }
+            }
+        }
+        for (samples, row) in out.chunks_exact_mut(width).zip(&acc).take(height) {
+            for (sample, &a) in samples.iter_mut().zip(row) {
+                *sample = saturate(a);
+            }
+        }
+    }
+
+    /// Adds the contributions of `balls` (in ball order, each once, a superset of the balls
+    /// reaching any sample) to the zeroed `width × height` samples in `out`, then saturates.
+    /// `scratch` holds at least `2 × width` floats, and `2 × max(width, height) + height` with
+    /// `BATCH`, which evaluates each ball's row and column factors with
+    /// [`math::exp_nonpositive_batch`] instead of the backend's `exp` one at a time.
+    fn sample_into<'a, const BATCH: bool>(
+        &self,
+        origin: [f32; 2],
+        step: f32,
+        [width, height]: [usize; 2],
+        balls: impl Iterator<Item = &'a Entry<2>>,
+        scratch: &mut [f32],
+        out: &mut [f32],
+    ) {
         let x_of = |j: usize| origin[0] + step * j as f32;
         let y_of = |i: usize| origin[1] + step * i as f32;
         let (scale, sharpness) = match self.kernel {
@@ -60,24 +263,32 @@ impl Core<2> {
                 sharpness,
             } => (strength, sharpness),
             Kernel::Wyvill { .. } => {
-                let mut out = Vec::with_capacity(width * height);
-                for i in 0..height {
-                    for j in 0..width {
-                        out.push(self.value([x_of(j), y_of(i)]));
-                    }
+                for (n, sample) in out.iter_mut().enumerate().take(width * height) {
+                    *sample = self.value([x_of(n % width), y_of(n / width)]);
                 }
-                return out;
+                return;
             }
         };
-        let mut out = vec![0.0f32; width * height];
-        let mut column_factor: Vec<f32> = Vec::with_capacity(width);
-        let mut column_d2: Vec<f32> = Vec::with_capacity(width);
-        for ball in &self.balls {
+        if width == 0 || height == 0 {
+            return;
+        }
+        let far = [x_of(width - 1), y_of(height - 1)];
+        let (column_d2, rest) = scratch.split_at_mut(width);
+        let (column_factor, row_factor) = rest.split_at_mut(width);
+        for ball in balls {
             if !(ball.cutoff_d2 > 0.0) {
                 continue;
             }
             let center = ball.center;
             let reach = pad(math::sqrt(ball.cutoff_d2));
+            // A ball whose padded cutoff box misses the samples' box reaches none of them.
+            if !(center[0] + reach >= origin[0]
+                && center[0] - reach <= far[0]
+                && center[1] + reach >= origin[1]
+                && center[1] - reach <= far[1])
+            {
+                continue;
+            }
             let Some((j0, j1)) =
                 index_range(center[0] - reach, center[0] + reach, origin[0], step, width)
             else {
@@ -92,36 +303,71 @@ impl Core<2> {
             ) else {
                 continue;
             };
-            column_factor.clear();
-            column_d2.clear();
-            for j in j0..=j1 {
+            let (Some(d2s), Some(factors)) =
+                (column_d2.get_mut(j0..=j1), column_factor.get_mut(j0..=j1))
+            else {
+                continue;
+            };
+            for ((j, d2), factor) in (j0..=j1).zip(d2s.iter_mut()).zip(factors.iter_mut()) {
                 let dx = x_of(j) - center[0];
                 let dx2 = dx * dx;
-                column_d2.push(dx2);
-                column_factor.push(math::exp(-sharpness * (dx2 * ball.inv_r2)));
+                *d2 = dx2;
+                let exponent = -sharpness * (dx2 * ball.inv_r2);
+                *factor = if BATCH { exponent } else { math::exp(exponent) };
             }
+            let rows = if BATCH {
+                math::exp_nonpositive_batch(factors);
+                let Some(rows) = row_factor.get_mut(i0..=i1) else {
+                    continue;
+                };
+                for (i, f) in (i0..=i1).zip(rows.iter_mut()) {
+                    let dy = y_of(i) - center[1];
+                    *f = -sharpness * ((dy * dy) * ball.inv_r2);
+                }
+                math::exp_nonpositive_batch(rows);
+                &*rows
+            } else {
+                &[]
+            };
             for i in i0..=i1 {
                 let dy = y_of(i) - center[1];
                 let dy2 = dy * dy;
-                let row_factor = scale * math::exp(-sharpness * (dy2 * ball.inv_r2));
+                let row_factor = if BATCH {
+                    scale * rows.get(i - i0).copied().unwrap_or(0.0)
+                } else {
+                    scale * math::exp(-sharpness * (dy2 * ball.inv_r2))
+                };
                 let Some(row) = out.get_mut(i * width + j0..=i * width + j1) else {
                     continue;
                 };
-                for ((sample, &dx2), &factor) in row.iter_mut().zip(&column_d2).zip(&column_factor)
-                {
-                    // Same expression as `distance2`: (0 + dx²) + dy².
-                    if dx2 + dy2 < ball.cutoff_d2 {
-                        *sample += row_factor * factor;
-                    }
+                for ((sample, &dx2), &factor) in row.iter_mut().zip(&*d2s).zip(&*factors) {
+                    // Same expression as `distance2`: (0 + dx²) + dy². Adding +0 instead of
+                    // skipping keeps the bits (a sample starts at +0 and only grows), and lets
+                    // the loop run without branches.
+                    let term = if dx2 + dy2 < ball.cutoff_d2 {
+                        row_factor * factor
+                    } else {
+                        0.0
+                    };
+                    *sample += term;
                 }
             }
         }
-        for sample in &mut out {
+        for sample in out.iter_mut() {
             *sample = saturate(*sample);
         }
-        out
     }
 }
+
+/// Blocks of at most `TILE × TILE` samples take the fixed-width path.
+const TILE: usize = 8;
+
+/// Blocks up to this many columns wide and rows high keep their factors on the stack.
+const BLOCK_INLINE_SIDE: usize = 16;
+
+/// A block spanning more culling cells than this visits every ball instead of merging the
+/// cells' lists.
+const MAX_BLOCK_CELLS: usize = 16;
 
 /// Relative padding of each ball's cutoff box, so rounding in the cell lookup can never drop a
 /// ball the distance test would keep.
@@ -296,7 +542,9 @@ impl<const D: usize> Core<D> {
 
     /// The cell coordinate of `x` along axis `k`, clamped into the grid.
     fn clamp_axis(&self, k: usize, x: f32) -> usize {
-        let t = math::floor((x - self.origin[k]) * self.inv_cell);
+        // For t > 0 the truncating cast is `floor` (which is a library call on targets
+        // without SSE4.1); t ≤ 0 and NaN give cell 0.
+        let t = (x - self.origin[k]) * self.inv_cell;
         if !(t > 0.0) {
             0
         } else {
@@ -491,18 +739,26 @@ impl<const D: usize> Core<D> {
 
 /// The grid indices `k` in `0..count` with `lo ≤ origin + step k ≤ hi` (a superset, by a
 /// rounding margin), or `None` if there are none.
+///
+/// Truncating casts stand in for `floor` and `ceil` (which are library calls on targets
+/// without SSE4.1): after clamping to `[0, count − 1]`, `t as usize` is `floor(t)` and
+/// `t as usize + 1` is at least `ceil(t)`, so the range only ever grows by one index at the
+/// top, still a superset.
 fn index_range(lo: f32, hi: f32, origin: f32, step: f32, count: usize) -> Option<(usize, usize)> {
     if count == 0 {
         return None;
     }
-    let first = math::floor((lo - origin) / step);
-    let last = math::ceil((hi - origin) / step);
+    let first = (lo - origin) / step;
+    let last = (hi - origin) / step;
     let max = (count - 1) as f32;
-    if !(last >= 0.0 && first <= max) {
+    // `ceil(last) >= 0` and `floor(first) <= max`, as in floats; a NaN fails.
+    if !(last > -1.0 && first < max + 1.0) {
         return None;
     }
     // Clamped into [0, count − 1] before the casts.
-    Some((first.max(0.0) as usize, last.min(max) as usize))
+    let first = (first.max(0.0) as usize).min(count - 1);
+    let last = (last.clamp(0.0, max) as usize + 1).min(count - 1);
+    Some((first, last))
 }
 
 fn pad(r: f32) -> f32 {
@@ -758,6 +1014,47 @@ mod tests {
                 }
             }
             assert!(core.sample_grid([0.0, 0.0], 1.0, 0, 7).is_empty());
+        }
+    }
+
+    #[test]
+    fn block_sampling_sums_the_same_balls_as_point_sampling() {
+        // Blocks inside one culling cell, across several, across more than
+        // `MAX_BLOCK_CELLS`, off the grid, a single sample, and wider than the stack scratch.
+        let balls = scattered(60, 200.0);
+        for falloff in [Falloff::SEED, Falloff::BLINN, Falloff::WYVILL] {
+            for cell_size in [None, Some(3.0), Some(1e3)] {
+                let core = Core::<2>::build(&balls, falloff.kernel(), 1e-4, cell_size);
+                for (origin, step, cols, rows) in [
+                    ([-10.0, -10.0], 0.5, 8, 8),
+                    ([-50.0, 20.0], 2.39, 8, 8),
+                    ([-120.0, -120.0], 3.0, 80, 80),
+                    ([-100.0, -100.0], 25.0, 9, 9),
+                    ([900.0, -900.0], 1.0, 8, 8),
+                    ([3.0, 4.0], 1.0, 1, 1),
+                    ([3.0, 4.0], 1.0, 17, 3),
+                    ([3.0, 4.0], 1.0, 3, 17),
+                ] {
+                    let grid = core.sample_grid(origin, step, cols, rows);
+                    let mut block = vec![f32::NAN; cols * rows];
+                    core.sample_block(origin, step, cols, rows, &mut block);
+                    for (n, (g, b)) in grid.iter().zip(&block).enumerate() {
+                        let p = [
+                            origin[0] + step * (n % cols) as f32,
+                            origin[1] + step * (n / cols) as f32,
+                        ];
+                        let v = core.value(p);
+                        let at = (falloff, cell_size, origin, n);
+                        assert!((b - v).abs() <= 1e-6 * v.max(1.0), "{at:?}: {b} vs {v}");
+                        assert!((b - g).abs() <= 1e-6 * g.max(1.0), "{at:?}: {b} vs {g}");
+                        assert_eq!(*b == 0.0, v == 0.0, "{at:?}");
+                        if falloff == Falloff::WYVILL {
+                            // No separable path: the point values themselves.
+                            assert_eq!(b.to_bits(), v.to_bits());
+                        }
+                    }
+                }
+            }
         }
     }
 

@@ -258,6 +258,63 @@ fn sample_grid_lays_out_rows_of_columns() {
 }
 
 #[test]
+fn sample_block_fills_tiles_of_the_grid() {
+    let field = Field2::new(&reference::creature(), Falloff::SEED).unwrap();
+    let origin = Vec2::new(-150.0, -40.0);
+    let (width, height) = (64, 48);
+    let grid = field.sample_grid(origin, 2.5, width, height).unwrap();
+    // 8 × 8 tiles of the same nodes, each sampled on its own.
+    let mut tile = [0.0f32; 64];
+    for ty in 0..height / 8 {
+        for tx in 0..width / 8 {
+            let corner = origin + 2.5 * Vec2::new((tx * 8) as f32, (ty * 8) as f32);
+            field.sample_block(corner, 2.5, 8, 8, &mut tile).unwrap();
+            for row in 0..8 {
+                for col in 0..8 {
+                    let (x, y) = (tx * 8 + col, ty * 8 + row);
+                    let v = field.value(origin + 2.5 * Vec2::new(x as f32, y as f32));
+                    let s = tile[row * 8 + col];
+                    assert_abs_diff_eq!(s, v, epsilon = 1e-6 * v.max(1.0));
+                    assert_abs_diff_eq!(s, grid[y * width + x], epsilon = 1e-6 * v.max(1.0));
+                }
+            }
+        }
+    }
+    let mut short = [7.0f32; 10];
+    assert_eq!(
+        field.sample_block(origin, 1.0, 4, 3, &mut short),
+        Err(MetaballError::WrongLength {
+            what: "block samples",
+            expected: 12,
+            found: 10
+        })
+    );
+    assert_eq!(short, [7.0; 10], "untouched on error");
+    assert!(
+        field
+            .sample_block(origin, 1.0, 4, 3, &mut short)
+            .unwrap_err()
+            .to_string()
+            .contains("columns × rows")
+    );
+    assert!(matches!(
+        field.sample_block(origin, -1.0, 2, 2, &mut [0.0; 4]),
+        Err(MetaballError::NotPositive {
+            what: "grid step",
+            ..
+        })
+    ));
+    assert!(matches!(
+        field.sample_block(Vec2::INFINITY, 1.0, 2, 2, &mut [0.0; 4]),
+        Err(MetaballError::NonFinite {
+            what: "grid origin",
+            ..
+        })
+    ));
+    field.sample_block(origin, 1.0, 0, 5, &mut []).unwrap();
+}
+
+#[test]
 fn bad_inputs_are_typed_errors() {
     let good = Ball2::new(Vec2::ZERO, 1.0, 0);
     assert_eq!(Field2::new(&[], Falloff::SEED), Err(MetaballError::NoBalls));

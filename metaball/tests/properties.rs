@@ -318,6 +318,30 @@ proptest! {
     }
 
     #[test]
+    fn block_samples_agree_with_point_and_grid_samples(
+        field in strategies::field2(),
+        origin in strategies::vec2_in(150.0),
+        step in 0.5f32..20.0,
+        cols in 0usize..12,
+        rows in 0usize..12,
+    ) {
+        let mut block = vec![f32::NAN; cols * rows];
+        field.sample_block(origin, step, cols, rows, &mut block).unwrap();
+        let grid = field.sample_grid(origin, step, cols, rows).unwrap();
+        for row in 0..rows {
+            for col in 0..cols {
+                let p = origin + step * Vec2::new(col as f32, row as f32);
+                let v = field.value(p);
+                let b = block[row * cols + col];
+                prop_assert!((b - v).abs() <= 1e-6 * v.max(1.0), "at {}: {} vs {}", p, b, v);
+                prop_assert_eq!(b == 0.0, v == 0.0);
+                let g = grid[row * cols + col];
+                prop_assert!((b - g).abs() <= 1e-6 * g.max(1.0), "at {}: {} vs {}", p, b, g);
+            }
+        }
+    }
+
+    #[test]
     fn a_lone_ball_meets_the_iso_level_at_its_iso_radius(
         ball in strategies::ball2(),
         falloff in strategies::falloff(),

@@ -181,3 +181,31 @@ pub fn is_simple(ring: &Ring) -> bool {
     }
     true
 }
+
+/// `creature-metaball`'s `Field2` as a [`TileField`](creature_march::TileField) that fills
+/// each tile with `Field2::sample_block` (its separable fast path): the newtype the README
+/// shows.
+pub struct TiledField<'a>(pub &'a creature_metaball::Field2);
+
+impl creature_march::TileField for TiledField<'_> {
+    fn value(&self, p: Vec2) -> f32 {
+        self.0.value(p)
+    }
+
+    fn prefers_tiles(&self) -> bool {
+        true
+    }
+
+    fn sample_tile(&self, first: [i32; 2], step: f32, out: &mut [f32; creature_march::TILE_NODES]) {
+        use creature_march::{TILE_SIZE, node_point};
+        let origin = node_point(first, step);
+        if self
+            .0
+            .sample_block(origin, step, TILE_SIZE, TILE_SIZE, out)
+            .is_err()
+        {
+            // Only for a non-finite origin or step, which the tracer never passes: outside.
+            out.fill(f32::NAN);
+        }
+    }
+}

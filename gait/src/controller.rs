@@ -7,12 +7,12 @@ use glam::{Mat3A, Quat, Vec2, Vec3};
 
 use crate::error::{GaitError, finite, finite3, in_range};
 use crate::ground::Ground;
-use crate::ik::{TwoBone, solve_finite, solve_two_bone};
+use crate::ik::{Shape, TwoBone, solve_two_bone};
 use crate::leg::{Chain, Layout, Leg, LimbKind, Pose, layout};
 use crate::math::{
     abs, atan2, ceil, clamp_sym, cos, floor_non_negative, quat_yxz, sin_turns, smoothing, sqrt,
 };
-use crate::metrics::{GaitMetrics, support_margin};
+use crate::metrics::{GaitMetrics, SupportPolygon};
 use crate::options::GaitOptions;
 
 /// Largest accepted coordinate of the body's position, metres.
@@ -200,8 +200,8 @@ pub struct Controller {
     metrics: GaitMetrics,
     wants: Vec<u8>,
     motion: Vec<Vec3>,
-    support: Vec<Vec2>,
-    hull: Vec<Vec2>,
+    /// The planted feet's support polygon (its hull kept while they stand).
+    support: SupportPolygon,
     // Per-update scratch and per-leg invariants, so an update does no allocation and does not
     // recompute what the legs and options fix.
     /// Each leg's rest position in world space, this update.
@@ -215,6 +215,11 @@ pub struct Controller {
     smoothing_dt: f32,
     react_k: f32,
     look_k: f32,
+    /// The look-at's `(yaw, pitch, blend)` bits of the last update and what they gave: the
+    /// head's rotation is then unchanged and its target, in body space, is this point.
+    look_cache: Option<([u32; 3], Vec3)>,
+    /// The legs' IK solved up to the bone rotations, this update.
+    shapes: Vec<Shape>,
 }
 
 const WANT: u8 = 1;
@@ -321,8 +326,7 @@ impl Controller {
             metrics: GaitMetrics::default(),
             wants: alloc::vec![0; legs.len()],
             motion: alloc::vec![Vec3::ZERO; legs.len()],
-            support: Vec::with_capacity(legs.len()),
-            hull: Vec::with_capacity(legs.len() + 1),
+            support: SupportPolygon::with_capacity(legs.len()),
             rest_world: legs.iter().map(|l| l.rest).collect(),
             hip_width,
             has_arms: legs.iter().any(|l| l.kind == LimbKind::Arm),
@@ -330,6 +334,8 @@ impl Controller {
             smoothing_dt: -1.0,
             react_k: 0.0,
             look_k: 0.0,
+            look_cache: None,
+            shapes: alloc::vec![Shape::EMPTY; legs.len()],
         })
     }
 
@@ -364,6 +370,7 @@ impl Controller {
     pub fn set_head(&mut self, head: Vec3) -> Result<(), GaitError> {
         finite3(head, "head", 0)?;
         self.head = head;
+        self.look_cache = None;
         Ok(())
     }
 
@@ -438,6 +445,7 @@ impl Controller {
             self.reset_chain(i);
         }
         self.reaction = BodyReaction::NEUTRAL;
+        self.look_cache = None;
         self.look = Look {
             rotation: Quat::IDENTITY,
             target: pose.transform_point(self.head + Vec3::Z * self.mean_size * 2.0),
@@ -485,13 +493,19 @@ impl Controller {
         let pose = validate_pose(pose)?;
         finite3(velocity, "velocity", 0)?;
         finite3(angular_velocity, "angular velocity", 0)?;
-        in_range(velocity.length(), "speed", 0.0, MAX_SPEED)?;
-        in_range(
-            angular_velocity.length(),
-            "angular speed",
-            0.0,
-            MAX_ANGULAR_SPEED,
-        )?;
+        // A squared length within the squared limit (exact: 1e8 and 1e6 are floats) has a
+        // length within the limit, so the square root is only taken to report an error.
+        if !(velocity.length_squared() <= MAX_SPEED * MAX_SPEED) {
+            in_range(velocity.length(), "speed", 0.0, MAX_SPEED)?;
+        }
+        if !(angular_velocity.length_squared() <= MAX_ANGULAR_SPEED * MAX_ANGULAR_SPEED) {
+            in_range(
+                angular_velocity.length(),
+                "angular speed",
+                0.0,
+                MAX_ANGULAR_SPEED,
+            )?;
+        }
         if !self.initialized {
             self.reset(pose, ground)?;
         }
@@ -912,13 +926,27 @@ impl Controller {
         let look = &mut self.look;
         look.yaw = clamp_sym(look.yaw + (yaw_t - look.yaw) * k, o.look_limit);
         look.pitch = clamp_sym(look.pitch + (pitch_t - look.pitch) * k, o.look_limit);
-        let full = quat_yxz(look.yaw, -look.pitch, 0.0);
-        look.rotation = if self.blend == 1.0 {
-            full.normalize()
-        } else {
-            Quat::IDENTITY.slerp(full, self.blend).normalize()
+        // A settled gaze (same angles and blend as the last update) keeps its rotation.
+        let key = [
+            look.yaw.to_bits(),
+            look.pitch.to_bits(),
+            self.blend.to_bits(),
+        ];
+        let local = match self.look_cache {
+            Some((cached, local)) if cached == key => local,
+            _ => {
+                let full = quat_yxz(look.yaw, -look.pitch, 0.0);
+                look.rotation = if self.blend == 1.0 {
+                    full.normalize()
+                } else {
+                    Quat::IDENTITY.slerp(full, self.blend).normalize()
+                };
+                let local = self.head + full * Vec3::Z * (2.0 * self.mean_size);
+                self.look_cache = Some((key, local));
+                local
+            }
         };
-        look.target = pose.transform_point(self.head + full * Vec3::Z * (2.0 * self.mean_size));
+        look.target = pose.transform_point(local);
     }
 
     // ----- follow-through ---------------------------------------------------------------------
@@ -1002,11 +1030,12 @@ impl Controller {
         let w = self.blend;
         let reacted = self.reacted_pose();
         let rotation = Mat3A::from_quat(reacted.rotation);
-        for ((leg, state), rest) in self
+        for (((leg, state), rest), shape) in self
             .legs
             .iter()
-            .zip(self.states.iter_mut())
+            .zip(&self.states)
             .zip(&self.rest_world)
+            .zip(&mut self.shapes)
         {
             let hip = rotation * leg.hip + reacted.translation;
             let pole = rotation * leg.pole;
@@ -1015,7 +1044,14 @@ impl Controller {
             } else {
                 rest.lerp(state.foot, w)
             };
-            state.joints = solve_finite(hip, foot, leg.upper, leg.lower, pole);
+            *shape = Shape::aim(hip, foot, pole);
+        }
+        // The rest of the IK in two more passes over the legs (see `Shape`).
+        for (leg, shape) in self.legs.iter().zip(&mut self.shapes) {
+            shape.bend(leg.upper, leg.lower);
+        }
+        for (state, shape) in self.states.iter_mut().zip(&self.shapes) {
+            state.joints = shape.rotate();
         }
     }
 
@@ -1023,7 +1059,7 @@ impl Controller {
         let mut skate = 0.0f32;
         let mut over = 0.0f32;
         let mut in_air = 0usize;
-        self.support.clear();
+        self.support.points.clear();
         for (leg, state) in self.legs.iter().zip(&self.states) {
             if leg.kind != LimbKind::Leg {
                 continue;
@@ -1035,7 +1071,9 @@ impl Controller {
             if state.stepping || !state.grounded {
                 in_air += 1;
             } else {
-                self.support.push(Vec2::new(state.foot.x, state.foot.z));
+                self.support
+                    .points
+                    .push(Vec2::new(state.foot.x, state.foot.z));
                 let reach = leg.length();
                 let d2 = state.foot.distance_squared(state.joints.root);
                 if d2 > reach * reach {
@@ -1047,8 +1085,7 @@ impl Controller {
         let com = pose.transform_point(self.options.centre_of_mass);
         self.metrics.max_overstretch = over.max(0.0);
         self.metrics.legs_in_air = in_air;
-        self.metrics.stability_margin =
-            support_margin(&mut self.support, &mut self.hull, Vec2::new(com.x, com.z));
+        self.metrics.stability_margin = self.support.margin(Vec2::new(com.x, com.z));
         self.metrics.max_skate = skate;
     }
 }
@@ -1202,12 +1239,18 @@ fn validate_pose(pose: Pose) -> Result<Pose, GaitError> {
             index: 0,
         });
     }
-    Ok(Pose::new(pose.translation, pose.rotation / len))
+    // Dividing by exactly 1 changes nothing: skip it for poses that are normalised already.
+    let rotation = if len == 1.0 {
+        pose.rotation
+    } else {
+        pose.rotation / len
+    };
+    Ok(Pose::new(pose.translation, rotation))
 }
 
 /// The ray hit under a leg's rest position (`rest_world`): `(point, normal, grounded)`; arms
 /// and misses give the rest position itself.
-#[inline]
+#[inline(always)]
 fn cast_anchor<G: Ground + ?Sized>(
     leg: &Leg,
     rest_world: Vec3,
@@ -1225,7 +1268,7 @@ fn cast_anchor<G: Ground + ?Sized>(
 
 /// A ray straight down from above `point`: `(hit point, unit normal)` or `None`; hits with
 /// non-finite fields are ignored.
-#[inline]
+#[inline(always)]
 fn cast_down<G: Ground + ?Sized>(
     ground: &G,
     point: Vec3,
@@ -1253,7 +1296,7 @@ fn cast_down<G: Ground + ?Sized>(
 /// the reach), projected onto the ground from `rest_y` (the rest position's height) or the
 /// anchor, whichever is higher.
 #[allow(clippy::too_many_arguments)]
-#[inline]
+#[inline(always)]
 fn step_target<G: Ground + ?Sized>(
     leg: &Leg,
     o: &GaitOptions,
@@ -1297,4 +1340,58 @@ fn chain_rest(chain: &Chain, pose: &Pose, yaw: f32, out: &mut Vec<Vec3>) {
         (0..=chain.segments)
             .map(|k| pose.transform_point(chain.root + dir * (chain.segment_length * k as f32))),
     );
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::ground::Plane;
+
+    fn quadruped(options: &GaitOptions) -> Controller {
+        let legs: Vec<Leg> = [(0.2, 0.4), (-0.2, 0.4), (0.2, -0.4), (-0.2, -0.4)]
+            .iter()
+            .map(|&(x, z)| Leg::new(Vec3::new(x, 0.0, z), Vec3::new(1.2 * x, -0.8, z), 0.5, 0.5))
+            .collect();
+        Controller::new(&legs, options).unwrap()
+    }
+
+    fn walk(c: &mut Controller, from: usize, frames: usize) {
+        let dt = 1.0 / 60.0;
+        for f in from..from + frames {
+            let pose = Pose::new(Vec3::new(0.0, 0.8, f as f32 * dt), Quat::IDENTITY);
+            c.update(dt, pose, Vec3::Z, Vec3::ZERO, &Plane::GROUND)
+                .unwrap();
+        }
+    }
+
+    #[test]
+    fn a_settled_gaze_follows_a_new_head_position() {
+        // The look-at keeps its rotation while its angles stand still; moving the head must
+        // still move the gaze's target.
+        let mut late = quadruped(&GaitOptions::DEFAULT);
+        walk(&mut late, 0, 600);
+        late.set_head(Vec3::new(0.0, 0.3, 0.6)).unwrap();
+        walk(&mut late, 600, 1);
+        let mut early = quadruped(&GaitOptions::DEFAULT);
+        early.set_head(Vec3::new(0.0, 0.3, 0.6)).unwrap();
+        walk(&mut early, 0, 601);
+        assert_eq!(late.look(), early.look());
+    }
+
+    #[test]
+    fn a_reset_recomputes_an_instant_gaze() {
+        // With no smoothing the gaze's angles are the same before and after a reset, which
+        // sets its rotation to identity: the next update must compute it again.
+        let options = GaitOptions::DEFAULT.with_look(0.4, 1.0, 0.0);
+        let mut walked = quadruped(&options);
+        walk(&mut walked, 0, 120);
+        let pose = Pose::new(Vec3::new(0.0, 0.8, 2.0), Quat::IDENTITY);
+        walked.reset(pose, &Plane::GROUND).unwrap();
+        walk(&mut walked, 120, 1);
+        let mut fresh = quadruped(&options);
+        fresh.reset(pose, &Plane::GROUND).unwrap();
+        walk(&mut fresh, 120, 1);
+        assert_eq!(walked.look(), fresh.look());
+        assert_ne!(walked.look().rotation, Quat::IDENTITY);
+    }
 }

@@ -37,6 +37,7 @@ impl ReachCurve {
 
     /// The reach for direction `d` (clamped into `[−1, 1]`); always finite, in `[0.01, 10]`.
     #[must_use]
+    #[inline]
     pub fn evaluate(&self, d: f32) -> f32 {
         let d = if d.is_nan() { 0.0 } else { d.clamp(-1.0, 1.0) };
         let value = match *self {
@@ -115,6 +116,7 @@ impl HeightCurve {
 
     /// The lift at progress `t` (clamped into `[0, 1]`); always finite.
     #[must_use]
+    #[inline]
     pub fn evaluate(&self, t: f32) -> f32 {
         let t = if t.is_nan() { 0.0 } else { t.clamp(0.0, 1.0) };
         let value = match *self {

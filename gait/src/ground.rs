@@ -211,6 +211,12 @@ pub struct HeightField {
     heights: Vec<f32>,
     /// `1 / cell`, so a lookup multiplies instead of dividing.
     inv_cell: f32,
+    /// `(columns − 1, rows − 1)` as floats: the largest grid coordinates (no conversion per
+    /// lookup).
+    max_grid: Vec2,
+    /// `(columns − 2, rows − 2)`, the last cell's indices, when both are below 2²⁴ (every
+    /// practical grid: lookups then convert through `i32`, exactly); `None` otherwise.
+    last_cell: Option<(i32, i32)>,
 }
 
 impl HeightField {
@@ -267,6 +273,11 @@ impl HeightField {
             rows,
             heights,
             inv_cell: 1.0 / cell,
+            max_grid: Vec2::new((columns - 1) as f32, (rows - 1) as f32),
+            last_cell: match (i32::try_from(columns - 2), i32::try_from(rows - 2)) {
+                (Ok(i), Ok(j)) if i < 1 << 24 && j < 1 << 24 => Some((i, j)),
+                _ => None,
+            },
         })
     }
 
@@ -343,23 +354,27 @@ impl HeightField {
 
     /// The cell holding grid coordinates `(gx, gz)` (in cells from the origin) and the local
     /// coordinates inside it, or `None` outside the grid.
-    #[inline]
+    #[inline(always)]
     fn locate(&self, x: f32, z: f32) -> Option<(usize, usize, f32, f32)> {
         let gx = (x - self.origin.x) * self.inv_cell;
         let gz = (z - self.origin.y) * self.inv_cell;
-        let max_x = (self.columns - 1) as f32;
-        let max_z = (self.rows - 1) as f32;
-        if !(gx >= 0.0 && gx <= max_x && gz >= 0.0 && gz <= max_z) {
+        if !(gx >= 0.0 && gx <= self.max_grid.x && gz >= 0.0 && gz <= self.max_grid.y) {
             return None;
         }
         // Non-negative here, so truncation is the floor (no libm call).
+        if let Some((last_i, last_j)) = self.last_cell {
+            // Below 2²⁴ here: `i32` conversions both ways are exact and cheaper than `usize`'s.
+            let i = (gx as i32).min(last_i);
+            let j = (gz as i32).min(last_j);
+            return Some((i as usize, j as usize, gx - i as f32, gz - j as f32));
+        }
         let i = (gx as usize).min(self.columns - 2);
         let j = (gz as usize).min(self.rows - 2);
         Some((i, j, gx - i as f32, gz - j as f32))
     }
 
     /// Bilinear coefficients `[a, b, c, d]` of cell `(i, j)`: `h = a + b u + c v + d u v`.
-    #[inline]
+    #[inline(always)]
     fn patch(&self, i: usize, j: usize) -> [f32; 4] {
         // Two rows of two samples: two bounds checks (never failing for a located cell).
         let k = j * self.columns + i;
@@ -395,7 +410,7 @@ impl HeightField {
         self.patch_normal_of(self.patch(i, j), u, v)
     }
 
-    #[inline]
+    #[inline(always)]
     fn patch_normal_of(&self, [_, b, c, d]: [f32; 4], u: f32, v: f32) -> Vec3 {
         let dx = (b + d * v) * self.inv_cell;
         let dz = (c + d * u) * self.inv_cell;
@@ -411,7 +426,7 @@ impl HeightField {
 
     /// A vertical ray down from `origin` at speed `down` (> 0) per unit of distance: the
     /// bilinear height under it and the patch's normal.
-    #[inline]
+    #[inline(always)]
     fn vertical(&self, origin: Vec3, down: f32, max_distance: f32) -> Option<RayHit> {
         let (i, j, u, v) = self.locate(origin.x, origin.z)?;
         let patch = self.patch(i, j);
@@ -491,7 +506,7 @@ impl HeightField {
 
 impl Ground for HeightField {
     /// One bilinear lookup (no march): the same hit as `cast_ray` straight down.
-    #[inline]
+    #[inline(always)]
     fn cast_down(&self, origin: Vec3, max_distance: f32) -> Option<RayHit> {
         if !(origin.is_finite() && max_distance >= 0.0) {
             return None;

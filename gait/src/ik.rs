@@ -77,50 +77,123 @@ pub(crate) fn solve_finite(
     lower: f32,
     pole: Vec3,
 ) -> TwoBone {
-    let offset = target - root;
-    let distance = offset.length();
-    let dir = if distance.is_finite() && distance > 1e-12 {
-        offset / distance
-    } else if pole.length_squared() > 1e-24 {
-        // Target on the root: fold along any direction perpendicular to the pole.
-        pole.normalize().any_orthonormal_vector()
-    } else {
-        Vec3::NEG_Y
-    };
-    let distance = if distance.is_finite() { distance } else { 0.0 };
-    // Bend direction: the pole's part perpendicular to the chain.
-    let bend = (pole - dir * pole.dot(dir))
-        .try_normalize()
-        .unwrap_or_else(|| dir.any_orthonormal_vector());
+    let mut shape = Shape::aim(root, target, pole);
+    shape.bend(upper, lower);
+    shape.rotate()
+}
 
-    let reach = upper + lower;
-    let fold = (upper - lower).abs();
-    let clamped = distance.clamp(fold, reach);
-    let reached = clamped == distance || (clamped - distance).abs() <= 1e-6 * reach.max(1e-12);
-    let end = if clamped == distance {
-        target
-    } else {
-        root + dir * clamped
+/// A two-bone chain being solved, in three steps: [`aim`](Self::aim) (the direction to the
+/// target), [`bend`](Self::bend) (the middle joint) and [`rotate`](Self::rotate) (the bone
+/// rotations). Solving many chains step by step, each step for all of them, lets a processor
+/// overlap the square roots and divisions of neighbouring chains; the results are those of
+/// [`solve_finite`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Shape {
+    root: Vec3,
+    target: Vec3,
+    pole: Vec3,
+    dir: Vec3,
+    distance: f32,
+    bend: Vec3,
+    middle: Vec3,
+    end: Vec3,
+    along: f32,
+    across: f32,
+    clamped: f32,
+    reached: bool,
+}
+
+impl Shape {
+    /// Storage before a first solve: a straight chain of zero length.
+    pub(crate) const EMPTY: Self = Self {
+        root: Vec3::ZERO,
+        target: Vec3::ZERO,
+        pole: Vec3::Z,
+        dir: Vec3::NEG_Y,
+        distance: 0.0,
+        bend: Vec3::Z,
+        middle: Vec3::ZERO,
+        end: Vec3::ZERO,
+        along: 0.0,
+        across: 0.0,
+        clamped: 0.0,
+        reached: true,
     };
-    // Law of cosines: the middle joint's projection along the chain and its height off it.
-    let (along, across) = if clamped <= 0.0 || upper == 0.0 {
-        (0.0, 0.0)
-    } else {
-        let along = ((upper * upper - lower * lower + clamped * clamped) / (2.0 * clamped))
-            .clamp(-upper, upper);
-        (along, sqrt((upper * upper - along * along).max(0.0)))
-    };
-    let middle = root + dir * along + bend * across;
-    // Both bones lie in the plane of `dir` and `bend`: one frame for the chain, then a turn
-    // about its normal per bone (no trigonometry, one matrix-to-quaternion per leg).
-    let frame = chain_frame(dir, bend);
-    TwoBone {
-        root,
-        middle,
-        end,
-        upper_rotation: bone_rotation(frame, along, across),
-        lower_rotation: bone_rotation(frame, clamped - along, -across),
-        reached,
+
+    /// The first step: the unit direction from `root` to `target` and their distance.
+    #[inline]
+    pub(crate) fn aim(root: Vec3, target: Vec3, pole: Vec3) -> Self {
+        let offset = target - root;
+        let distance = offset.length();
+        let dir = if distance.is_finite() && distance > 1e-12 {
+            offset / distance
+        } else if pole.length_squared() > 1e-24 {
+            // Target on the root: fold along any direction perpendicular to the pole.
+            pole.normalize().any_orthonormal_vector()
+        } else {
+            Vec3::NEG_Y
+        };
+        let distance = if distance.is_finite() { distance } else { 0.0 };
+        Self {
+            root,
+            target,
+            pole,
+            dir,
+            distance,
+            ..Self::EMPTY
+        }
+    }
+
+    /// The second step: the bend direction and the joints for bones `upper` and `lower`.
+    #[inline]
+    pub(crate) fn bend(&mut self, upper: f32, lower: f32) {
+        let (root, target, pole, dir, distance) =
+            (self.root, self.target, self.pole, self.dir, self.distance);
+        // Bend direction: the pole's part perpendicular to the chain.
+        let bend = (pole - dir * pole.dot(dir))
+            .try_normalize()
+            .unwrap_or_else(|| dir.any_orthonormal_vector());
+
+        let reach = upper + lower;
+        let fold = (upper - lower).abs();
+        let clamped = distance.clamp(fold, reach);
+        let reached = clamped == distance || (clamped - distance).abs() <= 1e-6 * reach.max(1e-12);
+        let end = if clamped == distance {
+            target
+        } else {
+            root + dir * clamped
+        };
+        // Law of cosines: the middle joint's projection along the chain and its height off it.
+        let (along, across) = if clamped <= 0.0 || upper == 0.0 {
+            (0.0, 0.0)
+        } else {
+            let along = ((upper * upper - lower * lower + clamped * clamped) / (2.0 * clamped))
+                .clamp(-upper, upper);
+            (along, sqrt((upper * upper - along * along).max(0.0)))
+        };
+        self.bend = bend;
+        self.middle = root + dir * along + bend * across;
+        self.end = end;
+        self.along = along;
+        self.across = across;
+        self.clamped = clamped;
+        self.reached = reached;
+    }
+
+    /// The last step: the solved chain with its bone rotations.
+    #[inline]
+    pub(crate) fn rotate(&self) -> TwoBone {
+        // Both bones lie in the plane of `dir` and `bend`: one frame for the chain, then a
+        // turn about its normal per bone (no trigonometry, one matrix-to-quaternion per leg).
+        let frame = chain_frame(self.dir, self.bend);
+        TwoBone {
+            root: self.root,
+            middle: self.middle,
+            end: self.end,
+            upper_rotation: bone_rotation(frame, self.along, self.across),
+            lower_rotation: bone_rotation(frame, self.clamped - self.along, -self.across),
+            reached: self.reached,
+        }
     }
 }
 

@@ -222,6 +222,9 @@ pub struct Controller {
     shapes: Vec<Shape>,
 }
 
+/// Bisection steps of [`Controller::keep_within_reach`]: the reaction kept is within 2⁻¹⁰ of
+/// the most that keeps every planted foot in reach.
+const REACH_BISECTIONS: u32 = 10;
 const WANT: u8 = 1;
 const ESCAPE: u8 = 2;
 
@@ -533,6 +536,7 @@ impl Controller {
 
         self.action(dt, &pose, velocity, angular_velocity, ground);
         self.react(&pose);
+        self.keep_within_reach(&pose);
         self.intend(&pose, angular_velocity);
         for i in 0..self.chains.len() {
             self.follow(i, dt, &pose, angular_velocity);
@@ -687,6 +691,15 @@ impl Controller {
             }
             if distance > o.escape_factor * allowed {
                 flags |= ESCAPE;
+            }
+            // Out of the leg's reach (the body moved on while the foot waited for its group,
+            // e.g. the outer legs of a long body turning in place): step now, out of turn,
+            // rather than overstretch.
+            let reach = leg.upper + leg.lower;
+            if leg.kind == LimbKind::Leg
+                && state.foot.distance_squared(rotation * leg.hip + body) > reach * reach
+            {
+                flags |= WANT | ESCAPE;
             }
             *want = flags;
         }
@@ -902,6 +915,40 @@ impl Controller {
             };
             self.states[i].hip_roll = roll * self.blend;
         }
+    }
+
+    /// Scales the body's reaction (bob, breathing, sway) back toward none, as little as needed,
+    /// so that no planted foot is beyond its leg's reach from the reacted hip: on a long body a
+    /// small pitch or roll moves the far hips a long way. A foot out of reach of the unreacted
+    /// body already steps (see `action`).
+    fn keep_within_reach(&mut self, pose: &Pose) {
+        let reaction = self.reaction;
+        let out_of_reach = |offset: Vec3, rotation: Quat| {
+            let rotation = Mat3A::from_quat((pose.rotation * rotation).normalize());
+            let origin = pose.translation + offset;
+            self.legs.iter().zip(&self.states).any(|(leg, state)| {
+                let reach = leg.upper + leg.lower;
+                leg.kind == LimbKind::Leg
+                    && state.planted
+                    && state.foot.distance_squared(rotation * leg.hip + origin) > reach * reach
+            })
+        };
+        if !out_of_reach(reaction.offset, reaction.rotation) {
+            return;
+        }
+        // Bisection on the share of the reaction kept: 0 (none) to 1 (all).
+        let (mut low, mut high) = (0.0f32, 1.0f32);
+        for _ in 0..REACH_BISECTIONS {
+            let mid = 0.5 * (low + high);
+            let rotation = Quat::IDENTITY.slerp(reaction.rotation, mid);
+            if out_of_reach(reaction.offset * mid, rotation) {
+                high = mid;
+            } else {
+                low = mid;
+            }
+        }
+        self.reaction.offset = reaction.offset * low;
+        self.reaction.rotation = Quat::IDENTITY.slerp(reaction.rotation, low).normalize();
     }
 
     // ----- intent -----------------------------------------------------------------------------

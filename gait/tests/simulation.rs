@@ -45,11 +45,9 @@ fn check_walk(pairs: usize, speed: f32, terrain: bool) {
     let label = format!("{pairs} pairs at {speed} m/s, terrain {terrain}: {f:?}");
     assert!(f.max_skate <= 1e-4, "skate: {label}");
     assert!(f.max_ground_gap <= 1e-3, "ground gap: {label}");
-    // A rigid 4.5 m body over ±0.3 m bumps cannot keep every foot within reach: the 12-legged
-    // creature on terrain gets a looser bound; elsewhere a foot waits for its group's turn at
-    // most to the escape distance.
-    let tolerance = if pairs >= 6 && terrain { 0.2 } else { 0.1 };
-    assert!(f.max_overstretch <= tolerance, "overstretch: {label}");
+    // A planted foot never leaves its leg's reach: it steps out of turn first, and the body's
+    // reaction is held back (before, a 12-legged body overstretched by up to 0.17 m on terrain).
+    assert!(f.max_overstretch <= 1e-5, "overstretch: {label}");
     assert_eq!(f.opposite_overlaps, 0, "partners stepped together: {label}");
     // 20 m with a stride of well under 2 m: every leg stepped many times.
     assert!(f.steps.iter().all(|&s| s >= 10), "steps: {label}");
@@ -78,12 +76,59 @@ fn walking_20_m_on_a_random_height_field_at_three_speeds_with_2_4_6_and_12_legs(
 fn slow_walks_need_no_escape_steps() {
     for pairs in [1, 2, 3, 6] {
         for speed in [0.3, 1.0] {
-            assert_eq!(
-                walk(pairs, speed, false).escapes,
-                0,
-                "{pairs} pairs at {speed}"
+            let escapes = walk(pairs, speed, false).escapes;
+            // Twelve legs take turns in a three-group wave: at 1 m/s a foot cannot wait its turn
+            // within reach, so a few steps (4 in 20 m) go out of turn rather than overstretch.
+            let allowed = if pairs == 6 && speed > 0.5 { 4 } else { 0 };
+            assert!(
+                escapes <= allowed,
+                "{pairs} pairs at {speed}: {escapes} escapes"
             );
         }
+    }
+}
+
+/// Regression: a long six-legged body (hips up to 4.1 m ahead of its origin, legs 1.5 to 2.6 m,
+/// the legs of a walker the `creature` facade built, its speed multiplier 4.9, at 30 fps)
+/// turning in place left its outer feet
+/// planted out of reach while they waited for their group, and its pitch and roll reaction
+/// lifted the far hips further: overstretch up to 0.14 m. Planted feet now step out of turn
+/// once out of reach, and the reaction is held back to keep them in reach.
+#[test]
+fn regression_a_long_body_turning_in_place_never_overstretches() {
+    let legs: Vec<creature_gait::Leg> = [
+        (0.276, 1.689, 4.143, 1.098),
+        (-0.251, 1.454, 4.143, 0.945),
+        (0.569, 1.611, 2.143, 1.047),
+        (-0.525, 1.180, 2.143, 0.767),
+        (0.570, 1.522, 0.069, 0.989),
+        (-0.528, 1.997, 0.069, 1.298),
+    ]
+    .into_iter()
+    .map(|(x, y, z, segment)| {
+        creature_gait::Leg::new(Vec3::new(x, y, z), Vec3::new(x, 0.0, z), segment, segment)
+            .with_size(y)
+    })
+    .collect();
+    let dt = 1.0 / 30.0;
+    for rate in [0.5f32, 1.0, 1.5] {
+        let options = options().with_speed_multiplier(4.9);
+        let mut controller = Controller::new(&legs, &options).unwrap();
+        let mut worst = 0.0f32;
+        for k in 0..300 {
+            let t = k as f32 * dt;
+            controller
+                .update(
+                    dt,
+                    Pose::from_yaw(Vec3::ZERO, rate * t),
+                    Vec3::ZERO,
+                    Vec3::Y * rate,
+                    &Plane::GROUND,
+                )
+                .unwrap();
+            worst = worst.max(controller.metrics().max_overstretch);
+        }
+        assert!(worst <= 1e-5, "{rate} rad/s: overstretch {worst}");
     }
 }
 

@@ -103,7 +103,7 @@ impl Creature {
     /// of the body's pose is spread over the clip, and each foot's over its swings only, so a
     /// planted foot never moves. The root travels forward (root motion): its forward
     /// translation does not come back. If closing would stretch a planted leg beyond its reach
-    /// (a nearly straight leg; 4 walkers in 1,000 with the default params), the clip is only
+    /// (a nearly straight leg; 68 walkers in 10,000 with the default params), the clip is only
     /// cut, and its `loop_error` says how far it is from looping.
     ///
     /// ```
@@ -149,7 +149,7 @@ impl Creature {
     /// (up to twice) so that the turn completes exactly at the cut, and the best try kept.
     /// Its loop is closed exactly: the root ends where it started, a full turn later, any
     /// shortfall of the turn spread over the clip; unless that would stretch a planted leg
-    /// beyond its reach (17 walkers in 1,000 with the default params), as in
+    /// beyond its reach (183 walkers in 10,000 with the default params), as in
     /// [`bake_walk_loop`](Self::bake_walk_loop).
     ///
     /// ```

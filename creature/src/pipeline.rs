@@ -5,7 +5,7 @@ use alloc::vec::Vec;
 
 use glam::{Vec2, Vec3};
 
-use creature_march::{MeshOptions, Ring, trace, triangulate};
+use creature_march::{MarchOptions, MeshOptions, Ring, TileField, trace_field, triangulate};
 use creature_metaball::{
     Ball2, CoverOptions, Falloff, Field2, ISO_LEVEL, MULTIPLIER_RANGE, cover_segment_with,
 };
@@ -47,6 +47,30 @@ pub fn generate_2d(seed: u64, params: &Params2d) -> Result<Creature2d, Error> {
     Ok(creature)
 }
 
+/// The metaball field as `creature-march` samples it: whole 8 × 8 tiles of grid nodes at once
+/// through [`Field2::sample_block`] (its separable, culled path), single points through
+/// [`Field2::value`].
+struct TiledField<'a>(&'a Field2);
+
+impl TileField for TiledField<'_> {
+    fn value(&self, p: Vec2) -> f32 {
+        self.0.value(p)
+    }
+
+    fn prefers_tiles(&self) -> bool {
+        true
+    }
+
+    fn sample_tile(&self, first: [i32; 2], step: f32, out: &mut [f32; creature_march::TILE_NODES]) {
+        let size = creature_march::TILE_SIZE;
+        let origin = creature_march::node_point(first, step);
+        if self.0.sample_block(origin, step, size, size, out).is_err() {
+            // Only for a non-finite origin or step, which the tracer never passes: outside.
+            out.fill(f32::NAN);
+        }
+    }
+}
+
 /// Builds a creature from any skeleton (generated, or made by hand as the thesis suggests):
 ///
 /// 1. **Metaballs** — each bone with a thickness is covered from itself to its parent by
@@ -55,8 +79,9 @@ pub fn generate_2d(seed: u64, params: &Params2d) -> Result<Creature2d, Error> {
 ///    are lerped from the bone's to the parent's along the segment. With
 ///    [`Params2d::connect_sockets`], the link from a thickness-0 socket bone to its parent is
 ///    covered with its first child's thickness, so limbs stay attached.
-/// 2. **Outline** — [`trace`] of the culled field with every ball centre as a hint, at
-///    [`Params2d::outline_step`]. It must be one piece ([`Error::Detached`] otherwise) that
+/// 2. **Outline** — [`trace_field`] of the culled field with every ball centre as a hint, at
+///    [`Params2d::outline_step`], the grid sampled 8 × 8 nodes at a time
+///    ([`Field2::sample_block`]). It must be one piece ([`Error::Detached`] otherwise) that
 ///    holds every ball centre ([`Error::BallOutside`] otherwise).
 /// 3. **Mesh** — [`triangulate`] with interior points and refinement to
 ///    [`Params2d::min_angle`]; UVs from the outline's box, `z = (y − min_y) / height`.
@@ -97,7 +122,13 @@ fn build(skeleton: &Skeleton2d, params: &Params2d, seed: u64) -> Result<Creature
 
     // Outline.
     let hints: Vec<Vec2> = plain.iter().map(|b| b.center).collect();
-    let mut rings = trace(|p| field.value(p), &hints, params.outline_step, ISO_LEVEL)?;
+    let mut rings = trace_field(
+        &TiledField(&field),
+        &hints,
+        params.outline_step,
+        ISO_LEVEL,
+        &MarchOptions::DEFAULT,
+    )?;
     let outer = rings.iter().filter(|r| !r.hole).count();
     if outer != 1 {
         return Err(Error::Detached { components: outer });

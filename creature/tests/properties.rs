@@ -89,21 +89,8 @@ fn problems_2d(c: &Creature2d, params: &Params2d) -> Vec<String> {
 /// The problems of a 3D creature made with `params`: those of `support::check_3d`, which
 /// checks the baked walk and turn of walkers — absent, as documented, when
 /// [`Params::clips`] is off (then no clip at all may be baked).
-///
-/// Known bugs, tolerated here so the suite stays green until the generator is fixed (each
-/// has an ignored regression test with its minimal input); every other problem still fails:
-/// - with a large speed factor the baked walk or turn can skate (a planted foot moves more
-///   than 0.1% of the body length): `known_bug_baked_walk_skates`;
-/// - a tiny walker (body scale 0.1, 37 spine bones of 0.1) can overstretch a leg in its live
-///   walk by 0.0014, over the 0.1%-of-length tolerance (seed 4711363724555942581; the full
-///   input is in the report that added this file). Live-walk skating is tolerated with it.
 fn problems_3d(c: &Creature, params: &Params) -> Vec<String> {
     let mut p = support::check_3d(c);
-    p.retain(|s| {
-        !s.starts_with("baked walk or turn skates")
-            && !s.starts_with("overstretch")
-            && !s.starts_with("foot skate")
-    });
     if !params.clips {
         p.retain(|s| !s.contains("without its walk and turn clips"));
         if !c.clips.is_empty() {
@@ -320,17 +307,14 @@ fn regression_head_sphere_on_a_three_segment_body() {
     assert_eq!(support::check_3d(&c), Vec::<String>::new());
 }
 
-/// Input the 3D validity property found (shrinking stopped early, so it is not minimal): the
-/// baked turn skates 0.127 (0.053 before its loop was closed; the check allows 0.1% of the
-/// body length). All params are inside their documented ranges (speed factor up to 4.95, body
-/// scale up to 2.35); not fixed here. Cause: the live controller itself overstretches this
-/// 6.6 m six-legged walker's legs by up to 0.14 m while turning in place, even at 0.5 rad/s,
-/// so the baked IK cannot reach the planted feet; an escape step when a planted foot leaves
-/// the leg's reach (tried) does not cure it: the body's pitch and roll reaction lifts the far
-/// hips of a long body after the feet are placed.
+/// Regression (found by the 3D validity property; shrinking stopped early, so it is not
+/// minimal): the baked turn of this 6.6 m six-legged walker skated 0.053 (0.127 once its loop
+/// was closed; the check allows 0.1% of the body length), because the gait controller left
+/// its outer feet planted out of reach while turning and its pitch and roll reaction lifted
+/// the far hips further. `creature-gait` now steps such feet out of turn and holds the
+/// reaction back (its `regression_a_long_body_turning_in_place_never_overstretches`).
 #[test]
-#[ignore = "known bug: the baked walk or turn skates for this valid input"]
-fn known_bug_baked_walk_skates() {
+fn regression_baked_turn_of_a_long_walker_does_not_skate() {
     let params = Params::DEFAULT
         .with_profiles(2)
         .with_resolution(12, 7)

@@ -1,166 +1,302 @@
 //! Generates creatures. In 3D (the default) writes `creature.glb` (skinned, with the kind's
-//! baked clips) and `creature.png` (three views); with `--count N`, N creatures from `--seed`
-//! on, files named by kind and seed. In 2D writes `creature.glb`, `creature.png` and
-//! `creature.svg`.
+//! baked clips) and `creature.png` (three views); in 2D writes `creature.glb`, `creature.png`
+//! and `creature.svg`. With `--count N`, N creatures from `--seed` on, generated on all cores
+//! (`--threads` to choose) behind a progress bar, files named by kind and seed
+//! (`walker-42.glb`; 2D: `creature-42.glb`), one summary line each and a total at the end.
 //!
 //! ```sh
 //! cargo run --release --example generate -- --seed 7 --out out/
 //! cargo run --release --example generate -- --kind walker --count 16 --out out/
 //! cargo run --release --example generate -- --dim 2d --seed 7 --out out/
+//! cargo run --release --example generate -- --help
 //! ```
 //!
 //! Options: `--dim 3d|2d` (default 3d), `--kind walker|flier|swimmer|random` (3D, default
-//! random), `--count N` (3D, default 1), `--seed N` (default 0), `--out DIR` (default
-//! `out/`), `--texture-size N` (2D, default 256), `--bones` (2D: draw the bones on the PNG).
+//! random), `--count N` (default 1), `--seed N` (default 0), `--out DIR` (default `out/`),
+//! `--texture-size N` (2D, default 256), `--bones` (2D: draw the bones on the PNG),
+//! `--threads N` (default: every core), `--dry-run` (generate and encode, write nothing).
 
 #![allow(clippy::std_instead_of_core, clippy::std_instead_of_alloc)]
 
-use std::path::PathBuf;
+use std::fmt;
+use std::num::NonZeroUsize;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
+use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Instant;
 
+use clap::{CommandFactory, Parser, ValueEnum};
 use creature::export::{self, PreviewOptions};
 use creature::{Kind, Params, Params2d, generate, generate_2d, preview_3d};
+use indicatif::{ProgressBar, ProgressState, ProgressStyle};
+use rayon::prelude::*;
 
-const USAGE: &str = "usage: generate [--dim 3d|2d] [--kind walker|flier|swimmer|random] \
-     [--count N] [--seed N] [--out DIR] [--texture-size N] [--bones]";
+/// Procedural creatures from a seed: animated `.glb` and preview `.png` (2D: also `.svg`).
+#[derive(Debug, Parser)]
+#[command(name = "generate")]
+struct Args {
+    /// 3D skinned creatures with baked clips, or 2D metaball creatures.
+    #[arg(long, value_enum, default_value_t = Dim::ThreeD)]
+    dim: Dim,
+    /// The 3D kind; `random` draws one of the three from each seed.
+    #[arg(long, value_enum, default_value_t = KindArg::Random)]
+    kind: KindArg,
+    /// How many creatures, seeds `--seed` to `--seed + N - 1`; more than one names the files
+    /// by kind and seed.
+    #[arg(long, default_value_t = 1, value_name = "N",
+          value_parser = clap::value_parser!(u64).range(1..))]
+    count: u64,
+    /// The (first) seed.
+    #[arg(long, default_value_t = 0, value_name = "N")]
+    seed: u64,
+    /// Output directory, created if missing.
+    #[arg(long, default_value = "out", value_name = "DIR")]
+    out: PathBuf,
+    /// 2D: the texture's side in pixels.
+    #[arg(long, default_value_t = 256, value_name = "N")]
+    texture_size: u32,
+    /// 2D: draw the bones on the preview PNG.
+    #[arg(long)]
+    bones: bool,
+    /// Worker threads for `--count` (default: every core, or `RAYON_NUM_THREADS`).
+    #[arg(long, value_name = "N")]
+    threads: Option<NonZeroUsize>,
+    /// Generate and encode every file, but write nothing.
+    #[arg(long)]
+    dry_run: bool,
+}
+
+/// `--dim`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+enum Dim {
+    /// Skinned, animated 3D creatures (walkers, fliers, swimmers).
+    #[value(name = "3d")]
+    ThreeD,
+    /// 2D metaball creatures.
+    #[value(name = "2d")]
+    TwoD,
+}
+
+/// `--kind`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+enum KindArg {
+    /// Walks on legs (maybe with arms).
+    Walker,
+    /// Flies on buzzing or flapping wings.
+    Flier,
+    /// Swims with fins and a tail.
+    Swimmer,
+    /// One of the three, drawn from the seed.
+    Random,
+}
+
+impl From<KindArg> for Kind {
+    fn from(kind: KindArg) -> Self {
+        match kind {
+            KindArg::Walker => Kind::Walker,
+            KindArg::Flier => Kind::Flier,
+            KindArg::Swimmer => Kind::Swimmer,
+            KindArg::Random => Kind::Random,
+        }
+    }
+}
+
+/// What every seed of one run shares.
+struct Job<'a> {
+    dim: Dim,
+    params: Params,
+    params_2d: Params2d,
+    bones: bool,
+    out: &'a Path,
+    /// One creature: files are `creature.*`, not named by seed.
+    single: bool,
+    write: bool,
+}
+
+impl Job<'_> {
+    /// The file stem of one creature: `creature` alone, else `{prefix}-{seed}`.
+    fn stem(&self, prefix: &str, seed: u64) -> String {
+        if self.single {
+            "creature".to_string()
+        } else {
+            format!("{prefix}-{seed}")
+        }
+    }
+}
 
 fn main() -> ExitCode {
-    match run() {
-        Ok(()) => ExitCode::SUCCESS,
+    let args = Args::parse();
+    let Some(end) = args.seed.checked_add(args.count - 1) else {
+        Args::command()
+            .error(
+                clap::error::ErrorKind::ValueValidation,
+                format!(
+                    "--seed {} with --count {} goes past the last seed {}",
+                    args.seed,
+                    args.count,
+                    u64::MAX
+                ),
+            )
+            .exit()
+    };
+    match run(&args, end) {
+        Ok(true) => ExitCode::SUCCESS,
+        Ok(false) => ExitCode::FAILURE,
         Err(e) => {
-            eprintln!("generate: {e}\n{USAGE}");
+            eprintln!("generate: {e}");
             ExitCode::FAILURE
         }
     }
 }
 
-fn run() -> Result<(), String> {
-    let mut seed = 0u64;
-    let mut out = PathBuf::from("out");
-    let mut texture_size = 256u32;
-    let mut bones = false;
-    let mut three_d = true;
-    let mut kind = Kind::Random;
-    let mut count = 1u64;
-    let mut args = std::env::args().skip(1);
-    while let Some(arg) = args.next() {
-        let mut value = |name: &str| args.next().ok_or(format!("{name} needs a value"));
-        match arg.as_str() {
-            "--dim" => {
-                three_d = match value("--dim")?.as_str() {
-                    "3d" => true,
-                    "2d" => false,
-                    other => return Err(format!("--dim {other}: use 3d or 2d")),
-                };
-            }
-            "--kind" => {
-                kind = match value("--kind")?.as_str() {
-                    "walker" => Kind::Walker,
-                    "flier" => Kind::Flier,
-                    "swimmer" => Kind::Swimmer,
-                    "random" => Kind::Random,
-                    other => {
-                        return Err(format!(
-                            "--kind {other}: use walker, flier, swimmer or random"
-                        ));
-                    }
-                };
-            }
-            "--count" => {
-                count = value("--count")?
-                    .parse()
-                    .map_err(|e| format!("--count: {e}"))?;
-                if count == 0 {
-                    return Err("--count must be at least 1".into());
+/// Generates seeds `args.seed..=end`; `Ok(false)` if some seeds failed (each was reported).
+fn run(args: &Args, end: u64) -> Result<bool, String> {
+    if !args.dry_run {
+        std::fs::create_dir_all(&args.out).map_err(|e| format!("{}: {e}", args.out.display()))?;
+    }
+    let job = Job {
+        dim: args.dim,
+        params: Params::DEFAULT.with_kind(args.kind.into()),
+        params_2d: Params2d::DEFAULT.with_texture_size(args.texture_size),
+        bones: args.bones,
+        out: &args.out,
+        single: args.count == 1,
+        write: !args.dry_run,
+    };
+    if job.single {
+        let line = make(args.seed, &job)?;
+        println!("{line}");
+        return Ok(true);
+    }
+
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(args.threads.map_or(0, NonZeroUsize::get))
+        .build()
+        .map_err(|e| format!("thread pool: {e}"))?;
+    let threads = pool.current_num_threads();
+    let bar = ProgressBar::new(args.count).with_style(
+        ProgressStyle::with_template("{elapsed_precise} [{bar:40}] {pos}/{len} {rate} ETA {eta}")
+            .map_err(|e| format!("progress bar: {e}"))?
+            .with_key("rate", |state: &ProgressState, w: &mut dyn fmt::Write| {
+                // A failed write only loses this frame's text.
+                let _ = write!(w, "{:.0} creatures/s", state.per_sec());
+            })
+            .progress_chars("=> "),
+    );
+    let failed = AtomicUsize::new(0);
+    let start = Instant::now();
+    pool.install(|| {
+        (args.seed..=end).into_par_iter().for_each(|seed| {
+            // `suspend` clears the bar, prints, and redraws it: lines never tear, and they are
+            // printed even when the bar is hidden (standard error not a terminal).
+            match make(seed, &job) {
+                Ok(line) => bar.suspend(|| println!("{line}")),
+                Err(e) => {
+                    failed.fetch_add(1, Ordering::Relaxed);
+                    bar.suspend(|| eprintln!("generate: {e}"));
                 }
             }
-            "--seed" => {
-                seed = value("--seed")?
-                    .parse()
-                    .map_err(|e| format!("--seed: {e}"))?;
-            }
-            "--out" => out = PathBuf::from(value("--out")?),
-            "--texture-size" => {
-                texture_size = value("--texture-size")?
-                    .parse()
-                    .map_err(|e| format!("--texture-size: {e}"))?;
-            }
-            "--bones" => bones = true,
-            "-h" | "--help" => {
-                println!("{USAGE}");
-                return Ok(());
-            }
-            other => return Err(format!("unknown argument `{other}`")),
-        }
-    }
-    if three_d {
-        return run_3d(seed, count, kind, &out);
-    }
-    let params = Params2d::DEFAULT.with_texture_size(texture_size);
-    let start = Instant::now();
-    let creature = generate_2d(seed, &params).map_err(|e| e.to_string())?;
-    let elapsed = start.elapsed();
-    let glb = export::glb(&creature).map_err(|e| e.to_string())?;
-    let png = export::preview_png(&creature, &PreviewOptions::DEFAULT.with_bones(bones))
-        .map_err(|e| e.to_string())?;
-    let svg = export::svg(&creature);
-    std::fs::create_dir_all(&out).map_err(|e| format!("{}: {e}", out.display()))?;
-    for (name, bytes) in [
-        ("creature.glb", glb.as_slice()),
-        ("creature.png", png.as_slice()),
-        ("creature.svg", svg.as_bytes()),
-    ] {
-        let path = out.join(name);
-        std::fs::write(&path, bytes).map_err(|e| format!("{}: {e}", path.display()))?;
-    }
+            bar.inc(1);
+        });
+    });
+    bar.finish_and_clear();
+    let wall = start.elapsed().as_secs_f64();
+    let failed = failed.into_inner();
     println!(
+        "{} creatures{} in {wall:.2} s: {:.1} creatures/s on {threads} thread{} -> {}{}",
+        args.count,
+        if failed == 0 {
+            String::new()
+        } else {
+            format!(" ({failed} failed)")
+        },
+        args.count as f64 / wall,
+        if threads == 1 { "" } else { "s" },
+        args.out.display(),
+        if args.dry_run {
+            " (dry run, nothing written)"
+        } else {
+            ""
+        },
+    );
+    Ok(failed == 0)
+}
+
+/// Generates one creature, encodes (and writes) its files; returns its summary line.
+fn make(seed: u64, job: &Job<'_>) -> Result<String, String> {
+    match job.dim {
+        Dim::ThreeD => make_3d(seed, job),
+        Dim::TwoD => make_2d(seed, job),
+    }
+}
+
+fn make_3d(seed: u64, job: &Job<'_>) -> Result<String, String> {
+    let err = |e: creature::Error| format!("seed {seed}: {e}");
+    let start = Instant::now();
+    let creature = generate(seed, &job.params).map_err(err)?;
+    let elapsed = start.elapsed();
+    let clips = &creature.clips;
+    let glb = export::glb_3d(&creature, clips).map_err(err)?;
+    let image = preview_3d(&creature, 256).map_err(err)?;
+    let png = export::image_png(&image).map_err(err)?;
+    let kind = format!("{:?}", creature.kind).to_lowercase();
+    let glb_path = write(
+        job,
+        &job.stem(&kind, seed),
+        &[("glb", glb.as_slice()), ("png", png.as_slice())],
+    )?;
+    let names: Vec<&str> = clips.iter().map(|c| c.name).collect();
+    Ok(format!(
+        "seed {seed} {kind}: {:.2} m, {} vertices, {} triangles, {} joints, {} limbs, clips {}, generated (clips baked) in {:.2} ms -> {}",
+        creature.length,
+        creature.mesh.positions.len(),
+        creature.mesh.indices.len(),
+        creature.skeleton.joints.len(),
+        creature.plan.limbs.len(),
+        names.join("/"),
+        elapsed.as_secs_f64() * 1e3,
+        glb_path.display()
+    ))
+}
+
+fn make_2d(seed: u64, job: &Job<'_>) -> Result<String, String> {
+    let err = |e: creature::Error| format!("seed {seed}: {e}");
+    let start = Instant::now();
+    let creature = generate_2d(seed, &job.params_2d).map_err(err)?;
+    let elapsed = start.elapsed();
+    let glb = export::glb(&creature).map_err(err)?;
+    let png = export::preview_png(&creature, &PreviewOptions::DEFAULT.with_bones(job.bones))
+        .map_err(err)?;
+    let svg = export::svg(&creature);
+    let glb_path = write(
+        job,
+        &job.stem("creature", seed),
+        &[
+            ("glb", glb.as_slice()),
+            ("png", png.as_slice()),
+            ("svg", svg.as_bytes()),
+        ],
+    )?;
+    Ok(format!(
         "seed {seed}: {} bones, {} vertices, {} triangles, min angle {:.1}°, generated in {:.2} ms -> {}",
         creature.bones.len(),
         creature.mesh.positions.len(),
         creature.mesh.indices.len(),
         creature.quality.min_angle,
         elapsed.as_secs_f64() * 1e3,
-        out.display()
-    );
-    Ok(())
+        glb_path.display()
+    ))
 }
 
-/// Writes `count` 3D creatures from `first` on, one summary line each.
-fn run_3d(first: u64, count: u64, kind: Kind, out: &std::path::Path) -> Result<(), String> {
-    std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
-    let params = Params::DEFAULT.with_kind(kind);
-    for (done, seed) in (first..first.saturating_add(count)).enumerate() {
-        let start = Instant::now();
-        let creature = generate(seed, &params).map_err(|e| format!("seed {seed}: {e}"))?;
-        let elapsed = start.elapsed();
-        let clips = &creature.clips;
-        let glb = export::glb_3d(&creature, clips).map_err(|e| e.to_string())?;
-        let image = preview_3d(&creature, 256).map_err(|e| e.to_string())?;
-        let png = export::image_png(&image).map_err(|e| e.to_string())?;
-        let kind_name = format!("{:?}", creature.kind).to_lowercase();
-        let stem = if count == 1 {
-            "creature".to_string()
-        } else {
-            format!("{kind_name}-{seed}")
-        };
-        for (ext, bytes) in [("glb", &glb), ("png", &png)] {
-            let path = out.join(format!("{stem}.{ext}"));
+/// Writes `{stem}.{ext}` for each file (unless a dry run); returns the first file's path.
+fn write(job: &Job<'_>, stem: &str, files: &[(&str, &[u8])]) -> Result<PathBuf, String> {
+    let mut first = None;
+    for &(ext, bytes) in files {
+        let path = job.out.join(format!("{stem}.{ext}"));
+        if job.write {
             std::fs::write(&path, bytes).map_err(|e| format!("{}: {e}", path.display()))?;
         }
-        let names: Vec<&str> = clips.iter().map(|c| c.name).collect();
-        println!(
-            "[{}/{count}] seed {seed} {kind_name}: {:.2} m, {} vertices, {} triangles, {} joints, {} limbs, clips {}, generated (clips baked) in {:.2} ms -> {}",
-            done + 1,
-            creature.length,
-            creature.mesh.positions.len(),
-            creature.mesh.indices.len(),
-            creature.skeleton.joints.len(),
-            creature.plan.limbs.len(),
-            names.join("/"),
-            elapsed.as_secs_f64() * 1e3,
-            out.join(format!("{stem}.glb")).display()
-        );
+        first.get_or_insert(path);
     }
-    Ok(())
+    first.ok_or_else(|| "no file to write".to_string())
 }

@@ -5,6 +5,8 @@
 #![cfg(feature = "std")]
 #![allow(clippy::unwrap_used)]
 
+extern crate alloc;
+
 mod support;
 
 use creature::{Kind, Params, Params2d, generate, generate_2d};
@@ -51,7 +53,7 @@ fn sweep_3d(kind: Kind) {
     let mut failures = Vec::new();
     let (mut vertices, mut joints, mut pairs) = (0usize, 0usize, 0usize);
     // Clips whose loop closes (loop error under 1e-3), and all clips, by name.
-    let mut loops: std::collections::BTreeMap<&str, (usize, usize)> = Default::default();
+    let mut loops: alloc::collections::BTreeMap<&str, (usize, usize)> = Default::default();
     for seed in 0..seeds {
         match generate(seed, &params) {
             Ok(c) => {

@@ -875,7 +875,7 @@ impl Creature {
         let mut flight = flight;
         // Whole clips of warm-up (at least FLIGHT_WARM_UP seconds), so the chains' start-up
         // has died away (their damping halves it in about 0.2 s) and frame 0 is in phase.
-        let periods = (FLIGHT_WARM_UP / seconds).ceil().max(1.0) as usize;
+        let periods = crate::math::ceil_non_negative(FLIGHT_WARM_UP / seconds).max(1);
         let warm_up = periods * (frames - 1);
         for step in 0..warm_up + frames {
             let t = (step as f32 - warm_up as f32) * dt;

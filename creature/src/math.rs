@@ -56,6 +56,18 @@ pub(crate) fn round_non_negative(x: f32) -> u32 {
     (x + 0.5) as u32
 }
 
+/// The smallest integer not below `x`, for non-negative finite input (saturating for huge
+/// input). `f32::ceil` needs `std`; this works without it.
+#[inline]
+pub(crate) fn ceil_non_negative(x: f32) -> usize {
+    let whole = x as usize;
+    if (whole as f32) < x {
+        whole.saturating_add(1)
+    } else {
+        whole
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -68,5 +80,8 @@ mod tests {
         assert!((sin(core::f32::consts::FRAC_PI_2) - 1.0).abs() < 1e-6);
         assert_eq!(round_non_negative(2.5), 3);
         assert_eq!(round_non_negative(2.49), 2);
+        assert_eq!(ceil_non_negative(2.0), 2);
+        assert_eq!(ceil_non_negative(2.01), 3);
+        assert_eq!(ceil_non_negative(0.0), 0);
     }
 }

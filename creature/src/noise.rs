@@ -1,5 +1,6 @@
 //! Deterministic procedural noise for the base textures: integer hashing, value noise and
-//! cellular (Worley) noise. No tables, no float transcendental functions.
+//! cellular (Worley) noise from small hashed lattice tables, looked up point by point or row
+//! by row (the texture pass's fast path). No float transcendental functions.
 
 use alloc::vec::Vec;
 
@@ -51,7 +52,7 @@ pub(crate) fn value(p: Vec2, seed: u32) -> f32 {
     bottom + (top - bottom) * fy
 }
 
-/// Cellular noise: distances to the nearest and second-nearest jittered cell points (the
+/// Cellular noise: squared distances to the nearest and second-nearest jittered cell points (the
 /// reference [`CellTable`] is tested against).
 #[cfg(test)]
 pub(crate) fn cells(p: Vec2, seed: u32) -> (f32, f32) {
@@ -100,8 +101,9 @@ impl ValueTable {
         }
     }
 
-    /// The noise at `p` (clamped into `[0, 1]²`).
-    #[inline]
+    /// The noise at `p` (clamped into `[0, 1]²`): the reference [`Self::at_row`] is tested
+    /// against.
+    #[cfg(test)]
     pub(crate) fn at(&self, p: Vec2) -> f32 {
         let q = p.clamp(Vec2::ZERO, Vec2::ONE) * self.scale;
         let (ix, iy) = (q.x as usize, q.y as usize);
@@ -113,6 +115,38 @@ impl ValueTable {
         let bottom = a + (b - a) * fx;
         let top = c + (d - c) * fx;
         bottom + (top - bottom) * fy
+    }
+
+    /// One row of the noise at height `y` (clamped to `[0, 1]`, like [`Self::at`]): the two
+    /// lattice rows around it interpolated in y, so [`Self::at_row`] only interpolates in x.
+    pub(crate) fn row(&self, y: f32, out: &mut Vec<f32>) {
+        let q = y.clamp(0.0, 1.0) * self.scale.y;
+        let iy = q as usize;
+        let fy = smooth(q - iy as f32);
+        let start = iy * self.columns;
+        out.clear();
+        let (Some(bottom), Some(top)) = (
+            self.values.get(start..start + self.columns),
+            self.values
+                .get(start + self.columns..start + 2 * self.columns),
+        ) else {
+            out.resize(self.columns, 0.0);
+            return;
+        };
+        out.extend(bottom.iter().zip(top).map(|(&a, &c)| a + (c - a) * fy));
+    }
+
+    /// The noise at `x` (clamped to `[0, 1]`) on a row made by [`Self::row`]: equal to
+    /// [`Self::at`] up to rounding.
+    #[inline]
+    pub(crate) fn at_row(&self, row: &[f32], x: f32) -> f32 {
+        let q = x.clamp(0.0, 1.0) * self.scale.x;
+        let ix = q as usize;
+        let fx = smooth(q - ix as f32);
+        match row.get(ix..ix + 2) {
+            Some(&[a, b]) => a + (b - a) * fx,
+            _ => 0.0,
+        }
     }
 }
 
@@ -143,8 +177,9 @@ impl CellTable {
         }
     }
 
-    /// Distances to the nearest and second-nearest point from `p` (clamped into `[0, 1]²`).
-    #[inline]
+    /// Squared distances (in lattice cells) to the nearest and second-nearest point from `p`
+    /// (clamped into `[0, 1]²`): the reference [`Self::at_row`] is tested against.
+    #[cfg(test)]
     pub(crate) fn at(&self, p: Vec2) -> (f32, f32) {
         let q = p.clamp(Vec2::ZERO, Vec2::ONE) * self.scale;
         let (ix, iy) = (q.x as usize + 1, q.y as usize + 1);
@@ -164,11 +199,73 @@ impl CellTable {
                 }
             }
         }
-        (Vec2::new(d1, 0.0).length(), Vec2::new(d2, 0.0).length())
+        (d1, d2)
+    }
+
+    /// The feature points that can be nearest on the row at height `y` (clamped to
+    /// `[0, 1]`): per lattice column, the three candidate rows' x and squared y distance.
+    pub(crate) fn row(&self, y: f32, out: &mut CellRow) {
+        let q = y.clamp(0.0, 1.0) * self.scale;
+        let iy = q as usize + 1;
+        out.x.clear();
+        out.dy2.clear();
+        for column in 0..self.columns {
+            let mut x = [0.0; 3];
+            let mut dy2 = [f32::MAX; 3];
+            for (k, row) in (iy - 1..=iy + 1).enumerate() {
+                if let Some(point) = self.points.get(row * self.columns + column) {
+                    x[k] = point.x;
+                    dy2[k] = (point.y - q) * (point.y - q);
+                }
+            }
+            out.x.push(x);
+            out.dy2.push(dy2);
+        }
+    }
+
+    /// The squared distances to the nearest and second-nearest feature points at `x` (clamped to
+    /// `[0, 1]`) on a row made by [`Self::row`]: equal to [`Self::at`]. Branch-free.
+    #[inline]
+    pub(crate) fn at_row(&self, row: &CellRow, x: f32) -> (f32, f32) {
+        let q = x.clamp(0.0, 1.0) * self.scale;
+        let ix = q as usize + 1;
+        let mut d1 = f32::MAX;
+        let mut d2 = f32::MAX;
+        if let (Some(xs), Some(dy2s)) = (row.x.get(ix - 1..=ix + 1), row.dy2.get(ix - 1..=ix + 1)) {
+            for (xs, dy2s) in xs.iter().zip(dy2s) {
+                for (&px, &dy2) in xs.iter().zip(dy2s) {
+                    let dx = px - q;
+                    let d = dx * dx + dy2;
+                    d2 = d2.min(d1.max(d));
+                    d1 = d1.min(d);
+                }
+            }
+        }
+        (d1, d2)
     }
 }
 
+/// One row of [`CellTable`]'s candidate feature points (see [`CellTable::row`]).
+#[derive(Default)]
+pub(crate) struct CellRow {
+    x: Vec<[f32; 3]>,
+    dy2: Vec<[f32; 3]>,
+}
+
+/// One row of the base textures (see [`BaseTextures::row`]): reused from row to row.
+#[derive(Default)]
+pub(crate) struct BaseRow {
+    y: f32,
+    warp: Vec<f32>,
+    grain: Vec<f32>,
+    frost: Vec<f32>,
+    cells: CellRow,
+}
+
 /// The procedural base textures of one render, tables built once.
+/// The centre of the wood texture's rings (below the square frame, so the rings arc).
+const WOOD_CENTRE: Vec2 = Vec2::new(0.5, -0.35);
+
 pub(crate) struct BaseTextures {
     warp: ValueTable,
     grain: ValueTable,
@@ -188,10 +285,10 @@ impl BaseTextures {
 
     /// The wood-like base texture at `p` (the creature's square frame, `[0, 1]²`), in roughly
     /// `[0.58, 1]`: rings around a point below the creature, warped by value noise, with a
-    /// fine grain.
+    /// fine grain. The reference [`Self::wood_at`] is tested against.
+    #[cfg(test)]
     pub(crate) fn wood(&self, p: Vec2) -> f32 {
-        let centre = Vec2::new(0.5, -0.35);
-        let r = (p - centre).length() * 14.0 + self.warp.at(p) * 0.9;
+        let r = (p - WOOD_CENTRE).length() * 14.0 + self.warp.at(p) * 0.9;
         let t = r - floor_i(r) as f32;
         // A soft triangle wave: dark thin rings on light wood.
         let ring = smooth((2.0 * t - 1.0).abs());
@@ -199,12 +296,43 @@ impl BaseTextures {
     }
 
     /// The ice-like base texture at `p`, in roughly `[0.62, 1]`: pale cells with bright cracks
-    /// between them and a faint frost.
+    /// between them and a faint frost. The reference [`Self::ice_at`] is tested against.
+    #[cfg(test)]
     pub(crate) fn ice(&self, p: Vec2) -> f32 {
         let (d1, d2) = self.cells.at(p);
         let edge = (d2 - d1).min(0.25) * 4.0; // 0 on a crack, 1 inside a cell
         let crack = 1.0 - smooth(edge);
         0.62 + 0.1 * d1.min(1.0) + 0.2 * crack + 0.08 * self.frost.at(p)
+    }
+
+    /// Prepares `row` for the points `(x, y)` of one image row: [`Self::wood_at`] and
+    /// [`Self::ice_at`] then cost a few table look-ups and one or two square roots.
+    pub(crate) fn row(&self, y: f32, row: &mut BaseRow) {
+        row.y = y;
+        self.warp.row(y, &mut row.warp);
+        self.grain.row(y, &mut row.grain);
+        self.frost.row(y, &mut row.frost);
+        self.cells.row(y, &mut row.cells);
+    }
+
+    /// [`Self::wood`] at `(x, row's y)`, up to rounding.
+    #[inline]
+    pub(crate) fn wood_at(&self, row: &BaseRow, x: f32) -> f32 {
+        let (dx, dy) = (x - WOOD_CENTRE.x, row.y - WOOD_CENTRE.y);
+        let r = crate::math::sqrt(dx * dx + dy * dy) * 14.0 + self.warp.at_row(&row.warp, x) * 0.9;
+        // r ≥ 0 (a distance plus a value in [0, 1)): truncation is the floor.
+        let t = r - (r as i32) as f32;
+        let ring = smooth((2.0 * t - 1.0).abs());
+        0.58 + 0.3 * ring + 0.12 * self.grain.at_row(&row.grain, x)
+    }
+
+    /// [`Self::ice`] at `(x, row's y)`, up to rounding.
+    #[inline]
+    pub(crate) fn ice_at(&self, row: &BaseRow, x: f32) -> f32 {
+        let (d1, d2) = self.cells.at_row(&row.cells, x);
+        let edge = (d2 - d1).min(0.25) * 4.0;
+        let crack = 1.0 - smooth(edge);
+        0.62 + 0.1 * d1.min(1.0) + 0.2 * crack + 0.08 * self.frost.at_row(&row.frost, x)
     }
 }
 
@@ -230,6 +358,25 @@ mod tests {
             let (a, b) = c.at(p);
             let (x, y) = cells(p * 7.0, 11);
             assert!((a - x).abs() < 1e-4 && (b - y).abs() < 1e-4, "{p}");
+        }
+    }
+
+    #[test]
+    fn rows_match_the_point_lookups() {
+        let base = BaseTextures::new(5);
+        let mut row = BaseRow::default();
+        for j in 0..23 {
+            let y = j as f32 / 20.0 - 0.05; // a little outside [0, 1] too: clamped alike
+            base.row(y, &mut row);
+            for i in 0..97 {
+                let x = i as f32 / 90.0 - 0.03;
+                let p = Vec2::new(x, y);
+                assert!((base.wood_at(&row, x) - base.wood(p)).abs() < 1e-4, "{p}");
+                assert!((base.ice_at(&row, x) - base.ice(p)).abs() < 1e-4, "{p}");
+                let (a, b) = base.cells.at_row(&row.cells, x);
+                let (c, d) = base.cells.at(p);
+                assert_eq!((a, b), (c, d), "{p}");
+            }
         }
     }
 

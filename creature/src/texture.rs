@@ -9,7 +9,7 @@
 use alloc::vec;
 use alloc::vec::Vec;
 
-use glam::{Vec2, Vec3};
+use glam::Vec2;
 
 use creature_metaball::{DEFAULT_EPSILON, Falloff, SEED_BLOBBINESS};
 
@@ -198,77 +198,157 @@ pub fn render(
     }
     let n = options.size as usize;
     let texel = extent / n as f32;
-    let mut acc = Accumulator::new(n * n);
-    let mut column_factors: Vec<[f32; 2]> = Vec::with_capacity(n);
-    // The seed falloff: f = e^(−B) · exp(B d² / R²), split into x and y factors.
-    let peak = math::exp(-SEED_BLOBBINESS);
-    for b in balls {
-        let centre = b.ball.center;
-        let k = SEED_BLOBBINESS / (b.ball.radius * b.ball.radius); // < 0
-        let cutoff = Falloff::SEED.cutoff_radius(b.ball.radius, DEFAULT_EPSILON);
-        let Some((c0, c1)) = pixel_range(
-            centre.x - cutoff - min.x,
-            centre.x + cutoff - min.x,
-            texel.x,
-            n,
-        ) else {
-            continue;
+    let footprints = Footprints::new(balls, bounds, texel, n);
+    let mut finisher = Finisher::new(n, extent, texel, options);
+    // Band by band: the sums of a few rows stay in the cache (and in memory the allocator
+    // reuses), and the base textures' rows are made once.
+    let mut planes = Planes::new(BAND_ROWS.min(n) * n);
+    for first in (0..n).step_by(BAND_ROWS) {
+        let rows = first..(first + BAND_ROWS).min(n);
+        planes.clear();
+        footprints.splat(&mut planes, rows.clone(), n);
+        finisher.rows(&planes, rows);
+    }
+    Ok(finisher.images())
+}
+
+/// Rows of the image summed and finished at a time.
+const BAND_ROWS: usize = 16;
+
+/// One ball's footprint on the image: the pixels within its cutoff circle, the seed falloff
+/// split into x and y factors, `f = e^(−B) · exp(B dx² / R²) · exp(B dy² / R²)`.
+struct Footprint {
+    centre: Vec2,
+    /// `B / R²` (negative).
+    k: f32,
+    cutoff2: f32,
+    columns: (usize, usize),
+    rows: (usize, usize),
+    /// Where the ball's column factors start in [`Footprints::fx`].
+    offset: usize,
+    colour: [f32; 3],
+    wood: f32,
+}
+
+/// Every ball's footprint, and their column factors: per column of a footprint, the x factor
+/// `fx` and `2k dx fx`, so each pixel adds f = fx·fy, ∂f/∂x = (2k dx fx)·fy,
+/// ∂f/∂y = fx·(2k dy fy), and f times the colour and wood weight.
+struct Footprints {
+    balls: Vec<Footprint>,
+    fx: Vec<f32>,
+    fx_dx: Vec<f32>,
+    min: Vec2,
+    max: Vec2,
+    texel: Vec2,
+}
+
+impl Footprints {
+    fn new(balls: &[Ball2d], (min, max): (Vec2, Vec2), texel: Vec2, n: usize) -> Self {
+        let mut out = Self {
+            balls: Vec::with_capacity(balls.len()),
+            fx: Vec::new(),
+            fx_dx: Vec::new(),
+            min,
+            max,
+            texel,
         };
-        let Some((r0, r1)) = pixel_range(
-            max.y - centre.y - cutoff,
-            max.y - centre.y + cutoff,
-            texel.y,
-            n,
-        ) else {
-            continue;
-        };
-        // Per column: the x factor and the x factor times 2k dx, so each pixel adds
-        // f = fx·fy, ∂f/∂x = (2k dx fx)·fy, ∂f/∂y = fx·(2k dy fy), and f times the colour and
-        // wood weight.
-        column_factors.clear();
-        for c in c0..=c1 {
-            let dx = min.x + (c as f32 + 0.5) * texel.x - centre.x;
-            let fx = math::exp(k * dx * dx);
-            column_factors.push([fx, fx * dx * 2.0 * k]);
-        }
-        let [cr, cg, cb] = b.colour.to_array();
-        let wood = b.texture_weights.x;
-        let cutoff2 = cutoff * cutoff;
-        for row in r0..=r1 {
-            let dy = max.y - (row as f32 + 0.5) * texel.y - centre.y;
-            let fy = peak * math::exp(k * dy * dy);
-            let fy_dy = fy * dy * 2.0 * k;
-            // Only the columns within the cutoff circle (the culled field's support).
-            let half = Vec2::new((cutoff2 - dy * dy).max(0.0), 0.0).length();
-            let Some((a, z)) =
-                pixel_range(centre.x - half - min.x, centre.x + half - min.x, texel.x, n)
-            else {
-                continue;
-            };
-            let (a, z) = (a.max(c0), z.min(c1));
-            if a > z {
-                continue;
-            }
-            let start = row * n;
-            let (Some(pixels), Some(columns)) = (
-                acc.pixels.get_mut(start + a..=start + z),
-                column_factors.get(a - c0..=z - c0),
+        for b in balls {
+            let centre = b.ball.center;
+            let k = SEED_BLOBBINESS / (b.ball.radius * b.ball.radius);
+            let cutoff = Falloff::SEED.cutoff_radius(b.ball.radius, DEFAULT_EPSILON);
+            let Some(columns) = pixel_range(
+                centre.x - cutoff - min.x,
+                centre.x + cutoff - min.x,
+                texel.x,
+                n,
             ) else {
                 continue;
             };
-            for (px, &[fx, fx_dx]) in pixels.iter_mut().zip(columns) {
-                let f = fx * fy;
-                px[0] += f;
-                px[1] += fx_dx * fy;
-                px[2] += fx * fy_dy;
-                px[3] += f * cr;
-                px[4] += f * cg;
-                px[5] += f * cb;
-                px[6] += f * wood;
+            let Some(rows) = pixel_range(
+                max.y - centre.y - cutoff,
+                max.y - centre.y + cutoff,
+                texel.y,
+                n,
+            ) else {
+                continue;
+            };
+            let offset = out.fx.len();
+            for c in columns.0..=columns.1 {
+                let dx = min.x + (c as f32 + 0.5) * texel.x - centre.x;
+                let fx = math::exp(k * dx * dx);
+                out.fx.push(fx);
+                out.fx_dx.push(fx * dx * 2.0 * k);
+            }
+            out.balls.push(Footprint {
+                centre,
+                k,
+                cutoff2: cutoff * cutoff,
+                columns,
+                rows,
+                offset,
+                colour: b.colour.to_array(),
+                wood: b.texture_weights.x,
+            });
+        }
+        out
+    }
+
+    /// Adds every ball's contribution to the image rows `rows` (plane row 0 is `rows.start`).
+    fn splat(&self, planes: &mut Planes, rows: core::ops::Range<usize>, n: usize) {
+        let peak = math::exp(-SEED_BLOBBINESS);
+        for ball in &self.balls {
+            let first = ball.rows.0.max(rows.start);
+            let last = ball.rows.1.min(rows.end.saturating_sub(1));
+            let (c0, c1) = ball.columns;
+            let [cr, cg, cb] = ball.colour;
+            for row in first..=last {
+                let dy = self.max.y - (row as f32 + 0.5) * self.texel.y - ball.centre.y;
+                let fy = peak * math::exp(ball.k * dy * dy);
+                let fy_dy = fy * dy * 2.0 * ball.k;
+                // Only the columns within the cutoff circle (the culled field's support).
+                let half = math::sqrt((ball.cutoff2 - dy * dy).max(0.0));
+                let Some((a, z)) = pixel_range(
+                    ball.centre.x - half - self.min.x,
+                    ball.centre.x + half - self.min.x,
+                    self.texel.x,
+                    n,
+                ) else {
+                    continue;
+                };
+                let (a, z) = (a.max(c0), z.min(c1));
+                if a > z {
+                    continue;
+                }
+                let factors = ball.offset + a - c0..=ball.offset + z - c0;
+                let (Some(fx), Some(fx_dx)) =
+                    (self.fx.get(factors.clone()), self.fx_dx.get(factors))
+                else {
+                    continue;
+                };
+                // Seven contiguous runs, each `plane += column factor × row factor`: vector
+                // adds.
+                let start = (row - rows.start) * n;
+                let span = start + a..=start + z;
+                let p = &mut *planes;
+                let runs = [
+                    (&mut p.sum, fx, fy),
+                    (&mut p.gx, fx_dx, fy),
+                    (&mut p.gy, fx, fy_dy),
+                    (&mut p.r, fx, fy * cr),
+                    (&mut p.g, fx, fy * cg),
+                    (&mut p.b, fx, fy * cb),
+                    (&mut p.wood, fx, fy * ball.wood),
+                ];
+                for (plane, columns, factor) in runs {
+                    if let Some(out) = plane.get_mut(span.clone()) {
+                        for (o, &c) in out.iter_mut().zip(columns) {
+                            *o += c * factor;
+                        }
+                    }
+                }
             }
         }
     }
-    Ok(acc.finish(n, extent, texel, options))
 }
 
 /// The pixels whose centres `(i + 0.5) · texel` lie in `[lo, hi]`, clamped to the image.
@@ -284,113 +364,214 @@ fn pixel_range(lo: f32, hi: f32, texel: f32, n: usize) -> Option<(usize, usize)>
     (first <= last).then_some((first, last))
 }
 
-/// Per-pixel sums: field, gradient x and y, colour r, g, b (field-weighted), wood weight
-/// (field-weighted), padding.
-struct Accumulator {
-    pixels: Vec<[f32; 8]>,
+/// Per-pixel sums, one plane each (so rows are contiguous runs the compiler vectorises):
+/// field, gradient x and y, colour r, g, b (field-weighted) and wood weight (field-weighted).
+struct Planes {
+    sum: Vec<f32>,
+    gx: Vec<f32>,
+    gy: Vec<f32>,
+    r: Vec<f32>,
+    g: Vec<f32>,
+    b: Vec<f32>,
+    wood: Vec<f32>,
 }
 
-impl Accumulator {
+impl Planes {
     fn new(len: usize) -> Self {
         Self {
-            pixels: vec![[0.0; 8]; len],
+            sum: vec![0.0; len],
+            gx: vec![0.0; len],
+            gy: vec![0.0; len],
+            r: vec![0.0; len],
+            g: vec![0.0; len],
+            b: vec![0.0; len],
+            wood: vec![0.0; len],
         }
     }
 
-    fn finish(
-        self,
-        n: usize,
-        extent: Vec2,
-        texel: Vec2,
-        options: &TextureOptions,
-    ) -> (Image, Image) {
-        let mut albedo = vec![0u8; n * n * 4];
-        let mut normals = vec![0u8; n * n * 4];
-        let side = extent.max_element();
-        let pixel_size = texel.max_element();
-        let relief = options.normal_relief;
-        let base_textures = noise::BaseTextures::new(options.noise_seed);
-        for (i, (albedo_px, normal_px)) in albedo
-            .chunks_exact_mut(4)
-            .zip(normals.chunks_exact_mut(4))
-            .enumerate()
+    fn clear(&mut self) {
+        for plane in [
+            &mut self.sum,
+            &mut self.gx,
+            &mut self.gy,
+            &mut self.r,
+            &mut self.g,
+            &mut self.b,
+            &mut self.wood,
+        ] {
+            plane.fill(0.0);
+        }
+    }
+}
+
+/// Turns summed rows into the albedo and normal images.
+struct Finisher {
+    n: usize,
+    albedo: Vec<u8>,
+    normals: Vec<u8>,
+    extent: Vec2,
+    texel: Vec2,
+    side: f32,
+    inverse_pixel: f32,
+    relief: f32,
+    shading: f32,
+    base_textures: noise::BaseTextures,
+    noise_row: noise::BaseRow,
+    coverage: Vec<f32>,
+    base: Vec<f32>,
+}
+
+impl Finisher {
+    fn new(n: usize, extent: Vec2, texel: Vec2, options: &TextureOptions) -> Self {
+        Self {
+            n,
+            albedo: vec![0u8; n * n * 4],
+            normals: vec![0u8; n * n * 4],
+            extent,
+            texel,
+            side: extent.max_element(),
+            inverse_pixel: 1.0 / texel.max_element(),
+            relief: options.normal_relief,
+            shading: options.depth_shading,
+            base_textures: noise::BaseTextures::new(options.noise_seed),
+            noise_row: noise::BaseRow::default(),
+            coverage: vec![0.0; n],
+            base: vec![1.0; n],
+        }
+    }
+
+    /// Finishes the image rows `rows` from their sums (plane row 0 is `rows.start`), each in
+    /// three passes: normals and coverage (branch-free, vectorised), the base textures where
+    /// the creature is (scalar), then the albedo (vectorised).
+    fn rows(&mut self, planes: &Planes, rows: core::ops::Range<usize>) {
+        let n = self.n;
+        let (relief, shading, inverse_pixel) = (self.relief, self.shading, self.inverse_pixel);
+        // Base texture coordinates: the image in a square frame of side `side`.
+        let x_scale = self.texel.x / self.side;
+        let sums = planes
+            .sum
+            .chunks_exact(n)
+            .zip(planes.gx.chunks_exact(n).zip(planes.gy.chunks_exact(n)))
+            .zip(planes.r.chunks_exact(n).zip(planes.g.chunks_exact(n)))
+            .zip(planes.b.chunks_exact(n).zip(planes.wood.chunks_exact(n)));
+        let images = self
+            .albedo
+            .chunks_exact_mut(4 * n)
+            .zip(self.normals.chunks_exact_mut(4 * n))
+            .skip(rows.start);
+        for (row, ((((sum, (gx, gy)), (r, g)), (b, wood)), (albedo_row, normal_row))) in
+            rows.zip(sums.zip(images))
         {
-            let Some(&[sum, gx, gy, r, g, b, wood, _]) = self.pixels.get(i) else {
-                continue;
-            };
-            let gradient = Vec2::new(gx, gy);
-            let colour = Vec3::new(r, g, b);
-            // Normal map (everywhere, flat where no ball reaches).
-            let normal = Vec3::new(-relief * gradient.x, -relief * gradient.y, 1.0)
-                .try_normalize()
-                .unwrap_or(Vec3::Z);
-            let encoded = normal * 0.5 + Vec3::splat(0.5);
-            normal_px.copy_from_slice(&[
-                to_byte(encoded.x),
-                to_byte(encoded.y),
-                to_byte(encoded.z),
-                255,
-            ]);
-            if !(sum > 0.0) {
-                continue;
+            // 1. The normal of the height field `relief × field` (flat where no ball reaches):
+            //    (−relief ∂F/∂x, −relief ∂F/∂y, 1) is at least 1 long, so only an infinite one
+            //    cannot be normalised. And the coverage of the inside, `field ≥ 1`, anti-aliased
+            //    with the first-order distance (field − 1) / |∇field| (0 where no ball reaches).
+            let pixels = sum
+                .iter()
+                .zip(gx.iter().zip(gy))
+                .zip(normal_row.chunks_exact_mut(4).zip(&mut self.coverage));
+            for ((&sum, (&gx, &gy)), (normal_px, coverage)) in pixels {
+                let (nx, ny) = (-relief * gx, -relief * gy);
+                let length2 = nx * nx + ny * ny + 1.0;
+                let finite = length2 < f32::INFINITY;
+                let inverse = if finite {
+                    1.0 / math::sqrt(length2)
+                } else {
+                    0.0
+                };
+                let (nx, ny, nz) = if finite {
+                    (nx * inverse, ny * inverse, inverse)
+                } else {
+                    (0.0, 0.0, 1.0)
+                };
+                normal_px.copy_from_slice(&[
+                    to_byte(nx * 0.5 + 0.5),
+                    to_byte(ny * 0.5 + 0.5),
+                    to_byte(nz * 0.5 + 0.5),
+                    255,
+                ]);
+                let slope = math::sqrt(gx * gx + gy * gy).max(1e-6);
+                *coverage = ((sum - 1.0) / slope * inverse_pixel + 0.5).clamp(0.0, 1.0);
             }
-            let colour = colour / sum;
-            let wood = (wood / sum).clamp(0.0, 1.0);
-            let slope = gradient.length().max(1e-6);
-            let coverage = ((sum - 1.0) / slope / pixel_size + 0.5).clamp(0.0, 1.0);
-            // The base textures only where the creature is (or its anti-aliased rim); outside,
-            // the colour is kept (without detail) so filtering at the rim does not bleed black.
-            let mut base = 1.0;
-            if coverage > 0.0 {
-                let (row, col) = (i / n, i % n);
-                let world = Vec2::new(
-                    (col as f32 + 0.5) * texel.x,
-                    extent.y - (row as f32 + 0.5) * texel.y,
-                );
-                let p = world / side;
-                base = 0.0;
+            // 2. The base textures only where the creature is (or its anti-aliased rim);
+            //    outside, the colour is kept (without detail) so filtering at the rim does not
+            //    bleed black.
+            let y = (self.extent.y - (row as f32 + 0.5) * self.texel.y) / self.side;
+            let mut noise_ready = false;
+            let pixels = self
+                .coverage
+                .iter()
+                .zip(sum.iter().zip(wood))
+                .zip(&mut self.base);
+            for (col, ((&coverage, (&sum, &wood)), base)) in pixels.enumerate() {
+                if !(coverage > 0.0) {
+                    *base = 1.0;
+                    continue;
+                }
+                if !noise_ready {
+                    self.base_textures.row(y, &mut self.noise_row);
+                    noise_ready = true;
+                }
+                let x = (col as f32 + 0.5) * x_scale;
+                let wood = (wood / sum).clamp(0.0, 1.0);
+                let mut mix = 0.0;
                 if wood > 1e-3 {
-                    base += wood * base_textures.wood(p);
+                    mix += wood * self.base_textures.wood_at(&self.noise_row, x);
                 }
                 if wood < 1.0 - 1e-3 {
-                    base += (1.0 - wood) * base_textures.ice(p);
+                    mix += (1.0 - wood) * self.base_textures.ice_at(&self.noise_row, x);
                 }
+                *base = mix;
             }
-            let rgb = colour * (base * options.depth_shading * sum);
-            albedo_px.copy_from_slice(&[
-                to_byte(rgb.x),
-                to_byte(rgb.y),
-                to_byte(rgb.z),
-                to_byte(coverage),
-            ]);
+            // 3. Albedo: the field-weighted colour (colour sums / field) × base × shading ×
+            //    field, that is the colour sums × base × shading.
+            let pixels = r
+                .iter()
+                .zip(g.iter().zip(b))
+                .zip(self.base.iter().zip(&self.coverage))
+                .zip(albedo_row.chunks_exact_mut(4));
+            for (((&r, (&g, &b)), (&base, &coverage)), albedo_px) in pixels {
+                let k = base * shading;
+                albedo_px.copy_from_slice(&[
+                    to_byte(r * k),
+                    to_byte(g * k),
+                    to_byte(b * k),
+                    to_byte(coverage),
+                ]);
+            }
         }
-        let size = u32::try_from(n).unwrap_or(u32::MAX);
+    }
+
+    /// The finished albedo and normal map.
+    fn images(self) -> (Image, Image) {
+        let size = u32::try_from(self.n).unwrap_or(u32::MAX);
         (
             Image {
                 width: size,
                 height: size,
-                rgba: albedo,
+                rgba: self.albedo,
             },
             Image {
                 width: size,
                 height: size,
-                rgba: normals,
+                rgba: self.normals,
             },
         )
     }
 }
 
-/// `[0, 1]` to a byte, rounded; NaN gives 0.
+/// `[0, 1]` to a byte, rounded; NaN gives 0 (`max` returns the number, not the NaN).
 #[inline]
+#[allow(clippy::manual_clamp)] // `clamp` keeps a NaN; `max` then `min` turn it into 0
 fn to_byte(v: f32) -> u8 {
-    let v = if v.is_nan() { 0.0 } else { v.clamp(0.0, 1.0) };
-    (v * 255.0 + 0.5) as u8
+    (v.max(0.0).min(1.0) * 255.0 + 0.5) as u8
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use creature_metaball::Ball2;
+    use glam::Vec3;
 
     fn ball(x: f32, y: f32, r: f32, colour: Vec3) -> Ball2d {
         Ball2d {
@@ -398,6 +579,15 @@ mod tests {
             colour,
             texture_weights: Vec2::new(0.5, 0.5),
         }
+    }
+
+    #[test]
+    fn bytes_round_clamp_and_map_nan_to_zero() {
+        assert_eq!(to_byte(f32::NAN), 0);
+        assert_eq!(to_byte(-1.0), 0);
+        assert_eq!(to_byte(2.0), 255);
+        assert_eq!(to_byte(0.5), 128);
+        assert_eq!(to_byte(1.0 / 255.0), 1);
     }
 
     #[test]

@@ -386,7 +386,15 @@ impl Creature {
                 rotations: alloc::vec![q; frames],
             });
         }
-        for (frame, body) in run.bodies.iter().enumerate() {
+        // Nothing under the floor: a frame whose body would dip below it (its bob, breathing or
+        // lean on a body that touches the ground at rest) is raised just enough, before the
+        // legs are solved, so the feet stay planted.
+        let lifts = self.floor_lifts(&body_global, &run.bodies);
+        for (frame, (body, lift)) in run.bodies.iter().zip(lifts).enumerate() {
+            let body = &Pose {
+                translation: body.translation + Vec3::Y * lift,
+                ..*body
+            };
             clip.root_translation
                 .push(body.translation + body.rotation * rest_root);
             clip.root_rotation.push(body.rotation);
@@ -424,6 +432,60 @@ impl Creature {
         }
         clip.loop_error = loop_error(&clip);
         Ok(clip)
+    }
+
+    /// Per frame, how far the body pose must rise so that no vertex of the body (the part of
+    /// the mesh skinned to spine joints only, bent by `body_global`, the clip's constant spine
+    /// pose in body space) is below the floor `y = 0`: zero unless it would dip.
+    fn floor_lifts(&self, body_global: &[Affine3A], bodies: &[Pose]) -> Vec<f32> {
+        let joints = &self.skeleton.joints;
+        let spine = |j: u16| {
+            joints
+                .get(usize::from(j))
+                .is_some_and(|j| j.part == Part::Spine)
+        };
+        let mesh = &self.mesh;
+        let mut shape: Vec<Vec3> = Vec::new();
+        for ((&p, js), ws) in mesh.positions.iter().zip(&mesh.joints).zip(&mesh.weights) {
+            if !js.iter().zip(ws).all(|(&j, &w)| w == 0.0 || spine(j)) {
+                continue;
+            }
+            let mut s = Vec3::ZERO;
+            for (&j, &w) in js.iter().zip(ws) {
+                let j = usize::from(j);
+                if let (true, Some(g), Some(rest)) = (w != 0.0, body_global.get(j), joints.get(j)) {
+                    s += w * g.transform_point3(p - rest.position);
+                }
+            }
+            shape.push(s);
+        }
+        // A vertex s of the body is at height (R s).y + t.y = u · s + t.y with u = Rᵀ ŷ. With
+        // |u − ŷ| ≤ δ over the clip, u · s lies within δ|s| of s.y: only the vertices that can
+        // be lowest in some frame are kept.
+        let ups: Vec<Vec3> = bodies
+            .iter()
+            .map(|b| b.rotation.inverse() * Vec3::Y)
+            .collect();
+        let delta = ups
+            .iter()
+            .map(|u| (*u - Vec3::Y).length())
+            .fold(0.0f32, f32::max);
+        let bound = shape
+            .iter()
+            .map(|s| s.y + delta * s.length())
+            .fold(f32::INFINITY, f32::min);
+        shape.retain(|s| s.y - delta * s.length() <= bound);
+        bodies
+            .iter()
+            .zip(&ups)
+            .map(|(body, up)| {
+                let low = shape
+                    .iter()
+                    .map(|s| up.dot(*s))
+                    .fold(f32::INFINITY, f32::min);
+                (-(low + body.translation.y)).max(0.0)
+            })
+            .collect()
     }
 
     /// Local rotations of the neck and tail joints bending toward a turn at `yaw_rate`.

@@ -341,3 +341,83 @@ fn regression_baked_turn_of_a_long_walker_does_not_skate() {
     let c = generate(9_032_106_096_394_002_485, &params).unwrap();
     assert_eq!(support::check_3d(&c), Vec::<String>::new());
 }
+
+/// Regression (found by the 3D validity property with 2,000 cases): a tiny (0.1 scale)
+/// five-bone walker with the thinnest slices, a big head and no ground clearance had no
+/// stable leg layout: `generate` returned `NoStableLayout` for valid params. Only its tail-end
+/// bone was tall enough for legs; `creature-limbs` now lifts such a body until every bone is
+/// (`Repair::LiftedToStand`). Baked with its clips, which must be valid too.
+#[test]
+fn regression_tiny_walker_without_clearance_stands() {
+    let params = thin_walker_on_the_ground()
+        .with_profiles(4)
+        .with_resolution(6, 3)
+        .with_slices(
+            Span::new(0.3, 0.3),
+            Span::new(0.3, 0.3),
+            Span::new(0.3, 0.3),
+        )
+        .with_body_scale(Span::new(0.1, 0.1))
+        .with_bone_length(0.143_570_69)
+        .with_spine_bones(IntSpan::new(5, 5))
+        .with_spine_bend(0.0)
+        .with_head_size(Span::new(0.5, 0.5))
+        .with_clips(true);
+    let c = generate(5_674_394_465_910_248_868, &params).unwrap();
+    assert_eq!(support::check_3d(&c), Vec::<String>::new());
+}
+
+/// Regression (found by the 3D validity property with 2,000 cases): a walker whose neck is
+/// bent down to the ground (no ground clearance, a 115° spine bend budget) put its neck
+/// 0.03 under the floor in `idle` (breathing), `walk` and `turn` (the body's bob and lean).
+/// Each baked frame now raises the body just enough that no vertex of it dips below the floor,
+/// before the legs are solved.
+#[test]
+fn regression_a_walker_touching_the_ground_stays_above_it_when_animated() {
+    let params = thin_walker_on_the_ground()
+        .with_profiles(5)
+        .with_resolution(12, 11)
+        .with_slices(
+            Span::new(1.667_280_6, 1.944_323),
+            Span::new(0.3, 0.3),
+            Span::new(0.3, 1.165_927_5),
+        )
+        .with_body_scale(Span::new(0.1, 9.981_401))
+        .with_bone_length(0.1)
+        .with_spine_bones(IntSpan::new(5, 16))
+        .with_spine_bend(115.194_786)
+        .with_head_size(Span::new(1.475_997_7, 1.872_468_7))
+        .with_clips(true);
+    let c = generate(5_823_717_609_214_275_063, &params).unwrap();
+    // At rest the body touches the floor.
+    assert_eq!(c.quality.min_height, 0.0);
+    assert_eq!(support::check_3d(&c), Vec::<String>::new());
+    // Every frame, not only every third: nothing lower than the feet's soles settle.
+    for clip in &c.clips {
+        for frame in 0..clip.frames {
+            let low = c
+                .posed_positions(clip, frame)
+                .unwrap()
+                .iter()
+                .map(|v| v.y)
+                .fold(f32::INFINITY, f32::min);
+            assert!(low > -1e-3, "{} frame {frame}: {low}", clip.name);
+        }
+    }
+}
+
+/// The shared part of the walkers the property found at the edges of the valid params: three
+/// sides to a limb, smooth normals, the slowest speed and no ground clearance.
+fn thin_walker_on_the_ground() -> Params {
+    Params::DEFAULT
+        .with_kind(Kind::Walker)
+        .with_limb_sides(3)
+        .with_flat_normals(false)
+        .with_swimmer_slices(
+            Span::new(0.3, 0.3),
+            Span::new(0.3, 0.3),
+            Span::new(0.3, 0.3),
+        )
+        .with_speed_factor(Span::new(0.1, 0.1))
+        .with_ground_clearance(Span::new(0.0, 0.0))
+}

@@ -158,8 +158,18 @@ pub enum Repair {
     },
     /// The whole body was raised, because no bone was high enough for a leg of
     /// [`PlanOptions::min_leg_length`](crate::PlanOptions::min_leg_length): afterwards the
-    /// highest bone's legs are that long. It is the only reason for a lift.
+    /// highest bone's legs are that long. It is the only reason for a lift besides
+    /// [`Repair::LiftedToStand`].
     Lifted {
+        /// How far, in body units.
+        by: f32,
+    },
+    /// No layout on the bones tall enough for legs could stand (e.g. a body touching the
+    /// ground but for one end), so the whole body was raised until every bone is tall enough
+    /// for legs of [`PlanOptions::min_leg_length`](crate::PlanOptions::min_leg_length), and the
+    /// layout rebuilt on all of them. `by` is the whole lift ([`Plan::lift`]); the
+    /// [`Repair::Lifted`] and [`Repair::SkippedLowBone`] entries of the first try are dropped.
+    LiftedToStand {
         /// How far, in body units.
         by: f32,
     },

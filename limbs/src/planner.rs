@@ -48,10 +48,11 @@ const RELOCATION_TRIES: usize = 8;
 /// # Errors
 ///
 /// Anything [`Body::validate`] or [`PlanOptions::validate`] reports; for walkers,
-/// [`LimbsError::NoStableLayout`] when no layout can stand: even legs on every bone tall
-/// enough for them leave the centre of mass outside the support region (or inside by less than
-/// the required margin), e.g. a heavy end too low for legs. The planner never returns a walker
-/// that does not stand.
+/// [`LimbsError::NoStableLayout`] when no layout can stand: even legs on every bone, with the
+/// body lifted until each is tall enough for them, leave the centre of mass outside the support
+/// region or inside by less than the required margin (e.g. a `min_margin` wider than the body;
+/// a heavy end too low for legs is lifted instead, [`Repair::LiftedToStand`]). The planner
+/// never returns a walker that does not stand.
 ///
 /// # Example
 ///
@@ -257,6 +258,46 @@ impl Ctx<'_> {
         lift
     }
 
+    /// The last repair of a walker that cannot stand on the bones tall enough for legs: the
+    /// body raised (from `lift`) until every bone's legs are at least `min_len`, and the layout
+    /// rebuilt on all bones, with shorter strides if needed. The pairs, margin, sweep and the
+    /// whole lift; `None` when every bone was eligible already or it still cannot stand.
+    fn lifted_to_stand(
+        &self,
+        lift: f32,
+        min_len: f32,
+        eligible: &[bool],
+    ) -> Option<(Vec<usize>, f32, f32, f32)> {
+        if eligible.iter().all(|&e| e) {
+            return None;
+        }
+        let shortest = |lift: f32| {
+            (0..self.n())
+                .map(|i| self.shortest_leg(i, lift))
+                .fold(f32::INFINITY, f32::min)
+        };
+        let long_enough = |leg: f32| leg >= min_len && leg > 0.0;
+        let mut full = lift + (min_len - shortest(lift)).max(0.0);
+        // Rounding can leave the sum an ulp short: nudge until every leg really is long enough.
+        let step = (min_len * f32::EPSILON).max(f32::MIN_POSITIVE);
+        for _ in 0..64 {
+            if long_enough(shortest(full)) {
+                break;
+            }
+            full += step.max(full * f32::EPSILON);
+        }
+        if !long_enough(shortest(full)) {
+            return None;
+        }
+        let all = alloc::vec![true; self.n()];
+        if let Ok((pairs, margin)) = self.rebuild(full, &all) {
+            return Some((pairs, margin, self.sweep, full));
+        }
+        self.shortened_strides(full, &all)
+            .ok()
+            .map(|(pairs, margin, sweep)| (pairs, margin, sweep, full))
+    }
+
     fn walker<R: Rng + ?Sized>(&self, out: &mut Plan, rng: &mut R) -> Result<(), LimbsError> {
         let o = self.options;
         let body = self.body;
@@ -266,7 +307,7 @@ impl Ctx<'_> {
 
         // Tiny legs: lift a body that is too low everywhere; pass over low bones otherwise.
         let min_len = o.min_leg_length * body.length;
-        let lift = self.lift_for_min_legs(out, min_len);
+        let mut lift = self.lift_for_min_legs(out, min_len);
         let eligible: Vec<bool> = (0..n)
             .map(|i| {
                 let leg = self.shortest_leg(i, lift);
@@ -309,10 +350,26 @@ impl Ctx<'_> {
                             sweep = s;
                         }
                         Err(best) => {
-                            return Err(LimbsError::NoStableLayout {
-                                margin: best,
-                                required,
+                            // Last resort: raise the body until every bone is tall enough.
+                            let Some((p, m2, s, full)) =
+                                self.lifted_to_stand(lift, min_len, &eligible)
+                            else {
+                                return Err(LimbsError::NoStableLayout {
+                                    margin: best,
+                                    required,
+                                });
+                            };
+                            out.repairs.retain(|r| {
+                                !matches!(r, Repair::Lifted { .. } | Repair::SkippedLowBone { .. })
                             });
+                            out.repairs.push(Repair::LiftedToStand { by: full });
+                            if s < self.sweep {
+                                out.repairs.push(Repair::ShortenedStride { sweep: s });
+                            }
+                            pairs = p;
+                            margin = m2;
+                            sweep = s;
+                            lift = full;
                         }
                     }
                 }

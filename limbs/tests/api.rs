@@ -274,22 +274,57 @@ fn a_short_spine_under_long_legs_takes_shorter_strides() {
 /// When no layout can stand, the planner says so instead of returning a walker that tips.
 #[test]
 fn a_walker_that_cannot_stand_is_an_error() {
-    // A heavy end (bone 2, wide) too low for legs: the mass lies beyond every bone that can
-    // carry legs.
-    let body = straight_body(&[0.3, 0.3, 2.0], &[1.0, 1.0, 0.01], 0.5, HeadEnd::Last);
-    let options = PlanOptions::DEFAULT;
+    // Asking for a margin no layout can give (40% of the body length, on a body 0.6 wide).
+    let body = straight_body(&[0.6, 0.6, 0.6], &[1.0, 1.0, 1.0], 0.5, HeadEnd::Last);
+    let options = PlanOptions::DEFAULT.with_min_margin(0.4);
     let err = plan(&body, CreatureKind::Walker, &options, &mut SplitMix(0)).unwrap_err();
     match err {
         LimbsError::NoStableLayout { margin, required } => {
             assert!(margin < required);
-            assert_eq!(margin, margin_of(&body, &options, &[0, 1]));
             assert_eq!(required, options.min_margin * body.length);
         }
         other => panic!("{other}"),
     }
-    // Allowing shorter legs lets the heavy end carry legs (the body is lifted), and it stands.
+}
+
+/// A heavy end too low for legs: the mass lies beyond every bone that can carry legs, so no
+/// layout on those bones stands (this was `NoStableLayout`). The planner lifts the body until
+/// the heavy end can carry legs too, and it stands.
+#[test]
+fn a_heavy_end_too_low_for_legs_is_lifted_to_stand() {
+    let body = straight_body(&[0.3, 0.3, 2.0], &[1.0, 1.0, 0.01], 0.5, HeadEnd::Last);
+    let options = PlanOptions::DEFAULT;
+    let min_len = options.min_leg_length * body.length;
+    assert!(margin_of(&body, &options, &[0, 1]) < options.min_margin * body.length);
+    let p = walker(&body, &options, 0);
+    assert!(p.stability_margin.unwrap() >= options.min_margin * body.length);
+    assert_eq!(p.layout, Some(WalkerLayout::Rebuilt));
+    assert!(
+        p.repairs.contains(&Repair::LiftedToStand { by: p.lift }),
+        "{:?}",
+        p.repairs
+    );
+    assert!(
+        !p.repairs
+            .iter()
+            .any(|r| matches!(r, Repair::Lifted { .. } | Repair::SkippedLowBone { .. })),
+        "{:?}",
+        p.repairs
+    );
+    // Every bone is now tall enough for legs; the heavy end carries a pair.
+    assert!(p.lift > 0.0 && p.lift < min_len);
+    assert!(p.limbs_of(LimbKind::Leg).any(|l| l.bone == 2));
+    for leg in p.limbs_of(LimbKind::Leg) {
+        assert!(leg.length >= min_len, "{leg:?}");
+    }
+    // Allowing shorter legs lets the heavy end carry legs without that repair.
     let p = walker(&body, &options.with_min_leg_length(0.001), 0);
     assert!(p.stability_margin.unwrap() >= options.min_margin * body.length);
+    assert!(
+        !p.repairs
+            .iter()
+            .any(|r| matches!(r, Repair::LiftedToStand { .. }))
+    );
 }
 
 /// Seed failure 2: "if spine bending results in the thickest part of the creature being very

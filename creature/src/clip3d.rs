@@ -214,15 +214,17 @@ impl Creature {
 
     /// `run` cut after frame `end` with its loop closed by `motion`, unless closing it leaves a
     /// planted foot further out of its leg's reach than the plain cut does (the spread
-    /// correction can stretch a leg that was nearly straight): then the plain cut, whose
-    /// [`Clip::loop_error`] says how far it is from looping.
+    /// correction can stretch a leg that was nearly straight), or would slide a foot that
+    /// never lifts in the clip (a walker so slow that it takes no step in it): then the plain
+    /// cut, whose [`Clip::loop_error`] says how far it is from looping.
     fn closed_or_cut(&self, run: GaitRun, end: usize, motion: &Pose) -> GaitRun {
         let mut closed = run.clone();
-        closed.close_loop(end, motion);
+        let planted_shift = closed.close_loop(end, motion);
         let mut cut = run;
         cut.truncate(end + 1);
         let tolerance = 1e-4 * self.length;
-        if self.overreach(&closed) <= self.overreach(&cut) + tolerance {
+        if planted_shift <= tolerance && self.overreach(&closed) <= self.overreach(&cut) + tolerance
+        {
             closed
         } else {
             cut
@@ -600,17 +602,19 @@ impl GaitRun {
     /// Keeps frames `0..=end` and closes the loop: frame `end` becomes frame 0 moved by
     /// `motion` (the root motion over the clip). The body's mismatch is spread linearly over
     /// the frames; each foot's over its swing frames only (in proportion to their count), so
-    /// planted feet stay where they are; a foot that never swings takes it linearly.
-    fn close_loop(&mut self, end: usize, motion: &Pose) {
+    /// planted feet stay where they are; a foot that never swings takes it linearly, sliding:
+    /// returns the longest such slide (0 when every foot swings or none has to move).
+    fn close_loop(&mut self, end: usize, motion: &Pose) -> f32 {
         let keep = (end + 1).min(self.frames());
         if keep < 2 {
-            return;
+            return 0.0;
         }
         self.truncate(keep);
         let last = keep - 1;
         let (Some(&first), Some(&end_body)) = (self.bodies.first(), self.bodies.get(last)) else {
-            return;
+            return 0.0;
         };
+        let mut planted_shift = 0.0f32;
         let target = Pose {
             translation: motion.transform_point(first.translation),
             rotation: (motion.rotation * first.rotation).normalize(),
@@ -625,6 +629,10 @@ impl GaitRun {
         for leg in 0..self.legs {
             let delta = motion.transform_point(self.foot(0, leg)) - self.foot(last, leg);
             let swings = (1..keep).filter(|&f| !self.planted(f, leg)).count();
+            if swings == 0 {
+                // Never lifted: its correction can only slide it.
+                planted_shift = planted_shift.max(delta.length());
+            }
             let mut done = 0usize;
             for f in 1..keep {
                 let s = if swings == 0 {
@@ -646,6 +654,7 @@ impl GaitRun {
                 }
             }
         }
+        planted_shift
     }
 
     /// Keeps the first `frames` frames.

@@ -184,6 +184,19 @@ fn walker_checks(body: &Body, options: &PlanOptions, p: &Plan) -> Result<(), Tes
                 prop_assert_eq!(by, p.lift);
                 lifted = true;
             }
+            Repair::LiftedToStand { by } => {
+                prop_assert_eq!(by, p.lift);
+                prop_assert_eq!(p.layout, Some(WalkerLayout::Rebuilt));
+                lifted = true;
+                // Only when legs on every bone tall enough without it would not stand; and
+                // afterwards every bone is tall enough.
+                let (_, tall) = tall_enough_bones(body, options);
+                prop_assert!(margin_of(body, options, &tall) < required, "{:?}", p);
+                for bone in 0..body.bones.len() {
+                    let (l, r) = walking_legs(body, bone, p.lift);
+                    prop_assert!(l.min(r) >= min_leg && l.min(r) > 0.0, "{:?}", p);
+                }
+            }
             Repair::DroppedArms { length } => {
                 prop_assert!(!(length >= options.min_arm_length * body.length && length > 0.0));
             }
@@ -191,6 +204,12 @@ fn walker_checks(body: &Body, options: &PlanOptions, p: &Plan) -> Result<(), Tes
         }
     }
     prop_assert_eq!(lifted, p.lift > 0.0);
+    let lifts = p
+        .repairs
+        .iter()
+        .filter(|r| matches!(r, Repair::Lifted { .. } | Repair::LiftedToStand { .. }))
+        .count();
+    prop_assert!(lifts <= 1, "{:?}", p.repairs);
     // Strides: full, unless shortened as the last resort, when no full-stride layout stands.
     let shortened: Vec<f32> = p
         .repairs
@@ -258,9 +277,9 @@ fn check_walker_result(
         Err(LimbsError::NoStableLayout { margin, required }) => {
             prop_assert!(margin < required);
             prop_assert!(!margin.is_nan());
-            // Legs on every bone tall enough (any layout's best, at a short enough stride)
-            // would not stand either.
-            let (_, all) = tall_enough_bones(body, options);
+            // Legs on every bone (any layout's best, at a short enough stride, with the body
+            // lifted until every bone is tall enough) would not stand either.
+            let all: Vec<usize> = (0..body.bones.len()).collect();
             let best = margin_of(body, options, &all);
             prop_assert!(
                 best < *required,

@@ -388,15 +388,11 @@ impl Creature {
                 rotations: alloc::vec![q; frames],
             });
         }
-        // Nothing under the floor: a frame whose body would dip below it (its bob, breathing or
-        // lean on a body that touches the ground at rest) is raised just enough, before the
-        // legs are solved, so the feet stay planted.
-        let lifts = self.floor_lifts(&body_global, &run.bodies);
-        for (frame, (body, lift)) in run.bodies.iter().zip(lifts).enumerate() {
-            let body = &Pose {
-                translation: body.translation + Vec3::Y * lift,
-                ..*body
-            };
+        // Nothing under the floor: a frame whose body would dip below it (its lean, bob or
+        // breathing, on a body that reaches down to the ground) leans less and, if need be,
+        // rises, before the legs are solved, so the feet stay planted.
+        let bodies = self.above_the_floor(&body_global, run);
+        for (frame, body) in bodies.iter().enumerate() {
             clip.root_translation
                 .push(body.translation + body.rotation * rest_root);
             clip.root_rotation.push(body.rotation);
@@ -406,10 +402,9 @@ impl Creature {
                 let foot = body.inverse_transform_point(run.foot(frame, i));
                 let ik = solve_two_bone(leg.hip, foot, leg.upper, leg.lower, leg.pole);
                 let upper = (ik.middle - ik.root).normalize_or(rest_upper);
-                let hip_rotation = Quat::from_rotation_arc(rest_upper, upper);
+                let hip_rotation = rotation_arc(rest_upper, upper);
                 let lower = (ik.end - ik.middle).normalize_or(rest_lower);
-                let knee_rotation =
-                    Quat::from_rotation_arc(rest_lower, hip_rotation.inverse() * lower);
+                let knee_rotation = rotation_arc(rest_lower, hip_rotation.inverse() * lower);
                 let parent_rotation = Quat::from_mat3a(&parent.matrix3).normalize();
                 if let Some(track) = clip.tracks.get_mut(3 * i) {
                     if let Some(t) = track.translations.as_mut() {
@@ -436,10 +431,13 @@ impl Creature {
         Ok(clip)
     }
 
-    /// Per frame, how far the body pose must rise so that no vertex of the body (the part of
-    /// the mesh skinned to spine joints only, bent by `body_global`, the clip's constant spine
-    /// pose in body space) is below the floor `y = 0`: zero unless it would dip.
-    fn floor_lifts(&self, body_global: &[Affine3A], bodies: &[Pose]) -> Vec<f32> {
+    /// The run's body poses, each changed as little as needed so that no vertex of the body
+    /// (the part of the mesh skinned to spine joints only, bent by `body_global`, the clip's
+    /// constant spine pose in body space) is below the floor `y = 0`: first its lean (the
+    /// rotation's swing away from the vertical axis) is scaled back toward none, then, if the
+    /// upright body still dips, it is raised, but never so far that a planted foot leaves its
+    /// leg's reach. Frames that do not dip are returned unchanged, bit for bit.
+    fn above_the_floor(&self, body_global: &[Affine3A], run: &GaitRun) -> Vec<Pose> {
         let joints = &self.skeleton.joints;
         let spine = |j: u16| {
             joints
@@ -462,30 +460,83 @@ impl Creature {
             shape.push(s);
         }
         // A vertex s of the body is at height (R s).y + t.y = u · s + t.y with u = Rᵀ ŷ. With
-        // |u − ŷ| ≤ δ over the clip, u · s lies within δ|s| of s.y: only the vertices that can
-        // be lowest in some frame are kept.
-        let ups: Vec<Vec3> = bodies
+        // |u − ŷ| ≤ δ over the clip (less lean only brings u closer to ŷ), u · s lies within
+        // δ|s| of s.y: only the vertices that can be lowest in some frame are kept.
+        let delta = run
+            .bodies
             .iter()
-            .map(|b| b.rotation.inverse() * Vec3::Y)
-            .collect();
-        let delta = ups
-            .iter()
-            .map(|u| (*u - Vec3::Y).length())
+            .map(|b| (b.rotation.inverse() * Vec3::Y - Vec3::Y).length())
             .fold(0.0f32, f32::max);
         let bound = shape
             .iter()
             .map(|s| s.y + delta * s.length())
             .fold(f32::INFINITY, f32::min);
         shape.retain(|s| s.y - delta * s.length() <= bound);
-        bodies
+        let low = |rotation: Quat, height: f32| {
+            let up = rotation.inverse() * Vec3::Y;
+            shape
+                .iter()
+                .map(|s| up.dot(*s))
+                .fold(f32::INFINITY, f32::min)
+                + height
+        };
+        let legs = self.gait.as_ref().map_or(&[][..], |g| g.legs.as_slice());
+        run.bodies
             .iter()
-            .zip(&ups)
-            .map(|(body, up)| {
-                let low = shape
-                    .iter()
-                    .map(|s| up.dot(*s))
-                    .fold(f32::INFINITY, f32::min);
-                (-(low + body.translation.y)).max(0.0)
+            .enumerate()
+            .map(|(frame, &body)| {
+                if low(body.rotation, body.translation.y) >= 0.0 {
+                    return body;
+                }
+                // The heading: the rotation's twist about the vertical axis.
+                let q = body.rotation;
+                let twist = glam::Vec2::new(q.y, q.w);
+                let heading = if twist.length_squared() > 1e-12 {
+                    let twist = twist.normalize();
+                    Quat::from_xyzw(0.0, twist.x, 0.0, twist.y)
+                } else {
+                    Quat::IDENTITY
+                };
+                let leaned = |share: f32| heading.slerp(q, share).normalize();
+                let mut rotation = heading;
+                if low(heading, body.translation.y) >= 0.0 {
+                    // Bisection on the share of the lean kept.
+                    let (mut keep, mut drop) = (0.0f32, 1.0f32);
+                    for _ in 0..FLOOR_BISECTIONS {
+                        let mid = 0.5 * (keep + drop);
+                        if low(leaned(mid), body.translation.y) >= 0.0 {
+                            keep = mid;
+                        } else {
+                            drop = mid;
+                        }
+                    }
+                    rotation = leaned(keep);
+                }
+                let mut pose = Pose {
+                    rotation,
+                    translation: body.translation,
+                };
+                let needed = -low(rotation, body.translation.y);
+                if needed > 0.0 {
+                    // Raise, as far as the planted feet allow.
+                    let mut lift = needed;
+                    for (i, leg) in legs.iter().enumerate() {
+                        if !run.planted(frame, i) {
+                            continue;
+                        }
+                        let hip = pose.transform_point(leg.hip);
+                        let foot = run.foot(frame, i);
+                        let reach = leg.upper + leg.lower;
+                        // |foot − (hip + ŷ l)| ≤ reach: l ≤ (foot − hip).y + √(reach² − d²),
+                        // d the horizontal distance.
+                        let d = foot - hip;
+                        let across2 = d.x * d.x + d.z * d.z;
+                        let room = d.y + crate::math::sqrt((reach * reach - across2).max(0.0));
+                        lift = lift.min(room.max(0.0));
+                    }
+                    pose.translation.y += lift;
+                }
+                pose
             })
             .collect()
     }
@@ -673,6 +724,9 @@ impl GaitRun {
     }
 }
 
+/// Bisection steps on the share of a body's lean kept to hold it above the floor.
+const FLOOR_BISECTIONS: usize = 16;
+
 /// The frame of `range` with the same feet planted as frame 0 that has the smallest
 /// [`GaitRun::mismatch`] plus `penalty(frame)`; the best frame of the range regardless of
 /// contacts if none has them, the last frame if the range is empty.
@@ -733,6 +787,19 @@ fn error_between(clip: &Clip, a: usize, b: usize) -> f32 {
 fn angle_between(p: Quat, q: Quat) -> f32 {
     let d = (p - q).length().min((p + q).length());
     4.0 * crate::math::asin((0.5 * d).min(1.0))
+}
+
+/// The shortest rotation from unit vector `from` to unit vector `to`. Unlike
+/// `Quat::from_rotation_arc`, which returns the identity below about 5e-4 rad (1.7 mm at the
+/// foot of a 3.4 m leg), it is exact for small angles: (from × to, 1 + from · to) normalised.
+fn rotation_arc(from: Vec3, to: Vec3) -> Quat {
+    let dot = from.dot(to);
+    if dot < -1.0 + 1e-6 {
+        // Nearly opposite: any half turn about an axis across `from`.
+        return Quat::from_rotation_arc(from, to);
+    }
+    let axis = from.cross(to);
+    Quat::from_xyzw(axis.x, axis.y, axis.z, 1.0 + dot).normalize()
 }
 
 /// Frames for `seconds` at about [`CLIP_FPS`], and the exact rate that fits them.
@@ -1159,7 +1226,7 @@ impl FlightChains {
                 };
                 let d = (*b - *a).normalize_or(*direction);
                 if let Some(g) = global.get_mut(j) {
-                    *g = Some(Quat::from_rotation_arc(*direction, d));
+                    *g = Some(rotation_arc(*direction, d));
                 }
             }
         }
@@ -1232,4 +1299,26 @@ fn forward_kinematics(joints: &[crate::Joint3d], local: &[Affine3A]) -> Vec<Affi
         .into_iter()
         .map(|g| g.unwrap_or(Affine3A::IDENTITY))
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rotation_arc_is_exact_for_tiny_angles() {
+        let from = Vec3::NEG_Y;
+        for angle in [0.0f32, 1e-6, 1e-4, 4e-4, 1e-2, 1.0, 3.0] {
+            let to = Quat::from_rotation_x(angle) * from;
+            let q = rotation_arc(from, to);
+            assert!(q.is_normalized());
+            assert!(
+                (q * from).distance(to) < 1e-6,
+                "{angle}: {}",
+                (q * from).distance(to)
+            );
+        }
+        let q = rotation_arc(Vec3::X, Vec3::NEG_X);
+        assert!((q * Vec3::X).distance(Vec3::NEG_X) < 1e-6);
+    }
 }

@@ -14,7 +14,12 @@ use creature::{
 use proptest::prelude::*;
 use proptest::test_runner::FileFailurePersistence;
 
+/// `cases` cases, or `PROPTEST_CASES` when set (for longer soaks).
 fn config(cases: u32) -> ProptestConfig {
+    let cases = std::env::var("PROPTEST_CASES")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(cases);
     ProptestConfig {
         cases,
         failure_persistence: Some(Box::new(FileFailurePersistence::Direct(
@@ -163,7 +168,9 @@ proptest! {
         prop_assert!(c.is_ok(), "seed {seed}: {:?}", c.err());
         let Ok(c) = c else { return Ok(()) };
         let problems = problems_3d(&c, &params);
-        prop_assert!(problems.is_empty(), "seed {seed}: {problems:?}");
+        // The params in the message too: they are those of the failing case, which the
+        // "minimal failing input" after shrinking is not always.
+        prop_assert!(problems.is_empty(), "seed {seed}: {problems:?} with {params:?}");
         let expected = match params.kind {
             Kind::Walker => Some(creature::limbs::CreatureKind::Walker),
             Kind::Flier => Some(creature::limbs::CreatureKind::Flier),
@@ -451,4 +458,95 @@ fn regression_a_walk_without_steps_does_not_slide_its_feet() {
             .all(|frame| frame.iter().all(|&planted| planted))
     );
     assert_eq!(support::check_3d(&c), Vec::<String>::new());
+}
+
+/// Regression (found by the 3D validity property with 3,000 cases): a biped with 3.4 m legs
+/// put a foot 1.7 mm under the floor in `idle`: `Quat::from_rotation_arc` returns the identity
+/// for angles below about 5e-4 rad, so the hip and knee kept their rest rotations for the few
+/// frames where breathing needed only such a small bend. Leg and chain rotations now come from
+/// an arc that is exact for small angles.
+#[test]
+fn regression_long_legs_follow_small_bends_exactly() {
+    let params = Params::DEFAULT
+        .with_kind(Kind::Random)
+        .with_profiles(6)
+        .with_resolution(18, 9)
+        .with_limb_sides(3)
+        .with_flat_normals(false)
+        .with_slices(
+            Span::new(1.033_707_3, 2.978_098_9),
+            Span::new(2.117_337_5, 2.891_113_3),
+            Span::new(0.417_538_82, 0.826_798_2),
+        )
+        .with_swimmer_slices(
+            Span::new(0.3, 0.3),
+            Span::new(0.3, 0.3),
+            Span::new(0.3, 0.3),
+        )
+        .with_body_scale(Span::new(0.1, 2.690_751))
+        .with_speed_factor(Span::new(0.1, 0.1))
+        .with_bone_length(0.1)
+        .with_spine_bones(IntSpan::new(17, 17))
+        .with_spine_bend(124.939_62)
+        .with_head_size(Span::new(0.5, 1.398_064))
+        .with_ground_clearance(Span::new(0.592_758_2, 0.945_968))
+        .with_clips(true);
+    let c = generate(9_280_200_925_630_505_336, &params).unwrap();
+    assert_eq!(support::check_3d(&c), Vec::<String>::new());
+    let idle = c.clips.iter().find(|clip| clip.name == "idle").unwrap();
+    for frame in 0..idle.frames {
+        let low = c
+            .posed_positions(idle, frame)
+            .unwrap()
+            .iter()
+            .map(|v| v.y)
+            .fold(f32::INFINITY, f32::min);
+        assert!(low > -1e-4, "idle frame {frame}: {low}");
+    }
+}
+
+/// Regression (found by the 3D validity property): the turn of a 5.6 m walker whose neck is
+/// bent down toward the ground leaned its body (the gait's pitch and roll) 0.72 m into the
+/// floor; raising the body instead pulled a planted foot 0.12 off the ground, out of its leg's
+/// reach. A frame that would dip now leans less first, and rises only as far as the planted
+/// feet allow.
+#[test]
+fn regression_a_long_walker_leans_less_rather_than_into_the_floor() {
+    let params = Params::DEFAULT
+        .with_kind(Kind::Random)
+        .with_profiles(8)
+        .with_resolution(8, 7)
+        .with_limb_sides(7)
+        .with_flat_normals(false)
+        .with_slices(
+            Span::new(0.508_704_2, 2.990_698_3),
+            Span::new(2.587_078_8, 2.885_420_6),
+            Span::new(0.330_872_1, 0.935_645_9),
+        )
+        .with_swimmer_slices(
+            Span::new(0.552_145_54, 0.650_934_7),
+            Span::new(1.300_708, 1.885_432_2),
+            Span::new(0.531_357_2, 1.796_512),
+        )
+        .with_body_scale(Span::new(4.050_282_5, 7.126_315))
+        .with_speed_factor(Span::new(1.849_060_8, 3.826_15))
+        .with_bone_length(0.255_174_25)
+        .with_spine_bones(IntSpan::new(14, 31))
+        .with_spine_bend(131.675_06)
+        .with_head_size(Span::new(1.271_039_2, 1.986_048))
+        .with_ground_clearance(Span::new(0.045_034_014, 0.450_407_68))
+        .with_clips(true);
+    let c = generate(9_280_200_925_630_505_336, &params).unwrap();
+    assert_eq!(support::check_3d(&c), Vec::<String>::new());
+    let turn = c.clips.iter().find(|clip| clip.name == "turn").unwrap();
+    assert!(support::skate_of(&c, turn).unwrap() < 1e-4 * c.length);
+    for frame in 0..turn.frames {
+        let low = c
+            .posed_positions(turn, frame)
+            .unwrap()
+            .iter()
+            .map(|v| v.y)
+            .fold(f32::INFINITY, f32::min);
+        assert!(low > -1e-3 * c.length, "turn frame {frame}: {low}");
+    }
 }

@@ -231,7 +231,8 @@ impl Creature {
         }
     }
 
-    /// How far (metres) the farthest planted foot of `run` is beyond its leg's reach.
+    /// How far (metres) the farthest planted foot of `run` is beyond its leg's reach. Only
+    /// walking legs: an arm holding its place is not on the ground, and may lag out of reach.
     fn overreach(&self, run: &GaitRun) -> f32 {
         let Some(setup) = self.gait.as_ref() else {
             return 0.0;
@@ -239,7 +240,7 @@ impl Creature {
         let mut worst = 0.0f32;
         for (frame, body) in run.bodies.iter().enumerate() {
             for (i, leg) in setup.legs.iter().enumerate() {
-                if run.planted(frame, i) {
+                if leg.kind == creature_gait::LimbKind::Leg && run.planted(frame, i) {
                     let d = body
                         .inverse_transform_point(run.foot(frame, i))
                         .distance(leg.hip);
@@ -367,7 +368,8 @@ impl Creature {
                 .unwrap_or(Affine3A::IDENTITY);
             let rest_upper = (rest(hip + 1) - rest(hip)).normalize_or(Vec3::NEG_Y);
             let rest_lower = (rest(hip + 2) - rest(hip + 1)).normalize_or(Vec3::NEG_Y);
-            frames_of_leg.push((leg, parent, rest_upper, rest_lower));
+            let knee_radius = self.ring_radius(hip + 1);
+            frames_of_leg.push((leg, parent, rest_upper, rest_lower, knee_radius));
             clip.tracks.push(Track {
                 joint: hip,
                 translations: Some(Vec::with_capacity(frames)),
@@ -398,12 +400,17 @@ impl Creature {
             clip.root_rotation.push(body.rotation);
             let forward = body.rotation * Vec3::Z;
             let heading = Quat::from_rotation_y(glam::Vec2::new(forward.z, forward.x).to_angle());
-            for (i, &(leg, parent, rest_upper, rest_lower)) in frames_of_leg.iter().enumerate() {
+            let up = body.rotation.inverse() * Vec3::Y;
+            for (i, &(leg, parent, rest_upper, rest_lower, knee_radius)) in
+                frames_of_leg.iter().enumerate()
+            {
                 let foot = body.inverse_transform_point(run.foot(frame, i));
                 let ik = solve_two_bone(leg.hip, foot, leg.upper, leg.lower, leg.pole);
-                let upper = (ik.middle - ik.root).normalize_or(rest_upper);
+                let floor = knee_radius - body.translation.y;
+                let middle = knee_above(ik.root, ik.middle, ik.end, up, floor);
+                let upper = (middle - ik.root).normalize_or(rest_upper);
                 let hip_rotation = rotation_arc(rest_upper, upper);
-                let lower = (ik.end - ik.middle).normalize_or(rest_lower);
+                let lower = (ik.end - middle).normalize_or(rest_lower);
                 let knee_rotation = rotation_arc(rest_lower, hip_rotation.inverse() * lower);
                 let parent_rotation = Quat::from_mat3a(&parent.matrix3).normalize();
                 if let Some(track) = clip.tracks.get_mut(3 * i) {
@@ -429,6 +436,26 @@ impl Creature {
         }
         clip.loop_error = loop_error(&clip);
         Ok(clip)
+    }
+
+    /// How far the mesh's vertices skinned to `joint` reach from its rest position: for a
+    /// knee, the radius of the ring around it.
+    fn ring_radius(&self, joint: usize) -> f32 {
+        let Some(centre) = self.skeleton.joints.get(joint).map(|j| j.position) else {
+            return 0.0;
+        };
+        let mesh = &self.mesh;
+        mesh.positions
+            .iter()
+            .zip(&mesh.joints)
+            .zip(&mesh.weights)
+            .filter(|((_, js), ws)| {
+                js.iter()
+                    .zip(ws.iter())
+                    .any(|(&j, &w)| usize::from(j) == joint && w > 0.0)
+            })
+            .map(|((p, _), _)| p.distance(centre))
+            .fold(0.0f32, f32::max)
     }
 
     /// The run's body poses, each changed as little as needed so that no vertex of the body
@@ -787,6 +814,48 @@ fn error_between(clip: &Clip, a: usize, b: usize) -> f32 {
 fn angle_between(p: Quat, q: Quat) -> f32 {
     let d = (p - q).length().min((p + q).length());
     4.0 * crate::math::asin((0.5 * d).min(1.0))
+}
+
+/// The knee `middle` of a solved two-bone chain from `root` to `end`, turned about the
+/// root–end axis as little as needed so that its height along `up` is at least `floor` (as
+/// high as it can go when no turn reaches that): a knee never bends through the ground. The
+/// chain's bone lengths and ends are unchanged; a knee already high enough is returned as is.
+fn knee_above(root: Vec3, middle: Vec3, end: Vec3, up: Vec3, floor: f32) -> Vec3 {
+    if up.dot(middle) >= floor {
+        return middle;
+    }
+    let Some(dir) = (end - root).try_normalize() else {
+        return middle;
+    };
+    let centre = root + dir * dir.dot(middle - root);
+    let offset = middle - centre;
+    let across = offset.length();
+    if !(across > 0.0) {
+        return middle;
+    }
+    let b1 = offset / across;
+    let b2 = dir.cross(b1);
+    // Height of the knee turned by φ: h(φ) = c + across (cos φ u₁ + sin φ u₂).
+    let c = up.dot(centre);
+    let (u1, u2) = (up.dot(b1), up.dot(b2));
+    let m = crate::math::sqrt(u1 * u1 + u2 * u2);
+    if !(m > 1e-9) {
+        return middle;
+    }
+    let (u1, u2) = (u1 / m, u2 / m);
+    // The turn (cos φ, sin φ) whose height is `floor`, nearest to no turn; the highest knee
+    // when even that is too low.
+    let k = (floor - c) / (across * m);
+    let (cos, sin) = if k >= 1.0 {
+        (u1, u2)
+    } else {
+        let k = k.max(-1.0);
+        let w = crate::math::sqrt((1.0 - k * k).max(0.0));
+        let a = (k * u1 - w * u2, k * u2 + w * u1);
+        let b = (k * u1 + w * u2, k * u2 - w * u1);
+        if a.0 >= b.0 { a } else { b }
+    };
+    centre + across * (cos * b1 + sin * b2)
 }
 
 /// The shortest rotation from unit vector `from` to unit vector `to`. Unlike
@@ -1304,6 +1373,28 @@ fn forward_kinematics(joints: &[crate::Joint3d], local: &[Affine3A]) -> Vec<Affi
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_knee_turns_just_above_the_floor_keeping_its_bones() {
+        let (root, end) = (Vec3::new(0.0, 1.0, 0.0), Vec3::new(0.0, 0.2, 1.2));
+        // A knee bent down, below y = 0.3.
+        let knee = Vec3::new(0.0, 0.1, 0.4);
+        let (upper, lower) = (root.distance(knee), end.distance(knee));
+        let lifted = knee_above(root, knee, end, Vec3::Y, 0.3);
+        assert!((lifted.y - 0.3).abs() < 1e-5, "{lifted}");
+        assert!((root.distance(lifted) - upper).abs() < 1e-5);
+        assert!((end.distance(lifted) - lower).abs() < 1e-5);
+        // The smaller of the two turns: it stays on the side it was (x < 0 or x > 0 are
+        // equally near here; either keeps the bones).
+        assert_eq!(knee_above(root, knee, end, Vec3::Y, 0.05), knee);
+        // Out of reach of any turn: the highest knee.
+        let highest = knee_above(root, knee, end, Vec3::Y, 5.0);
+        for k in 0..64 {
+            let turn = Quat::from_axis_angle((end - root).normalize(), k as f32 * 0.1);
+            let other = root + turn * (knee - root);
+            assert!(other.y <= highest.y + 1e-5);
+        }
+    }
 
     #[test]
     fn rotation_arc_is_exact_for_tiny_angles() {

@@ -137,7 +137,7 @@ proptest! {
             Err(e) => return Err(TestCaseError::fail(format!("seed {seed}: {e:?}"))),
         };
         let problems = problems_2d(&c, &params);
-        prop_assert!(problems.is_empty(), "seed {seed}: {problems:?}");
+        prop_assert!(problems.is_empty(), "seed {seed}: {problems:?} with {params:?}");
         prop_assert_eq!(c.seed, seed);
         prop_assert_eq!(c.texture.is_some(), params.texture);
     }
@@ -540,6 +540,86 @@ fn regression_a_long_walker_leans_less_rather_than_into_the_floor() {
     assert_eq!(support::check_3d(&c), Vec::<String>::new());
     let turn = c.clips.iter().find(|clip| clip.name == "turn").unwrap();
     assert!(support::skate_of(&c, turn).unwrap() < 1e-4 * c.length);
+    for frame in 0..turn.frames {
+        let low = c
+            .posed_positions(turn, frame)
+            .unwrap()
+            .iter()
+            .map(|v| v.y)
+            .fold(f32::INFINITY, f32::min);
+        assert!(low > -1e-3 * c.length, "turn frame {frame}: {low}");
+    }
+}
+
+/// Regression (found by the 3D validity property with 30,000 cases): closing the turn of a
+/// walker with arms put a planted foot 0.0065 out of its leg's reach (so it skated), but the
+/// check that falls back to the plain cut compared the worst overreach of all limbs, and an
+/// arm (which holds its place in the air and may lag out of reach) hid it. Only walking legs
+/// count now.
+#[test]
+fn regression_a_lagging_arm_does_not_hide_an_overstretched_leg() {
+    let params = Params::DEFAULT
+        .with_kind(Kind::Walker)
+        .with_profiles(2)
+        .with_resolution(15, 6)
+        .with_limb_sides(5)
+        .with_flat_normals(false)
+        .with_slices(
+            Span::new(0.312_391_07, 0.811_441_84),
+            Span::new(0.863_808_63, 1.124_474_6),
+            Span::new(1.146_183_6, 2.112_418),
+        )
+        .with_swimmer_slices(
+            Span::new(0.581_505_9, 2.810_633_2),
+            Span::new(0.817_998_5, 2.646_967),
+            Span::new(0.850_395_8, 1.108_351_8),
+        )
+        .with_body_scale(Span::new(0.322_521_03, 0.608_390_45))
+        .with_speed_factor(Span::new(2.897_138_6, 3.523_283_7))
+        .with_bone_length(0.413_400_14)
+        .with_spine_bones(IntSpan::new(25, 27))
+        .with_spine_bend(118.779)
+        .with_head_size(Span::new(0.654_252_65, 1.370_606_5))
+        .with_ground_clearance(Span::new(0.061_619_878, 0.268_000_66))
+        .with_clips(true);
+    let c = generate(4_312_548_344_619_233_554, &params).unwrap();
+    assert!(c.plan.limbs_of(creature::limbs::LimbKind::Arm).count() > 0);
+    assert_eq!(support::check_3d(&c), Vec::<String>::new());
+}
+
+/// Regression (found by the 3D validity property with 100,000 cases): in the turn of a 13 m
+/// walker, a leg's knee bent down through the floor (its ring 0.083 under it) while the foot
+/// was planted far to the side. A knee that would be lower than its ring's radius now turns
+/// about the hip–foot axis, as little as needed, to stay above the ground.
+#[test]
+fn regression_a_knee_never_bends_through_the_floor() {
+    let params = Params::DEFAULT
+        .with_kind(Kind::Walker)
+        .with_profiles(1)
+        .with_resolution(14, 5)
+        .with_limb_sides(3)
+        .with_flat_normals(false)
+        .with_slices(
+            Span::new(0.638_032_5, 0.912_971_3),
+            Span::new(2.217_687_1, 2.768_514_9),
+            Span::new(1.123_401_2, 2.928_343_3),
+        )
+        .with_swimmer_slices(
+            Span::new(0.3, 0.3),
+            Span::new(0.3, 0.3),
+            Span::new(0.3, 0.3),
+        )
+        .with_body_scale(Span::new(0.1, 9.508_143))
+        .with_speed_factor(Span::new(0.1, 0.1))
+        .with_bone_length(0.371_119_68)
+        .with_spine_bones(IntSpan::new(5, 13))
+        .with_spine_bend(0.0)
+        .with_head_size(Span::new(0.5, 0.5))
+        .with_ground_clearance(Span::new(0.114_298_72, 0.396_728_22))
+        .with_clips(true);
+    let c = generate(12_754_544_302_193_211_241, &params).unwrap();
+    assert_eq!(support::check_3d(&c), Vec::<String>::new());
+    let turn = c.clips.iter().find(|clip| clip.name == "turn").unwrap();
     for frame in 0..turn.frames {
         let low = c
             .posed_positions(turn, frame)

@@ -7,7 +7,7 @@ use proptest::test_runner::FileFailurePersistence;
 
 proptest! {
     #![proptest_config(ProptestConfig {
-        cases: 128,
+        cases: cases_or_env(128),
         failure_persistence: Some(Box::new(FileFailurePersistence::Direct(
             "proptest-regressions/properties.txt",
         ))),
@@ -136,4 +136,12 @@ proptest! {
             }
         }
     }
+}
+
+/// `default` cases, or `PROPTEST_CASES` when set (for longer soaks).
+fn cases_or_env(default: u32) -> u32 {
+    std::env::var("PROPTEST_CASES")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(default)
 }

@@ -8,7 +8,12 @@ use creature_gait::{
 use proptest::prelude::*;
 use proptest::test_runner::FileFailurePersistence;
 
+/// `cases` cases, or `PROPTEST_CASES` when set (for longer soaks).
 fn config(cases: u32) -> ProptestConfig {
+    let cases = std::env::var("PROPTEST_CASES")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(cases);
     ProptestConfig {
         cases,
         failure_persistence: Some(Box::new(FileFailurePersistence::Direct(

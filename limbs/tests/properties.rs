@@ -296,7 +296,7 @@ fn check_walker_result(
 
 proptest! {
     #![proptest_config(ProptestConfig {
-        cases: 256,
+        cases: cases_or_env(256),
         failure_persistence: Some(Box::new(FileFailurePersistence::Direct(
             "proptest-regressions/properties.txt",
         ))),
@@ -457,4 +457,12 @@ fn ordinary_walkers_almost_always_stand() {
         errors * 20 < total,
         "{errors} of {total} walkers could not stand"
     );
+}
+
+/// `default` cases, or `PROPTEST_CASES` when set (for longer soaks).
+fn cases_or_env(default: u32) -> u32 {
+    std::env::var("PROPTEST_CASES")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(default)
 }

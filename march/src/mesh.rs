@@ -170,7 +170,8 @@ pub struct MeshQuality {
     /// How many triangles have an angle below [`MeshOptions::min_angle`].
     pub below_limit: usize,
     /// Whether refinement reached the angle limit everywhere within its vertex budget (also
-    /// `true` when refinement is off).
+    /// `true` when refinement is off): `false` when the budget ran out, or when triangles at
+    /// an input corner sharper than the limit (which refinement cannot split) stay below it.
     pub refinement_complete: bool,
 }
 
@@ -619,6 +620,11 @@ fn quality(
     }
     if let Some((y, x)) = worst {
         q.min_angle = y.atan2(x).to_degrees();
+    }
+    // Refinement leaves alone the triangles at input corners sharper than the limit (a
+    // pinch between two blobs): it is complete only where the limit really holds.
+    if limit > 0.0 {
+        q.refinement_complete &= q.below_limit == 0;
     }
     q
 }

@@ -15,7 +15,7 @@ fn rounding(exact: f32) -> f32 {
 
 proptest! {
     #![proptest_config(ProptestConfig {
-        cases: 256,
+        cases: cases_or_env(256),
         failure_persistence: Some(Box::new(FileFailurePersistence::Direct(
             "proptest-regressions/properties.txt",
         ))),
@@ -405,4 +405,12 @@ proptest! {
             prop_assert!(field.blend(p, &attributes).is_ok());
         }
     }
+}
+
+/// `default` cases, or `PROPTEST_CASES` when set (for longer soaks).
+fn cases_or_env(default: u32) -> u32 {
+    std::env::var("PROPTEST_CASES")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(default)
 }

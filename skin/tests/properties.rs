@@ -61,7 +61,7 @@ fn check_quantised(inf: &Influences) -> Result<(), TestCaseError> {
 
 proptest! {
     #![proptest_config(ProptestConfig {
-        cases: 256,
+        cases: cases_or_env(256),
         failure_persistence: Some(Box::new(FileFailurePersistence::Direct(
             "proptest-regressions/properties.txt",
         ))),
@@ -337,4 +337,12 @@ proptest! {
         let report = creature_skin::report(&[inf]);
         prop_assert_eq!(report.invalid, vec![0]);
     }
+}
+
+/// `default` cases, or `PROPTEST_CASES` when set (for longer soaks).
+fn cases_or_env(default: u32) -> u32 {
+    std::env::var("PROPTEST_CASES")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(default)
 }

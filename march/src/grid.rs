@@ -19,7 +19,8 @@ pub const MAX_GRID_SAMPLES: usize = 1 << 30;
 /// `>= iso` are inside; NaN samples are outside, as is everything beyond the grid, so regions
 /// touching the border are closed along it (through the border samples themselves). Crossings
 /// are placed by linear interpolation along cell edges (at the midpoint when a sample is
-/// infinite). Saddle cells follow [`MarchOptions::saddle`]. One sweep over the cells, row by
+/// infinite), kept at least 1/1000 of a cell from the samples so that a ring never passes
+/// twice through one (a pinch where a sample lies a hair below `iso`). Saddle cells follow [`MarchOptions::saddle`]. One sweep over the cells, row by
 /// row, computes each crossing once and links it to the next; beyond its output it keeps two
 /// rows of flags and edge ids (memory O(width + crossings)).
 ///
@@ -283,12 +284,18 @@ impl Padded<'_> {
             // Beyond the border: the ring runs through the border sample itself.
             None => at(p_in),
             Some(v_out) => {
-                let t = cell::crossing(v_in, v_out, self.iso);
+                // Never on a sample node: two crossings beside an outside node would meet there
+                // and pinch the ring (a sample a hair below the iso-level, a notch at the
+                // border).
+                let t = cell::crossing(v_in, v_out, self.iso).clamp(NODE_GAP, 1.0 - NODE_GAP);
                 at(p_in) + (at(p_out) - at(p_in)) * t
             }
         }
     }
 }
+
+/// The nearest a crossing comes to a sample node, as a fraction of the cell.
+const NODE_GAP: f32 = 1e-3;
 
 /// Records a crossing point and returns its id.
 fn new_crossing(points: &mut Vec<Vec2>, next: &mut Vec<u32>, p: Vec2) -> u32 {

@@ -237,3 +237,23 @@ fn bad_input_is_a_typed_error() {
     ));
     assert_eq!(trace(f, &[], 1.0, 0.0), Ok(vec![]));
 }
+
+/// Regression (found by the grid property at 20,000 cases): a border sample a hair below the
+/// iso-level (−0.29172015 against −0.2917199) between two inside samples put both crossings
+/// beside it on the sample itself, so the ring passed twice through `(0, 12)` and crossed
+/// itself. Crossings now keep 1/1000 of a cell from the samples.
+#[test]
+fn regression_a_sample_a_hair_below_the_iso_level_does_not_pinch_the_ring() {
+    let mut values = vec![0.0f32; 3 * 22];
+    values[33] = 0.807_125_9;
+    values[36] = -0.291_720_15;
+    values[37] = -0.497_680_37;
+    values[39] = 0.746_154_6;
+    let rings = march_grid(&values, 3, 22, -0.291_719_9).unwrap();
+    assert_eq!(validate_rings(&rings), Ok(()));
+    check_rings(&rings);
+    assert_eq!(rings.len(), 1);
+    // The notch around the outside samples stays open toward the border.
+    assert!(rings[0].contains(Vec2::new(0.0, 13.0)) || rings[0].contains(Vec2::new(0.5, 13.0)));
+    assert!(!rings[0].contains(Vec2::new(0.5, 12.0)));
+}

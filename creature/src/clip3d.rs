@@ -393,7 +393,7 @@ impl Creature {
         // Nothing under the floor: a frame whose body would dip below it (its lean, bob or
         // breathing, on a body that reaches down to the ground) leans less and, if need be,
         // rises, before the legs are solved, so the feet stay planted.
-        let bodies = self.above_the_floor(&body_global, run);
+        let bodies = self.above_the_floor(&body_global, run)?;
         for (frame, body) in bodies.iter().enumerate() {
             clip.root_translation
                 .push(body.translation + body.rotation * rest_root);
@@ -464,7 +464,7 @@ impl Creature {
     /// rotation's swing away from the vertical axis) is scaled back toward none, then, if the
     /// upright body still dips, it is raised, but never so far that a planted foot leaves its
     /// leg's reach. Frames that do not dip are returned unchanged, bit for bit.
-    fn above_the_floor(&self, body_global: &[Affine3A], run: &GaitRun) -> Vec<Pose> {
+    fn above_the_floor(&self, body_global: &[Affine3A], run: &GaitRun) -> Result<Vec<Pose>, Error> {
         let joints = &self.skeleton.joints;
         let spine = |j: u16| {
             joints
@@ -472,20 +472,17 @@ impl Creature {
                 .is_some_and(|j| j.part == Part::Spine)
         };
         let mesh = &self.mesh;
-        let mut shape: Vec<Vec3> = Vec::new();
-        for ((&p, js), ws) in mesh.positions.iter().zip(&mesh.joints).zip(&mesh.weights) {
-            if !js.iter().zip(ws).all(|(&j, &w)| w == 0.0 || spine(j)) {
-                continue;
-            }
-            let mut s = Vec3::ZERO;
-            for (&j, &w) in js.iter().zip(ws) {
-                let j = usize::from(j);
-                if let (true, Some(g), Some(rest)) = (w != 0.0, body_global.get(j), joints.get(j)) {
-                    s += w * g.transform_point3(p - rest.position);
-                }
-            }
-            shape.push(s);
-        }
+        let mut shape: Vec<Vec3> = self
+            .skinned(body_global)?
+            .into_iter()
+            .zip(mesh.joints.iter().zip(&mesh.weights))
+            .filter(|(_, (js, ws))| {
+                js.iter()
+                    .zip(ws.iter())
+                    .all(|(&j, &w)| w == 0.0 || spine(j))
+            })
+            .map(|(s, _)| s)
+            .collect();
         // A vertex s of the body is at height (R s).y + t.y = u · s + t.y with u = Rᵀ ŷ. With
         // |u − ŷ| ≤ δ over the clip (less lean only brings u closer to ŷ), u · s lies within
         // δ|s| of s.y: only the vertices that can be lowest in some frame are kept.
@@ -508,7 +505,8 @@ impl Creature {
                 + height
         };
         let legs = self.gait.as_ref().map_or(&[][..], |g| g.legs.as_slice());
-        run.bodies
+        Ok(run
+            .bodies
             .iter()
             .enumerate()
             .map(|(frame, &body)| {
@@ -565,7 +563,7 @@ impl Creature {
                 }
                 pose
             })
-            .collect()
+            .collect())
     }
 
     /// Local rotations of the neck and tail joints bending toward a turn at `yaw_rate`.
@@ -918,7 +916,12 @@ impl Creature {
     /// # Errors
     /// [`Error::Skin`] if the mesh's joints and weights are not valid for its skeleton.
     pub fn posed_positions(&self, clip: &Clip, frame: usize) -> Result<Vec<Vec3>, Error> {
-        let pose = self.pose(clip, frame);
+        self.skinned(&self.pose(clip, frame))
+    }
+
+    /// The mesh skinned by the joints' model-space transforms `pose` (one per joint, as
+    /// [`pose`](Self::pose) gives them; the rest pose's joints are pure translations).
+    fn skinned(&self, pose: &[Affine3A]) -> Result<Vec<Vec3>, Error> {
         let transforms: Vec<Affine3A> = pose
             .iter()
             .zip(&self.skeleton.joints)

@@ -141,6 +141,27 @@ struct Ctx<'a> {
     sweep: f32,
 }
 
+/// The smallest lift from `from` at which `legs(lift)` (a leg length that grows with the
+/// lift) is at least `min_len` and positive, and whether it got there: `from` when it already
+/// is; else the shortfall added, then nudged up an ulp at a time, as rounding can leave the
+/// sum just short.
+fn lift_until(from: f32, min_len: f32, legs: impl Fn(f32) -> f32) -> (f32, bool) {
+    let long_enough = |leg: f32| leg >= min_len && leg > 0.0;
+    let now = legs(from);
+    if long_enough(now) {
+        return (from, true);
+    }
+    let mut lift = from + (min_len - now).max(0.0);
+    let step = (min_len * f32::EPSILON).max(f32::MIN_POSITIVE);
+    for _ in 0..64 {
+        if long_enough(legs(lift)) {
+            return (lift, true);
+        }
+        lift += step.max(lift * f32::EPSILON);
+    }
+    (lift, long_enough(legs(lift)))
+}
+
 fn draw_knee<R: Rng + ?Sized>(rng: &mut R) -> Knee {
     match below(rng, 3) {
         0 => Knee::Forward,
@@ -240,21 +261,10 @@ impl Ctx<'_> {
                 .map(|i| self.shortest_leg(i, lift))
                 .fold(f32::NEG_INFINITY, f32::max)
         };
-        let long_enough = |leg: f32| leg >= min_len && leg > 0.0;
-        let t0 = tallest(0.0);
-        if long_enough(t0) {
-            return 0.0;
+        let (lift, _) = lift_until(0.0, min_len, tallest);
+        if lift > 0.0 {
+            out.repairs.push(Repair::Lifted { by: lift });
         }
-        let mut lift = (min_len - t0).max(0.0);
-        // Rounding can leave the sum an ulp short: nudge until the legs really are long enough.
-        let step = (min_len * f32::EPSILON).max(f32::MIN_POSITIVE);
-        for _ in 0..64 {
-            if long_enough(tallest(lift)) {
-                break;
-            }
-            lift += step.max(lift * f32::EPSILON);
-        }
-        out.repairs.push(Repair::Lifted { by: lift });
         lift
     }
 
@@ -276,17 +286,8 @@ impl Ctx<'_> {
                 .map(|i| self.shortest_leg(i, lift))
                 .fold(f32::INFINITY, f32::min)
         };
-        let long_enough = |leg: f32| leg >= min_len && leg > 0.0;
-        let mut full = lift + (min_len - shortest(lift)).max(0.0);
-        // Rounding can leave the sum an ulp short: nudge until every leg really is long enough.
-        let step = (min_len * f32::EPSILON).max(f32::MIN_POSITIVE);
-        for _ in 0..64 {
-            if long_enough(shortest(full)) {
-                break;
-            }
-            full += step.max(full * f32::EPSILON);
-        }
-        if !long_enough(shortest(full)) {
+        let (full, reached) = lift_until(lift, min_len, shortest);
+        if !reached {
             return None;
         }
         let all = alloc::vec![true; self.n()];

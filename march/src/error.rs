@@ -95,12 +95,6 @@ pub enum MarchError {
         /// A point near the intersection.
         near: Vec2,
     },
-    /// The triangulation backend rejected a point (a coordinate too large, or nonzero but
-    /// smaller than 2⁻¹⁴² in magnitude).
-    Triangulation {
-        /// Index of the point in the mesh's input (ring points first, then interior points).
-        point: usize,
-    },
 }
 
 impl fmt::Display for MarchError {
@@ -185,11 +179,6 @@ impl fmt::Display for MarchError {
                     )
                 }
             }
-            Self::Triangulation { point } => write!(
-                f,
-                "point {point} cannot be triangulated (coordinate too large, or nonzero but \
-                 below 2^-142): scale the input"
-            ),
         }
     }
 }

@@ -12,6 +12,8 @@ compile_error!(
     "creature-march needs its `std` feature (default) or its `libm` feature for float math"
 );
 
+#[cfg(feature = "mesh")]
+mod cdt;
 mod cell;
 mod error;
 mod grid;

@@ -1,14 +1,10 @@
 //! Meshing rings with a constrained Delaunay triangulation (feature `mesh`, spade).
 
-use alloc::collections::VecDeque;
 use alloc::vec::Vec;
 
 use glam::Vec2;
-use spade::handles::FixedVertexHandle;
-use spade::{
-    AngleLimit, ConstrainedDelaunayTriangulation, Point2, RefinementParameters, Triangulation,
-};
 
+use crate::cdt::{Cdt, CdtError, FIRST_VERTEX, NONE};
 use crate::{MarchError, Ring};
 
 /// Options for [`triangulate`].
@@ -186,8 +182,7 @@ pub struct MeshQuality {
 ///
 /// Invalid options; [`MarchError::TooFewPoints`], [`MarchError::NonFinite`] or
 /// [`MarchError::BadParent`] for a malformed ring; [`MarchError::RingsCross`] when ring edges
-/// cross, touch or overlap (checked before triangulating: the triangulator would panic);
-/// [`MarchError::Triangulation`] for coordinates the triangulator cannot represent.
+/// cross, touch or overlap.
 ///
 /// ```
 /// use creature_march::{glam::Vec2, trace, triangulate, MeshOptions};
@@ -204,26 +199,28 @@ pub fn triangulate(rings: &[Ring], options: &MeshOptions) -> Result<Mesh2, March
     options.validate()?;
     crate::ring::validate_structure(rings)?;
     let original: Vec<&[Vec2]> = rings.iter().map(|r| r.points.as_slice()).collect();
-    let simplified: Vec<Vec<Vec2>>;
-    let mut outline: Vec<&[Vec2]> = original.clone();
     if options.simplify > 0.0 {
-        simplified = rings
+        let simplified: Vec<Vec<Vec2>> = rings
             .iter()
             .map(|r| simplify(&r.points, options.simplify))
             .collect();
         let lists: Vec<&[Vec2]> = simplified.iter().map(Vec::as_slice).collect();
-        if crate::ring::find_crossing(&lists).is_none() {
-            outline = lists;
+        // Simplified rings that would intersect are meshed unsimplified.
+        match mesh_rings(&lists, options) {
+            Err(MarchError::RingsCross { .. }) => {}
+            result => return result,
         }
     }
-    if let Some((ring_a, ring_b, near)) = crate::ring::find_crossing(&outline) {
-        return Err(MarchError::RingsCross {
-            ring_a,
-            ring_b,
-            near,
-        });
-    }
-    if outline.is_empty() {
+    mesh_rings(&original, options)
+}
+
+/// [`triangulate`] on validated options and rings whose structure is valid.
+fn mesh_rings(outline: &[&[Vec2]], options: &MeshOptions) -> Result<Mesh2, MarchError> {
+    let Some((lo, hi)) = outline
+        .iter()
+        .filter_map(|r| crate::ring::bounds(r))
+        .reduce(|(lo, hi), (l, h)| (lo.min(l), hi.max(h)))
+    else {
         return Ok(Mesh2 {
             quality: MeshQuality {
                 refinement_complete: true,
@@ -231,64 +228,113 @@ pub fn triangulate(rings: &[Ring], options: &MeshOptions) -> Result<Mesh2, March
             },
             ..Mesh2::default()
         });
-    }
-
-    let mut points: Vec<Point2<f64>> = Vec::new();
-    let mut edges: Vec<[usize; 2]> = Vec::new();
-    for ring in &outline {
-        let base = points.len();
-        let n = ring.len();
-        points.extend(
-            ring.iter()
-                .map(|p| Point2::new(f64::from(p.x), f64::from(p.y))),
-        );
-        edges.extend((0..n).map(|i| [base + i, base + (i + 1) % n]));
-    }
-    let outline_len = points.len();
+    };
+    let outline_len: usize = outline.iter().map(|r| r.len()).sum();
+    let mut points: Vec<Vec2> = Vec::with_capacity(2 * outline_len);
+    points.extend(outline.iter().flat_map(|r| r.iter().copied()));
     if options.interior_spacing > 0.0 {
-        interior_points(&outline, options, &mut points);
-    }
-    for (i, p) in points.iter().enumerate() {
-        if spade::validate_vertex(p).is_err() {
-            return Err(MarchError::Triangulation { point: i });
-        }
+        interior_points(outline, options, &mut points);
     }
     let count = points.len();
-    let mut conflict = None;
-    let mut cdt: ConstrainedDelaunayTriangulation<Point2<f64>> =
-        ConstrainedDelaunayTriangulation::try_bulk_load_cdt(points, edges, |e| {
-            conflict.get_or_insert(e);
-        })
-        .map_err(|_| MarchError::Triangulation { point: 0 })?;
-    if conflict.is_some() || cdt.num_vertices() != count {
-        // The crossing check above rules this out; report it rather than mesh garbage.
-        return Err(MarchError::RingsCross {
-            ring_a: 0,
-            ring_b: 0,
-            near: outline
-                .first()
-                .and_then(|r| r.first())
-                .copied()
-                .unwrap_or(Vec2::ZERO),
-        });
+    let budget = options
+        .max_added_vertices
+        .unwrap_or_else(|| count.saturating_mul(10));
+    let expected = if options.min_angle > 0.0 {
+        2 * count
+    } else {
+        count
+    };
+    let mut cdt = Cdt::new(lo.as_dvec2(), hi.as_dvec2(), expected);
+    // Every point in the order of a Z curve through the box, which keeps the walks short and
+    // the flips few; then the ring edges, most of them already there.
+    let mut order: Vec<(u32, u32)> = points
+        .iter()
+        .enumerate()
+        .map(|(k, &p)| (morton_key(p, lo, hi), k as u32))
+        .collect();
+    order.sort_unstable();
+    // The vertex of each point, and the point of each vertex (for error reports).
+    let mut vertex = alloc::vec![NONE; count];
+    let mut point_of = alloc::vec![NONE; count + FIRST_VERTEX];
+    let crossing = |k: usize, obstacle: u32, point_of: &[u32]| {
+        let ring_a = ring_of(outline, k);
+        let ring_b = point_of
+            .get(obstacle as usize)
+            .filter(|&&j| (j as usize) < outline_len)
+            .map_or(ring_a, |&j| ring_of(outline, j as usize));
+        MarchError::RingsCross {
+            ring_a: ring_a.min(ring_b),
+            ring_b: ring_a.max(ring_b),
+            near: points[k],
+        }
+    };
+    for &(_, k) in &order {
+        let k = k as usize;
+        match cdt.insert(points[k].as_dvec2()) {
+            Ok(v) => {
+                vertex[k] = v;
+                point_of[v as usize] = k as u32;
+            }
+            // Interior points keep a clearance from the rings and are distinct; one that
+            // still lands on a vertex is left out.
+            Err(_) if k >= outline_len => {}
+            Err(CdtError::Occupied(v) | CdtError::Crossing(v)) => {
+                return Err(crossing(k, v, &point_of));
+            }
+        }
     }
+    let mut start = 0;
+    for ring in outline {
+        let n = ring.len();
+        for i in 0..n {
+            let (a, b) = (start + i, start + (i + 1) % n);
+            if let Err(CdtError::Occupied(v) | CdtError::Crossing(v)) =
+                cdt.insert_constraint(vertex[a], vertex[b])
+            {
+                return Err(crossing(a, v, &point_of));
+            }
+        }
+        start += n;
+    }
+    cdt.mark_inside();
     let mut refinement_complete = true;
     if options.min_angle > 0.0 {
-        let budget = options
-            .max_added_vertices
-            .unwrap_or_else(|| count.saturating_mul(10));
-        let parameters = RefinementParameters::<f64>::new()
-            .with_angle_limit(AngleLimit::from_deg(f64::from(options.min_angle)))
-            .exclude_outer_faces(true)
-            .with_max_additional_vertices(budget);
-        refinement_complete = cdt.refine(parameters).refinement_complete;
+        refinement_complete = cdt.refine(f64::from(options.min_angle), budget);
     }
     Ok(extract(
         &cdt,
-        outline_len,
+        &vertex[..outline_len],
         options.min_angle,
         refinement_complete,
     ))
+}
+
+/// The ring holding point `k` of the rings' concatenation.
+fn ring_of(outline: &[&[Vec2]], k: usize) -> usize {
+    let mut start = 0;
+    for (r, ring) in outline.iter().enumerate() {
+        start += ring.len();
+        if k < start {
+            return r;
+        }
+    }
+    0
+}
+
+/// The point's position along a Z (Morton) curve through the box `lo..hi`, on a 2¹⁶ × 2¹⁶
+/// grid: bits of x and y interleaved.
+fn morton_key(p: Vec2, lo: Vec2, hi: Vec2) -> u32 {
+    let scale = 65535.0 / (hi - lo).max(Vec2::splat(f32::MIN_POSITIVE));
+    // In the box, so the casts only truncate (and saturate).
+    let q = ((p - lo) * scale).max(Vec2::ZERO);
+    let spread = |v: f32| {
+        let mut x = (v as u32).min(0xffff);
+        x = (x | (x << 8)) & 0x00ff_00ff;
+        x = (x | (x << 4)) & 0x0f0f_0f0f;
+        x = (x | (x << 2)) & 0x3333_3333;
+        (x | (x << 1)) & 0x5555_5555
+    };
+    spread(q.x) | (spread(q.y) << 1)
 }
 
 /// Interior lattice points inside the rings (even–odd) and at least the clearance away from
@@ -298,7 +344,7 @@ pub fn triangulate(rings: &[Ring], options: &MeshOptions) -> Result<Mesh2, March
 /// bands — was tried: spade's cost grows with the vertex count, and the graded set, 810
 /// points before and 1,095 after refinement on the bench creature against 993 from this
 /// lattice, was slower.)
-fn interior_points(rings: &[&[Vec2]], options: &MeshOptions, out: &mut Vec<Point2<f64>>) {
+fn interior_points(rings: &[&[Vec2]], options: &MeshOptions, out: &mut Vec<Vec2>) {
     let Some((lo, hi)) = crate::ring::bounds(&rings.concat()) else {
         return;
     };
@@ -336,7 +382,7 @@ fn interior_points(rings: &[&[Vec2]], options: &MeshOptions, out: &mut Vec<Point
                 }
                 let p = Vec2::new(x, y);
                 if x >= span[0] && buckets.clear_of(&segments, p, clearance) {
-                    out.push(Point2::new(f64::from(p.x), f64::from(p.y)));
+                    out.push(p);
                 }
                 m += 1;
             }
@@ -490,62 +536,32 @@ fn simplify(points: &[Vec2], tolerance: f32) -> Vec<Vec2> {
     if out.len() < 3 { points.to_vec() } else { out }
 }
 
-/// The inside triangles (odd number of constraint crossings from the outside), with unused
-/// vertices removed.
-fn extract(
-    cdt: &ConstrainedDelaunayTriangulation<Point2<f64>>,
-    outline_len: usize,
-    min_angle: f32,
-    refinement_complete: bool,
-) -> Mesh2 {
-    let faces = cdt.num_all_faces();
-    let mut parity = alloc::vec![u8::MAX; faces];
-    let mut queue = VecDeque::new();
-    for edge in cdt.convex_hull() {
-        let inner = edge.rev();
-        if let Some(face) = inner.face().as_inner() {
-            let f = face.fix().index();
-            if parity[f] == u8::MAX {
-                parity[f] = u8::from(inner.is_constraint_edge());
-                queue.push_back(face.fix());
-            }
-        }
-    }
-    while let Some(f) = queue.pop_front() {
-        let here = parity[f.index()];
-        for edge in cdt.face(f).adjacent_edges() {
-            if let Some(other) = edge.rev().face().as_inner() {
-                let o = other.fix().index();
-                if parity[o] == u8::MAX {
-                    parity[o] = here ^ u8::from(edge.is_constraint_edge());
-                    queue.push_back(other.fix());
-                }
-            }
-        }
-    }
-    let mut remap = alloc::vec![u32::MAX; cdt.num_vertices()];
-    let mut positions: Vec<Vec2> = Vec::with_capacity(cdt.num_vertices());
-    // Ring vertices keep their indices.
-    for (v, slot) in remap.iter_mut().enumerate().take(outline_len) {
-        let p = cdt.vertex(FixedVertexHandle::from_index(v)).position();
-        *slot = positions.len() as u32;
+/// The inside triangles, with unused vertices removed: the ring points first, in order, then
+/// the other vertices in the order the triangles first use them.
+fn extract(cdt: &Cdt, ring_vertices: &[u32], min_angle: f32, refinement_complete: bool) -> Mesh2 {
+    let outline_len = ring_vertices.len();
+    let mut remap = alloc::vec![u32::MAX; cdt.points.len()];
+    let mut positions: Vec<Vec2> = Vec::with_capacity(cdt.points.len());
+    for (k, &v) in ring_vertices.iter().enumerate() {
+        remap[v as usize] = k as u32;
+        let p = cdt.points[v as usize];
         positions.push(Vec2::new(p.x as f32, p.y as f32));
     }
-    let mut triangles = Vec::new();
-    for face in cdt.inner_faces() {
-        if parity[face.fix().index()] != 1 {
+    let mut triangles = Vec::with_capacity(cdt.triangle_count());
+    for t in 0..cdt.triangle_count() {
+        let (vertices, inside) = cdt.triangle(t);
+        if !inside {
             continue;
         }
-        let mut tri = [0u32; 3];
-        for (slot, v) in tri.iter_mut().zip(face.vertices()) {
-            let i = v.fix().index();
-            if remap[i] == u32::MAX {
-                remap[i] = positions.len() as u32;
-                let p = v.position();
+        let tri = vertices.map(|v| {
+            let v = v as usize;
+            if remap[v] == u32::MAX {
+                remap[v] = positions.len() as u32;
+                let p = cdt.points[v];
                 positions.push(Vec2::new(p.x as f32, p.y as f32));
             }
-            *slot = remap[i];
-        }
+            remap[v]
+        });
         triangles.push(tri);
     }
     let quality = quality(&positions, &triangles, min_angle, refinement_complete);

@@ -237,11 +237,203 @@ mod mesh {
             }
         }
 
+        /// Without interior points or refinement the mesh is a constrained Delaunay
+        /// triangulation of the rings: every edge but the ring edges passes the exact
+        /// empty-circle test (up to rounding ties: cocircular points, which mirror-symmetric
+        /// fields make, have several), and it agrees with spade's (the crate's mesher before
+        /// its own) except at such ties.
+        #[test]
+        fn unrefined_meshes_are_constrained_delaunay_triangulations(
+            blobs in strategies::blobs(1..8),
+            step in 1.0f32..4.0,
+        ) {
+            let rings = trace(|p| blobs.value(p), &blobs.centres(), step, 1.0).unwrap();
+            let options = MeshOptions::DEFAULT.with_interior_spacing(0.0).with_min_angle(0.0);
+            let mesh = triangulate(&rings, &options).unwrap();
+            let ring_edges = ring_edges(&rings);
+            let ties = delaunay_violations(&mesh.positions, &mesh.triangles, &ring_edges)?;
+            let ours = triangle_set(&mesh.positions, &mesh.triangles);
+            let spade = spade_inside_triangles(&rings);
+            prop_assert_eq!(ours.len(), spade.len());
+            if ties == 0 {
+                prop_assert!(ours == spade, "{} of {} triangles differ from spade's", ours.difference(&spade).count(), ours.len());
+            }
+        }
+
+        /// Holes stay empty and refined meshes keep every ring vertex, also for rings with
+        /// holes.
+        #[test]
+        fn annuli_are_meshed_around_their_hole(annulus in strategies::annulus(), step in 0.5f32..2.0) {
+            let rings = trace(|p| annulus.value(p), &[annulus.hint()], step, 0.0).unwrap();
+            prop_assert_eq!(rings.len(), 2);
+            let mesh = triangulate(&rings, &MeshOptions::DEFAULT.with_interior_spacing(4.0 * step)).unwrap();
+            let ring_points: Vec<Vec2> = rings.iter().flat_map(|r| r.points.iter().copied()).collect();
+            prop_assert_eq!(&mesh.positions[..mesh.outline_len], &ring_points[..]);
+            let area: f32 = mesh.triangles.iter().map(|t| {
+                let [a, b, c] = t.map(|i| mesh.positions[i as usize]);
+                0.5 * (b - a).perp_dot(c - a)
+            }).sum();
+            let rings_area: f32 = rings.iter().map(Ring::signed_area).sum();
+            prop_assert!((area - rings_area).abs() <= 1e-3 * rings_area.abs(), "{} {}", area, rings_area);
+            for t in &mesh.triangles {
+                let [a, b, c] = t.map(|i| mesh.positions[i as usize]);
+                let centroid = (a + b + c) / 3.0;
+                prop_assert!(rings[0].contains(centroid) && !rings[1].contains(centroid));
+            }
+            if mesh.quality.refinement_complete {
+                prop_assert!(mesh.quality.min_angle >= 20.0 - 1e-2, "{:?}", mesh.quality);
+            }
+        }
+
         #[test]
         fn crossing_rings_never_reach_the_triangulator(pair in strategies::crossing_rings()) {
             let crossing = matches!(triangulate(&pair, &MeshOptions::DEFAULT), Err(MarchError::RingsCross { .. }));
             prop_assert!(crossing);
         }
+    }
+
+    /// The rings' edges as sorted pairs of their ends' bits.
+    fn ring_edges(rings: &[Ring]) -> BTreeSet<[(u32, u32); 2]> {
+        let bits = |p: Vec2| (p.x.to_bits(), p.y.to_bits());
+        rings
+            .iter()
+            .flat_map(|r| {
+                let n = r.points.len();
+                (0..n).map(move |i| {
+                    let mut e = [bits(r.points[i]), bits(r.points[(i + 1) % n])];
+                    e.sort_unstable();
+                    e
+                })
+            })
+            .collect()
+    }
+
+    /// Checks every edge shared by two triangles, except ring edges, with the exact
+    /// in-circle test: fails on a violation beyond rounding; returns the number of ties
+    /// (the opposite corner on the circle, or within the floating-point filter's bound).
+    fn delaunay_violations(
+        positions: &[Vec2],
+        triangles: &[[u32; 3]],
+        ring_edges: &BTreeSet<[(u32, u32); 2]>,
+    ) -> Result<usize, TestCaseError> {
+        use alloc::collections::BTreeMap;
+        let coord = |p: Vec2| robust::Coord {
+            x: f64::from(p.x),
+            y: f64::from(p.y),
+        };
+        let mut apex: BTreeMap<(u32, u32), u32> = BTreeMap::new();
+        for t in triangles {
+            for k in 0..3 {
+                apex.insert((t[k], t[(k + 1) % 3]), t[(k + 2) % 3]);
+            }
+        }
+        let mut ties = 0;
+        for (&(a, b), &c) in &apex {
+            let Some(&d) = apex.get(&(b, a)) else {
+                continue;
+            };
+            let [pa, pb, pc, pd] = [a, b, c, d].map(|i| positions[i as usize]);
+            let mut key = [
+                (pa.x.to_bits(), pa.y.to_bits()),
+                (pb.x.to_bits(), pb.y.to_bits()),
+            ];
+            key.sort_unstable();
+            if ring_edges.contains(&key) {
+                continue;
+            }
+            let exact = robust::incircle(coord(pa), coord(pb), coord(pc), coord(pd));
+            if exact > 0.0 {
+                // Only a near-tie may stay: within 1e-12 of the determinant's scale.
+                let (ad, bd, cd) = (
+                    (pa - pd).as_dvec2(),
+                    (pb - pd).as_dvec2(),
+                    (pc - pd).as_dvec2(),
+                );
+                let scale = ad.length_squared() * bd.length() * cd.length()
+                    + bd.length_squared() * cd.length() * ad.length()
+                    + cd.length_squared() * ad.length() * bd.length();
+                prop_assert!(
+                    exact <= 1e-12 * scale,
+                    "edge {:?}-{:?} is not Delaunay ({} vs {})",
+                    pa,
+                    pb,
+                    exact,
+                    scale
+                );
+            }
+            if exact >= 0.0 {
+                ties += 1;
+            }
+        }
+        Ok(ties)
+    }
+
+    /// Triangles as sorted triples of their corners' bits, for comparing meshes.
+    fn triangle_set(positions: &[Vec2], triangles: &[[u32; 3]]) -> BTreeSet<[(u32, u32); 3]> {
+        triangles
+            .iter()
+            .map(|t| {
+                let mut corners = t.map(|i| {
+                    let p = positions[i as usize];
+                    (p.x.to_bits(), p.y.to_bits())
+                });
+                corners.sort_unstable();
+                corners
+            })
+            .collect()
+    }
+
+    /// spade's constrained Delaunay triangulation of the rings, inside faces only (even–odd
+    /// across the constraint edges, by a flood fill from the hull).
+    fn spade_inside_triangles(rings: &[Ring]) -> BTreeSet<[(u32, u32); 3]> {
+        use spade::{ConstrainedDelaunayTriangulation, Point2, Triangulation};
+        let mut points = Vec::new();
+        let mut edges = Vec::new();
+        for ring in rings {
+            let base = points.len();
+            let n = ring.points.len();
+            points.extend(
+                ring.points
+                    .iter()
+                    .map(|p| Point2::new(f64::from(p.x), f64::from(p.y))),
+            );
+            edges.extend((0..n).map(|i| [base + i, base + (i + 1) % n]));
+        }
+        let cdt =
+            ConstrainedDelaunayTriangulation::<Point2<f64>>::bulk_load_cdt(points, edges).unwrap();
+        let mut side = vec![None; cdt.num_all_faces()];
+        let mut stack = Vec::new();
+        for edge in cdt.convex_hull() {
+            if let Some(face) = edge.rev().face().as_inner() {
+                let inside = edge.is_constraint_edge();
+                if side[face.fix().index()].is_none() {
+                    side[face.fix().index()] = Some(inside);
+                    stack.push(face.fix());
+                }
+            }
+        }
+        while let Some(f) = stack.pop() {
+            let here = side[f.index()].unwrap();
+            for edge in cdt.face(f).adjacent_edges() {
+                if let Some(other) = edge.rev().face().as_inner()
+                    && side[other.fix().index()].is_none()
+                {
+                    side[other.fix().index()] = Some(here ^ edge.is_constraint_edge());
+                    stack.push(other.fix());
+                }
+            }
+        }
+        cdt.inner_faces()
+            .filter(|f| side[f.fix().index()] == Some(true))
+            .map(|f| {
+                let mut corners = f.vertices().map(|v| {
+                    let p = v.position();
+                    ((p.x as f32).to_bits(), (p.y as f32).to_bits())
+                });
+                corners.sort_unstable();
+                corners
+            })
+            .collect()
     }
 
     /// Regression (found by the mesh property at 20,000 cases): two blobs that barely touch

@@ -5,7 +5,9 @@ use alloc::vec::Vec;
 
 use glam::{Vec2, Vec3};
 
-use creature_march::{MarchOptions, MeshOptions, Ring, TileField, trace_field, triangulate};
+use creature_march::{
+    MarchOptions, MeshOptions, Ring, TileField, contains_each, trace_field, triangulate,
+};
 use creature_metaball::{
     Ball2, CoverOptions, Falloff, Field2, ISO_LEVEL, MULTIPLIER_RANGE, cover_segment_with,
 };
@@ -140,14 +142,14 @@ fn build(skeleton: &Skeleton2d, params: &Params2d, seed: u64) -> Result<Creature
             r.parent = Some(0);
         }
     }
-    for (index, b) in plain.iter().enumerate() {
-        if !inside(&rings, b.center) {
-            return Err(Error::BallOutside {
-                ball: index,
-                bone: b.id as usize,
-                center: b.center,
-            });
-        }
+    let inside = contains_each(&rings, &hints);
+    if let Some(index) = inside.iter().position(|&held| !held) {
+        let b = plain[index];
+        return Err(Error::BallOutside {
+            ball: index,
+            bone: b.id as usize,
+            center: b.center,
+        });
     }
     let outline_points: usize = rings.iter().map(|r| r.points.len()).sum();
     let (min, max) = rings
@@ -240,11 +242,6 @@ fn build(skeleton: &Skeleton2d, params: &Params2d, seed: u64) -> Result<Creature
             outline_error,
         },
     })
-}
-
-/// Even–odd inside test over all rings (holes excluded).
-pub(crate) fn inside(rings: &[Ring], p: Vec2) -> bool {
-    rings.iter().filter(|r| r.contains(p)).count() % 2 == 1
 }
 
 fn nearest_bone(balls: &[Ball2], p: Vec2) -> u16 {

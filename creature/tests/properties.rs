@@ -271,13 +271,8 @@ fn strong_simplification_stays_within_its_distance_of_the_outline() {
         .with_depth_shading(1.104_084)
         .with_normal_relief(22.584_772);
     let c = generate_2d(6_810_098_914_285, &params).unwrap();
-    // The shared check (made for the default 0.5) sees one triangle poke out of the traced
-    // outline; it is within `simplify` of it, as documented.
-    assert!(
-        support::check(&c)
-            .iter()
-            .any(|s| s.ends_with("triangles outside"))
-    );
+    // (With spade's mesher one triangle poked out of the traced outline, within `simplify` of
+    // it as documented, which the shared check, made for the default 0.5, flagged.)
     assert_eq!(problems_2d(&c, &params), Vec::<String>::new());
 }
 

@@ -167,6 +167,15 @@ pub(crate) struct Cdt {
     rng: u32,
     /// Edges waiting to be checked by [`Cdt::legalize`].
     stack: Vec<u32>,
+    /// The last cavity dug by [`Cdt::dig`]: its triangles, and the half-edges on its
+    /// boundary (in its triangles, each with its twin outside, or a constraint or hull edge).
+    cavity: Vec<u32>,
+    boundary: Vec<u32>,
+    /// Per triangle, the dig that put it in a cavity (`stamp` is the current one).
+    dug: Vec<u32>,
+    stamp: u32,
+    /// The new triangles' data while a cavity is refilled: (a, b, twin, constraint bit).
+    fan: Vec<(u32, u32, u32, u8)>,
 }
 
 impl Cdt {
@@ -198,6 +207,11 @@ impl Cdt {
             last: 0,
             rng: 0x9e37_79b9,
             stack: Vec::new(),
+            cavity: Vec::new(),
+            boundary: Vec::new(),
+            dug: Vec::new(),
+            stamp: 0,
+            fan: Vec::new(),
         }
     }
 
@@ -689,8 +703,11 @@ impl Cdt {
     /// are left alone. Returns whether it finished within the budget.
     pub(crate) fn refine(&mut self, min_angle_deg: f64, budget: usize) -> bool {
         let limit = self.points.len().saturating_add(budget);
-        let sin = min_angle_deg.to_radians().sin();
+        let sin = crate::math::sin_f64(min_angle_deg.to_radians());
         let sin2 = sin * sin;
+        // Off-centres make triangles with an apex angle a tenth above the limit.
+        let tan_half = (min_angle_deg * 1.1).min(60.0).to_radians() * 0.5;
+        let tan_half = crate::math::tan_f64(tan_half);
         let mut queues = Queues::default();
         for t in 0..self.tris.len() as u32 {
             for i in 0..3 {
@@ -728,7 +745,7 @@ impl Cdt {
             if self.points.len() >= limit {
                 return false;
             }
-            let Some(centre) = self.circumcentre(t) else {
+            let Some(centre) = self.steiner_point(t, tan_half) else {
                 continue;
             };
             // The constraint edges the centre would encroach upon (or lies beyond); when
@@ -736,20 +753,25 @@ impl Cdt {
             let (encroached, at) = match self.walk(t, centre, true) {
                 Walk::Blocked(e) if e != NONE => (alloc::vec![e], None),
                 Walk::Found(Location::Edge(e)) if self.is_fixed(e) => (alloc::vec![e], None),
-                Walk::Found(Location::Edge(e)) if self.is_inside(tri_of(e) as u32) => (
-                    self.encroached_by(centre, tri_of(e) as u32),
-                    Some(Location::Edge(e)),
-                ),
+                Walk::Found(Location::Edge(e)) if self.is_inside(tri_of(e) as u32) => {
+                    self.dig(centre, tri_of(e) as u32);
+                    (self.encroached_on_boundary(centre), Some(Location::Edge(e)))
+                }
                 Walk::Found(Location::Triangle(u)) if self.is_inside(u) => {
-                    (self.encroached_by(centre, u), Some(Location::Triangle(u)))
+                    self.dig(centre, u);
+                    (
+                        self.encroached_on_boundary(centre),
+                        Some(Location::Triangle(u)),
+                    )
                 }
                 // On a vertex, or (only through the walk's fallback) outside: leave it.
                 _ => continue,
             };
             if encroached.is_empty() {
-                let v = match at {
-                    Some(Location::Edge(e)) => self.split_edge(e, centre),
-                    Some(Location::Triangle(u)) => self.split_triangle(u, centre),
+                let v = match (self.fill_cavity(centre), at) {
+                    (Some(v), _) => v,
+                    (None, Some(Location::Edge(e))) => self.split_edge(e, centre),
+                    (None, Some(Location::Triangle(u))) => self.split_triangle(u, centre),
                     _ => continue,
                 };
                 self.queue_around(v, sin2, &mut queues);
@@ -817,39 +839,114 @@ impl Cdt {
         })
     }
 
-    /// The constraint half-edges on the boundary of `p`'s cavity (the triangles whose
-    /// circumcircle holds it, reached from triangle `t` without crossing a constraint) that
-    /// `p` would encroach upon once inserted.
-    fn encroached_by(&self, p: DVec2, t: u32) -> Vec<u32> {
-        let mut out = Vec::new();
-        let mut cavity: Vec<u32> = alloc::vec![t];
+    /// Digs `p`'s cavity: the triangles whose circumcircle certainly holds it, reached from
+    /// triangle `t` (which holds `p`) without crossing a constraint edge; fills
+    /// [`Cdt::cavity`] and [`Cdt::boundary`].
+    fn dig(&mut self, p: DVec2, t: u32) {
+        self.stamp = self.stamp.wrapping_add(1);
+        if self.stamp == 0 {
+            self.dug.fill(0);
+            self.stamp = 1;
+        }
+        self.dug.resize(self.tris.len(), 0);
+        self.cavity.clear();
+        self.boundary.clear();
+        self.cavity.push(t);
+        self.dug[t as usize] = self.stamp;
         let mut k = 0;
-        while let Some(&c) = cavity.get(k) {
+        while let Some(&c) = self.cavity.get(k) {
             k += 1;
             for i in 0..3 {
                 let e = edge(c, i);
-                if self.is_fixed(e) {
-                    let (a, b) = (self.point(self.origin(e)), self.point(self.dest(e)));
-                    if (a - p).dot(b - p) < 0.0 {
-                        out.push(e);
-                    }
-                    continue;
-                }
                 let f = self.twin_of(e);
-                if f == NONE {
+                if f == NONE || self.is_fixed(e) {
+                    self.boundary.push(e);
                     continue;
                 }
-                let u = tri_of(f) as u32;
-                if cavity.contains(&u) {
+                let u = tri_of(f);
+                if self.dug[u] == self.stamp {
                     continue;
                 }
-                let [x, y, z] = self.tris[u as usize].v.map(|v| self.point(v));
+                let [x, y, z] = self.tris[u].v.map(|v| self.point(v));
                 if in_circle(x, y, z, p) {
-                    cavity.push(u);
+                    self.dug[u] = self.stamp;
+                    self.cavity.push(u as u32);
+                } else {
+                    self.boundary.push(e);
                 }
             }
         }
-        out
+    }
+
+    /// The constraint half-edges on the boundary of the cavity [`Cdt::dig`] dug for `p` that
+    /// `p` would encroach upon once inserted.
+    fn encroached_on_boundary(&self, p: DVec2) -> Vec<u32> {
+        self.boundary
+            .iter()
+            .copied()
+            .filter(|&e| {
+                self.is_fixed(e) && {
+                    let (a, b) = (self.point(self.origin(e)), self.point(self.dest(e)));
+                    (a - p).dot(b - p) < 0.0
+                }
+            })
+            .collect()
+    }
+
+    /// Inserts `p` into the cavity [`Cdt::dig`] dug for it (Bowyer–Watson): its triangles
+    /// give way to a fan from `p` to the boundary, which is the Delaunay result, with no
+    /// flips. `None`, changing nothing, unless the cavity is a disk with `p` strictly
+    /// inside every boundary edge (ties in the in-circle filter can break that; the caller
+    /// then inserts by flips).
+    fn fill_cavity(&mut self, p: DVec2) -> Option<u32> {
+        let n = self.boundary.len();
+        if n != self.cavity.len() + 2 {
+            return None;
+        }
+        self.fan.clear();
+        for &e in &self.boundary {
+            let (a, b) = (self.origin(e), self.dest(e));
+            if !(orient(self.point(a), self.point(b), p) > 0.0) {
+                return None;
+            }
+            let fixed = u8::from(self.is_fixed(e));
+            self.fan.push((a, b, self.twin_of(e), fixed));
+        }
+        // Order the boundary into its loop (each edge starts where the last one ended), so
+        // fan triangle k's neighbours are k - 1 and k + 1.
+        for k in 1..n {
+            let end = self.fan[k - 1].1;
+            let next = (k..n).find(|&m| self.fan[m].0 == end)?;
+            self.fan.swap(k, next);
+        }
+        if self.fan[n - 1].1 != self.fan[0].0 {
+            return None;
+        }
+        let inside = self.is_inside(self.cavity[0]);
+        let v = self.add_point(p);
+        let first_new = self.new_triangles(2);
+        self.cavity.extend([first_new, first_new + 1]);
+        for k in 0..n {
+            let (a, b, twin, fixed) = self.fan[k];
+            let t = self.cavity[k];
+            self.tris[t as usize] = Tri {
+                v: [a, b, v],
+                twin: [
+                    twin,
+                    edge(self.cavity[(k + 1) % n], 2),
+                    edge(self.cavity[(k + n - 1) % n], 1),
+                ],
+                fixed,
+                inside,
+            };
+            if twin != NONE {
+                self.tris[tri_of(twin)].twin[slot(twin)] = edge(t, 0);
+            }
+            self.out_edge[a as usize] = edge(t, 0);
+        }
+        self.out_edge[v as usize] = edge(self.cavity[0], 2);
+        self.last = self.cavity[0];
+        Some(v)
     }
 
     /// Splits a constraint edge at its (f32-rounded) midpoint; `None` when the edge is too
@@ -903,15 +1000,36 @@ impl Cdt {
         tri.fixed & corner != corner
     }
 
-    /// The circumcentre of triangle `t`, rounded to `f32`; `None` if degenerate.
-    fn circumcentre(&self, t: u32) -> Option<DVec2> {
+    /// Where refinement puts a point for a bad triangle, rounded to `f32` (`None` if the
+    /// triangle is degenerate): its circumcentre, or Üngör's off-centre when that is nearer
+    /// the shortest edge — the apex of the isosceles triangle on that edge whose apex
+    /// angle has the tangent of half of it `tan_half` (a little above the limit), so the
+    /// new triangle there is good and fewer points are needed.
+    fn steiner_point(&self, t: u32, tan_half: f64) -> Option<DVec2> {
         let [a, b, c] = self.tris[t as usize].v.map(|v| self.point(v));
         let (ab, ac) = (b - a, c - a);
         let d = 2.0 * ab.perp_dot(ac);
         let (l1, l2) = (ab.length_squared(), ac.length_squared());
-        let offset = DVec2::new(ac.y * l1 - ab.y * l2, ab.x * l2 - ac.x * l1) / d;
-        let centre = to_f32_exact(a + offset);
-        (d != 0.0 && centre.is_finite()).then_some(centre)
+        let centre = a + DVec2::new(ac.y * l1 - ab.y * l2, ab.x * l2 - ac.x * l1) / d;
+        // The shortest edge and its midpoint; the circumcentre lies on its bisector.
+        let bc = c - b;
+        let (p, q) = if l1 <= l2 && l1 <= bc.length_squared() {
+            (a, b)
+        } else if l2 <= bc.length_squared() {
+            (a, c)
+        } else {
+            (b, c)
+        };
+        let m = (p + q) * 0.5;
+        let (to_centre, half) = (centre - m, p.distance(q) * 0.5);
+        let (far, near) = (to_centre.length(), half / tan_half);
+        let point = if near < far {
+            m + to_centre * (near / far)
+        } else {
+            centre
+        };
+        let point = to_f32_exact(point);
+        (d != 0.0 && point.is_finite()).then_some(point)
     }
 }
 

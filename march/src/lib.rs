@@ -18,6 +18,8 @@ mod cell;
 mod error;
 mod grid;
 #[cfg(feature = "mesh")]
+mod math;
+#[cfg(feature = "mesh")]
 mod mesh;
 mod options;
 mod ring;
@@ -33,7 +35,7 @@ pub use grid::{MAX_GRID_SAMPLES, march_grid, march_grid_with};
 #[cfg_attr(docsrs, doc(cfg(feature = "mesh")))]
 pub use mesh::{Mesh2, MeshOptions, MeshQuality, triangulate};
 pub use options::{MAX_CELLS, MAX_GRID_COORDINATE, MarchOptions, Saddle};
-pub use ring::{Ring, validate_rings};
+pub use ring::{Ring, contains_each, validate_rings};
 pub use tile::{TILE_NODES, TILE_SIZE, TileField, node_point};
 pub use trace::{trace, trace_field, trace_with};
 

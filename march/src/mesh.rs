@@ -1,4 +1,5 @@
-//! Meshing rings with a constrained Delaunay triangulation (feature `mesh`, spade).
+//! Meshing rings with a constrained Delaunay triangulation and Delaunay refinement (feature
+//! `mesh`; the triangulation itself is in `cdt`).
 
 use alloc::vec::Vec;
 
@@ -28,7 +29,7 @@ pub struct MeshOptions {
     /// Interior points closer than `clearance × interior_spacing` to any ring edge are
     /// dropped, so they cannot make slivers against the outline. From 0 to 2. Default 0.5.
     pub clearance: f32,
-    /// Delaunay refinement (Ruppert/Chew, by spade) adds points until every triangle's
+    /// Delaunay refinement (Ruppert's, with Üngör's off-centres) adds points until every triangle's
     /// smallest angle is at least this many degrees; ring edges may be split, the outline's
     /// shape is kept. 0 turns refinement off. From 0 to 33. Default 20.
     pub min_angle: f32,
@@ -245,12 +246,21 @@ fn mesh_rings(outline: &[&[Vec2]], options: &MeshOptions) -> Result<Mesh2, March
         count
     };
     let mut cdt = Cdt::new(lo.as_dvec2(), hi.as_dvec2(), expected);
-    // Every point in the order of a Z curve through the box, which keeps the walks short and
-    // the flips few; then the ring edges, most of them already there.
-    let mut order: Vec<(u32, u32)> = points
+    // Every point in a biased randomised order (Amenta, Choi and Rote): rounds of doubling
+    // size, each a pseudo-random half of what is left, each along a Z curve through the box.
+    // The curve keeps the walks short; the rounds keep the flips few (rings inserted along
+    // the curve alone cost about twice the flips: points on a convex arc in order are the
+    // incremental algorithm's worst case). Then the ring edges, most of them already there.
+    let mut order: Vec<(u64, u32)> = points
         .iter()
         .enumerate()
-        .map(|(k, &p)| (morton_key(p, lo, hi), k as u32))
+        .map(|(k, &p)| {
+            let round = 31 - mix(k as u32).leading_zeros().min(31);
+            (
+                (u64::from(round) << 32) | u64::from(morton_key(p, lo, hi)),
+                k as u32,
+            )
+        })
         .collect();
     order.sort_unstable();
     // The vertex of each point, and the point of each vertex (for error reports).
@@ -321,6 +331,16 @@ fn ring_of(outline: &[&[Vec2]], k: usize) -> usize {
     0
 }
 
+/// A deterministic hash of an index (the finaliser of MurmurHash3), for the insertion rounds.
+fn mix(k: u32) -> u32 {
+    let mut h = k.wrapping_add(0x9e37_79b9);
+    h ^= h >> 16;
+    h = h.wrapping_mul(0x85eb_ca6b);
+    h ^= h >> 13;
+    h = h.wrapping_mul(0xc2b2_ae35);
+    h ^ (h >> 16)
+}
+
 /// The point's position along a Z (Morton) curve through the box `lo..hi`, on a 2¹⁶ × 2¹⁶
 /// grid: bits of x and y interleaved.
 fn morton_key(p: Vec2, lo: Vec2, hi: Vec2) -> u32 {
@@ -356,32 +376,43 @@ fn interior_points(rings: &[&[Vec2]], options: &MeshOptions, out: &mut Vec<Vec2>
         .flat_map(|r| (0..r.len()).map(move |i| (r[i], r[(i + 1) % r.len()])))
         .collect();
     let buckets = Buckets::new(&segments, lo, hi, clearance);
-    let rows = ((hi.y - lo.y) / row) as usize;
-    let mut crossings: Vec<f32> = Vec::new();
-    for k in 0..=rows {
-        let y = lo.y + row * (k as f32 + 0.5);
+    let rows = ((hi.y - lo.y) / row) as usize + 1;
+    let row_y = |k: usize| lo.y + row * (k as f32 + 0.5);
+    // The crossings of every row, gathered segment by segment (each crosses a few rows):
+    // (row, x), then sorted by row and x.
+    let mut crossings: Vec<(u32, f32)> = Vec::with_capacity(2 * rows + segments.len() / 4);
+    for &(a, b) in &segments {
+        let (low, high) = (a.y.min(b.y), a.y.max(b.y));
+        // Rows whose y may lie in [low, high), one wider on each side; the exact test below
+        // decides (y strictly between the ends' sides, the even–odd rule's half-open one).
+        let first = ((low - lo.y) / row - 1.5).max(0.0) as usize;
+        let last = (((high - lo.y) / row).max(0.0) as usize + 1).min(rows);
+        for k in first..last {
+            let y = row_y(k);
+            if (a.y > y) != (b.y > y) {
+                crossings.push((k as u32, a.x + (y - a.y) * (b.x - a.x) / (b.y - a.y)));
+            }
+        }
+    }
+    crossings.sort_unstable_by(|p, q| p.0.cmp(&q.0).then(p.1.total_cmp(&q.1)));
+    for span in crossings.chunk_by(|p, q| p.0 == q.0) {
+        let k = span[0].0 as usize;
+        let y = row_y(k);
         if y >= hi.y {
             break;
         }
-        crossings.clear();
-        for &(a, b) in &segments {
-            if (a.y > y) != (b.y > y) {
-                crossings.push(a.x + (y - a.y) * (b.x - a.x) / (b.y - a.y));
-            }
-        }
-        crossings.sort_by(f32::total_cmp);
-        let x0 = lo.x + spacing * if k % 2 == 0 { 0.25 } else { 0.75 };
-        for span in crossings.chunks_exact(2) {
+        let x0 = lo.x + spacing * if k.is_multiple_of(2) { 0.25 } else { 0.75 };
+        for pair in span.chunks_exact(2) {
+            let (from, to) = (pair[0].1, pair[1].1);
             // Spans lie within the box, so the offsets are non-negative: `as` floors them.
-            let first = ((span[0] - x0) / spacing).max(0.0) as usize;
-            let mut m = first;
+            let mut m = ((from - x0) / spacing).max(0.0) as usize;
             loop {
                 let x = x0 + spacing * m as f32;
-                if x > span[1] {
+                if x > to {
                     break;
                 }
                 let p = Vec2::new(x, y);
-                if x >= span[0] && buckets.clear_of(&segments, p, clearance) {
+                if x >= from && buckets.clear_of(&segments, p, clearance) {
                     out.push(p);
                 }
                 m += 1;
@@ -577,7 +608,7 @@ fn extract(cdt: &Cdt, ring_vertices: &[u32], min_angle: f32, refinement_complete
 #[cfg(test)]
 fn min_angle_deg(a: Vec2, b: Vec2, c: Vec2) -> f32 {
     let (y, x) = min_angle_tan(a, b, c);
-    y.atan2(x).to_degrees()
+    crate::math::atan2(y, x).to_degrees()
 }
 
 /// A triangle's smallest angle as `(y, x)` with `tan = y / x`, without trigonometry: every
@@ -613,8 +644,8 @@ fn quality(
     limit: f32,
     refinement_complete: bool,
 ) -> MeshQuality {
-    let tan_20 = 20.0f32.to_radians().tan();
-    let tan_limit = limit.to_radians().tan();
+    let tan_20 = crate::math::tan(20.0f32.to_radians());
+    let tan_limit = crate::math::tan(limit.to_radians());
     let mut q = MeshQuality {
         min_angle: 0.0,
         below_20: 0,
@@ -635,7 +666,7 @@ fn quality(
         }
     }
     if let Some((y, x)) = worst {
-        q.min_angle = y.atan2(x).to_degrees();
+        q.min_angle = crate::math::atan2(y, x).to_degrees();
     }
     // Refinement leaves alone the triangles at input corners sharper than the limit (a
     // pinch between two blobs): it is complete only where the limit really holds.

@@ -146,6 +146,62 @@ pub(crate) fn signed_area(points: &[Vec2]) -> f64 {
     twice * 0.5
 }
 
+/// Whether each point lies inside the rings, by the even–odd rule over all of them (inside
+/// an outer ring and not in one of its holes): the answers [`Ring::contains`] gives, counted
+/// over `rings`, for many points at once. Each edge is tested only against the points level
+/// with it (points sorted by height), so the cost is about `(edges + points) × log(points)`
+/// rather than `edges × points`. Non-finite points are outside.
+///
+/// ```
+/// use creature_march::{contains_each, glam::Vec2, Ring};
+///
+/// let square = |o: Vec2, s: f32, hole: bool| {
+///     let mut points = vec![o, o + Vec2::X * s, o + Vec2::splat(s), o + Vec2::Y * s];
+///     if hole {
+///         points.reverse();
+///     }
+///     Ring { points, hole, parent: hole.then_some(0) }
+/// };
+/// let rings = [square(Vec2::ZERO, 10.0, false), square(Vec2::splat(4.0), 2.0, true)];
+/// let points = [Vec2::splat(1.0), Vec2::splat(5.0), Vec2::splat(11.0)];
+/// assert_eq!(contains_each(&rings, &points), [true, false, false]);
+/// ```
+#[must_use]
+pub fn contains_each(rings: &[Ring], points: &[Vec2]) -> Vec<bool> {
+    let mut inside = alloc::vec![false; points.len()];
+    // Finite points by height.
+    let mut order: Vec<(f32, u32)> = points
+        .iter()
+        .enumerate()
+        .filter(|(_, p)| p.is_finite())
+        .map(|(k, p)| (p.y, k as u32))
+        .collect();
+    order.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+    for ring in rings {
+        let n = ring.points.len();
+        if n < 3 {
+            continue;
+        }
+        for i in 0..n {
+            let (a, b) = (ring.points[i], ring.points[(i + n - 1) % n]);
+            // The points with `(a.y > y) != (b.y > y)`: heights in [low, high).
+            let (low, high) = (a.y.min(b.y), a.y.max(b.y));
+            let from = order.partition_point(|q| q.0 < low);
+            let to = order.partition_point(|q| q.0 < high);
+            let (a, b) = (a.into_d2(), b.into_d2());
+            for &(_, k) in order.get(from..to).unwrap_or(&[]) {
+                let p = points[k as usize].into_d2();
+                // As in `contains`, so the answers agree bit for bit.
+                let x = a.x + (p.y - a.y) * (b.x - a.x) / (b.y - a.y);
+                if p.x < x {
+                    inside[k as usize] = !inside[k as usize];
+                }
+            }
+        }
+    }
+    inside
+}
+
 /// Even–odd point-in-polygon test.
 pub(crate) fn contains(points: &[Vec2], p: Vec2) -> bool {
     let n = points.len();

@@ -8,8 +8,9 @@ mod support;
 
 use creature_march::glam::Vec2;
 use creature_march::{
-    MarchError, MarchOptions, Ring, Saddle, TILE_NODES, TILE_SIZE, TileField, march_grid,
-    march_grid_with, node_point, strategies, trace, trace_field, trace_with, validate_rings,
+    MarchError, MarchOptions, Ring, Saddle, TILE_NODES, TILE_SIZE, TileField, contains_each,
+    march_grid, march_grid_with, node_point, strategies, trace, trace_field, trace_with,
+    validate_rings,
 };
 use proptest::prelude::*;
 use proptest::test_runner::FileFailurePersistence;
@@ -176,6 +177,27 @@ proptest! {
     #[test]
     fn star_rings_are_valid(ring in strategies::star_ring()) {
         prop_assert!(validate_rings(&[ring]).is_ok());
+    }
+
+    /// The batch inside test answers as [`Ring::contains`] counted over the rings, also for
+    /// points on the grid lines where ring points sit, and for rings with holes.
+    #[test]
+    fn contains_each_agrees_with_contains(
+        blobs in strategies::blobs(1..6),
+        annulus in strategies::annulus(),
+        points in proptest::collection::vec(strategies::vec2_in(120.0), 0..200),
+    ) {
+        let mut rings = trace(|p| blobs.value(p), &blobs.centres(), 2.0, 1.0).unwrap();
+        // The rings' own points, and points level with them, are the hard cases.
+        let mut points = points;
+        points.extend(rings.iter().flat_map(|r| r.points.iter().step_by(7).map(|&p| p + Vec2::new(0.25, 0.0))));
+        points.push(Vec2::new(f32::NAN, 0.0));
+        let one = |rings: &[Ring], p: Vec2| rings.iter().filter(|r| r.contains(p)).count() % 2 == 1;
+        let expected: Vec<bool> = points.iter().map(|&p| one(&rings, p)).collect();
+        prop_assert_eq!(contains_each(&rings, &points), expected);
+        rings = trace(|p| annulus.value(p), &[annulus.hint()], 1.0, 0.0).unwrap();
+        let expected: Vec<bool> = points.iter().map(|&p| one(&rings, p)).collect();
+        prop_assert_eq!(contains_each(&rings, &points), expected);
     }
 
     #[test]

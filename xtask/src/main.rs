@@ -292,9 +292,14 @@ fn libm(w: &Workspace) -> Result<(), String> {
     let mut packages = Vec::new();
     let mut features = Vec::new();
     for name in &w.micro_crates {
+        let package = format!("creature-{name}");
+        features.extend(
+            no_std_features(&package)
+                .iter()
+                .map(|f| format!("{package}/{f}")),
+        );
         packages.push("-p".to_string());
-        packages.push(format!("creature-{name}"));
-        features.push(format!("creature-{name}/libm"));
+        packages.push(package);
     }
     let features = features.join(",");
     let mut c = w.cargo();
@@ -376,7 +381,10 @@ fn no_std(w: &Workspace) -> Result<(), String> {
         for package in &packages {
             c.args(["-p", package]);
         }
-        let features: Vec<String> = packages.iter().map(|p| format!("{p}/libm")).collect();
+        let features: Vec<String> = packages
+            .iter()
+            .flat_map(|p| no_std_features(p).iter().map(move |f| format!("{p}/{f}")))
+            .collect();
         c.args(["--no-default-features", "--features", &features.join(",")]);
         c.args(["--target", NO_STD_TARGET]);
         run(c)?;
@@ -387,6 +395,15 @@ fn no_std(w: &Workspace) -> Result<(), String> {
         Ok(())
     } else {
         no_std_fallback(w)
+    }
+}
+
+/// The features a package is checked with in the no_std build: `libm`, and every optional
+/// capability that promises to work without `std`.
+fn no_std_features(package: &str) -> &'static [&'static str] {
+    match package {
+        "creature-march" => &["libm", "mesh"],
+        _ => &["libm"],
     }
 }
 
@@ -408,10 +425,15 @@ fn no_std_fallback(w: &Workspace) -> Result<(), String> {
     for package in w.no_std_packages() {
         let folder = package.strip_prefix("creature-").unwrap_or("creature");
         let path = w.root.join(folder);
+        let features: Vec<String> = no_std_features(&package)
+            .iter()
+            .map(|f| format!("{f:?}"))
+            .collect();
         let _ = writeln!(
             manifest,
-            "{package} = {{ path = {:?}, default-features = false, features = [\"libm\"] }}",
-            path.to_string_lossy()
+            "{package} = {{ path = {:?}, default-features = false, features = [{}] }}",
+            path.to_string_lossy(),
+            features.join(", ")
         );
         let _ = writeln!(source, "extern crate {};", package.replace('-', "_"));
     }

@@ -25,7 +25,6 @@ mod math;
 mod noise;
 mod params;
 mod params3d;
-#[cfg(feature = "std")]
 mod pipeline;
 mod preview3d;
 mod skeleton;
@@ -42,8 +41,6 @@ pub use gait3d::GaitSetup;
 pub use generate3d::generate;
 pub use params::{IntSpan, Params2d, Span};
 pub use params3d::{Kind, Params};
-#[cfg(feature = "std")]
-#[cfg_attr(docsrs, doc(cfg(feature = "std")))]
 pub use pipeline::{MAX_BONES, build_2d, generate_2d};
 pub use preview3d::{PREVIEW_BACKGROUND, preview_3d};
 pub use skeleton::{skeleton_2d, skeleton_2d_from_seed};

@@ -1,5 +1,5 @@
 //! The 2D pipeline: skeleton → metaballs → outline → mesh → UVs and depth → skin weights →
-//! texture (feature `std`: meshing uses `creature-march`'s `mesh` feature).
+//! texture.
 
 use alloc::vec::Vec;
 
@@ -25,8 +25,6 @@ pub const MAX_BONES: usize = 4096;
 /// Generates a 2D creature from `seed`: the seed's skeleton generator ([`skeleton_2d`](crate::skeleton_2d),
 /// fed by `Pcg64Mcg::seed_from_u64(seed)`), then [`build_2d`]. Same seed and params, same
 /// creature, bit for bit.
-///
-/// Needs the `std` feature (meshing uses spade, which needs `std`).
 ///
 /// ```
 /// use creature::{generate_2d, Params2d};

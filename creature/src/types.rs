@@ -159,12 +159,10 @@ impl Creature2d {
     ///
     /// ```
     /// # fn main() -> Result<(), creature::Error> {
-    /// # #[cfg(feature = "std")] {
     /// let creature = creature::generate_2d(7, &creature::Params2d::DEFAULT.with_texture(false))?;
     /// let pose = creature.idle_rotations(1.5);
     /// assert_eq!(pose.len(), creature.bones.len());
     /// assert_eq!(pose[0], 0.0);
-    /// # }
     /// # Ok(()) }
     /// ```
     #[must_use]

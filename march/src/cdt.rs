@@ -291,7 +291,8 @@ impl Cdt {
         self.rng ^= self.rng << 13;
         self.rng ^= self.rng >> 17;
         self.rng ^= self.rng << 5;
-        self.rng % 3
+        // The high bits scaled to 0..3, a multiply instead of a division.
+        ((u64::from(self.rng) * 3) >> 32) as u32
     }
 
     /// Walks from triangle `start` to the point `p` (a visibility walk, starting each step at
@@ -299,6 +300,8 @@ impl Cdt {
     /// constraint edge it would cross.
     fn walk(&mut self, start: u32, p: DVec2, stop_at_constraints: bool) -> Walk {
         let mut t = start;
+        // The edge the walk entered `t` through: `p` lies strictly on `t`'s side of it.
+        let mut entry = 3;
         let limit = 4 * self.tris.len() + 64;
         'steps: for _ in 0..limit {
             let v = self.tris[t as usize].v;
@@ -306,6 +309,9 @@ impl Cdt {
             let mut on_line = [false; 3];
             for k in 0..3 {
                 let i = (first + k) % 3;
+                if i == entry {
+                    continue;
+                }
                 let a = self.point(v[i as usize]);
                 let b = self.point(v[((i + 1) % 3) as usize]);
                 let o = orient(a, b, p);
@@ -321,6 +327,7 @@ impl Cdt {
                         return Walk::Blocked(NONE);
                     }
                     t = tri_of(across) as u32;
+                    entry = slot(across) as u32;
                     continue 'steps;
                 }
                 on_line[i as usize] = o == 0.0;

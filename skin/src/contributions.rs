@@ -1,6 +1,6 @@
 //! Field-weighted binding: the top-k bones by summed contribution (the 2D seed's rule).
 
-use alloc::vec::Vec;
+use smallvec::SmallVec;
 
 use crate::error::SkinError;
 use crate::influences::{Influences, MAX_INFLUENCES};
@@ -36,7 +36,8 @@ pub fn from_contributions(
     if k == 0 || k > MAX_INFLUENCES {
         return Err(SkinError::InvalidInfluenceCount { k });
     }
-    let mut totals: Vec<(u16, f64)> = Vec::new();
+    // Per-bone totals; a vertex rarely hears from more than a handful of bones.
+    let mut totals: SmallVec<[(u16, f64); 16]> = SmallVec::new();
     for (index, (bone, value)) in per_vertex.into_iter().enumerate() {
         if !value.is_finite() {
             return Err(SkinError::NonFinite {
@@ -55,7 +56,7 @@ pub fn from_contributions(
             None => totals.push((bone, f64::from(value))),
         }
     }
-    totals.retain(|&(_, t)| t > 0.0);
+    totals.retain(|&mut (_, t)| t > 0.0);
     if totals.is_empty() {
         return Err(SkinError::ZeroContribution);
     }

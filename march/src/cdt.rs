@@ -565,7 +565,10 @@ impl Cdt {
         let mut created: Vec<[u32; 2]> = Vec::new();
         while let Some([x, y]) = queue.pop_front() {
             budget = budget.saturating_sub(1);
-            let Some(e) = self.find_edge(x, y).filter(|_| budget > 0) else {
+            let Some(e) = self
+                .find_edge(x, y)
+                .filter(|&e| budget > 0 && self.twin_of(e) != NONE)
+            else {
                 return Err(CdtError::Crossing(NONE));
             };
             let p = self.apex(e);

@@ -181,6 +181,31 @@ fn bad_rings_are_typed_errors() {
             ..
         })
     ));
+    // A corner of one ring on an edge of another, and two rings sharing part of an edge:
+    // found exactly by the triangulation.
+    let touching = [
+        square(Vec2::ZERO, 10.0),
+        Ring {
+            points: vec![
+                Vec2::new(10.0, 5.0),
+                Vec2::new(20.0, 0.0),
+                Vec2::new(20.0, 10.0),
+            ],
+            hole: false,
+            parent: None,
+        },
+    ];
+    let overlapping = [square(Vec2::ZERO, 10.0), square(Vec2::new(10.0, 2.0), 5.0)];
+    for rings in [touching, overlapping] {
+        assert!(matches!(
+            triangulate(&rings, &options),
+            Err(MarchError::RingsCross {
+                ring_a: 0,
+                ring_b: 1,
+                ..
+            })
+        ));
+    }
     let bow_tie = Ring {
         points: vec![Vec2::ZERO, Vec2::ONE, Vec2::X, Vec2::Y],
         hole: false,

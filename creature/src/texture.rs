@@ -156,7 +156,9 @@ impl Default for TextureOptions {
 ///   × `depth_shading` × field sum, clamped; the base textures are procedural (value noise
 ///   rings and cellular noise) in a square frame, so they are not stretched;
 /// - alpha is the pixel's coverage of the inside (`field ≥ 1`), anti-aliased with the
-///   first-order distance `(field − 1) / |∇field|`;
+///   first-order distance `(field − 1) / |∇field|`, and never 0 for a pixel holding a ball's
+///   centre (each ball's disk is inside, so a part thinner than a pixel, between pixel
+///   centres, still shows);
 /// - the normal of the height field `normal_relief × field`, `n = normalize(−r ∂F/∂x,
 ///   −r ∂F/∂y, 1)`, encoded as `n · 0.5 + 0.5` (+x right, +y up: glTF's convention);
 /// - channels are rounded to the nearest byte (ties to even).
@@ -218,7 +220,7 @@ pub fn render(
     for first in (0..n).step_by(BAND_ROWS) {
         let rows = first..(first + BAND_ROWS).min(n);
         footprints.splat(&mut planes, rows.clone());
-        finisher.rows(&planes, rows);
+        finisher.rows(&planes, rows, &footprints.centres);
         planes.clear();
     }
     Ok(finisher.images())
@@ -226,6 +228,24 @@ pub fn render(
 
 /// Rows of the image summed and finished at a time.
 const BAND_ROWS: usize = 4;
+
+/// The least coverage of a texel holding a ball's centre: one step of alpha.
+const MIN_COVERAGE: f32 = 1.0 / 255.0;
+
+/// The texel holding a ball's centre, and a lower bound on its coverage.
+///
+/// Each ball alone reaches the iso-level out to its radius `R` (the seed falloff is 1 there),
+/// so its disk is inside the creature. The disk's centre lies in the texel, which therefore
+/// holds at least a quarter disk of radius `min(R, tx/2, ty/2)`: that area over the texel's
+/// is its least coverage (and at least [`MIN_COVERAGE`]). The first-order coverage already
+/// exceeds it unless the ball is thin next to a texel; then it is what keeps a part thinner
+/// than a texel, lying between texel centres, from vanishing from the texture.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Centre {
+    row: usize,
+    column: usize,
+    least: f32,
+}
 
 /// One ball's footprint on the image: the texels within its cutoff circle, the seed falloff
 /// split into x and y factors, `f = e^(−B) · exp(B dx² / R²) · exp(B dy² / R²)`.
@@ -252,12 +272,14 @@ struct Run {
 
 /// Every ball's footprint, and their column factors: per column of a footprint, the x factor
 /// `fx` at the texel's centre and `2k dx fx`, so each texel adds f = fx·fy,
-/// ∂f/∂x = (2k dx fx)·fy, ∂f/∂y = fx·(2k dy fy), and f times the colour and wood weight.
+/// ∂f/∂x = (2k dx fx)·fy, ∂f/∂y = fx·(2k dy fy), and f times the colour and wood weight;
+/// and the texels holding the balls' centres, by row.
 struct Footprints {
     balls: Vec<Footprint>,
     runs: Vec<Run>,
     fx: Vec<f32>,
     fx_dx: Vec<f32>,
+    centres: Vec<Centre>,
     n: usize,
 }
 
@@ -271,13 +293,32 @@ impl Footprints {
             runs: Vec::new(),
             fx: Vec::new(),
             fx_dx: Vec::new(),
+            centres: Vec::new(),
             n,
         };
         let peak = math::exp(-SEED_BLOBBINESS);
         let inverse = texel.recip();
         let mut scratch = RowScratch::default();
+        let quarter_disk = core::f32::consts::FRAC_PI_4 / (texel.x * texel.y);
+        let half = texel.min_element() * 0.5;
         for b in balls {
             let centre = b.ball.center;
+            let (column, row) = (
+                noise::floor_i((centre.x - min.x) / texel.x),
+                noise::floor_i((max.y - centre.y) / texel.y),
+            );
+            if let (Ok(column @ 0..), Ok(row @ 0..)) =
+                (usize::try_from(column), usize::try_from(row))
+                && column < n
+                && row < n
+            {
+                let r = b.ball.radius.min(half);
+                out.centres.push(Centre {
+                    row,
+                    column,
+                    least: (r * r * quarter_disk).max(MIN_COVERAGE),
+                });
+            }
             let k = SEED_BLOBBINESS / (b.ball.radius * b.ball.radius);
             let cutoff = Falloff::SEED.cutoff_radius(b.ball.radius, DEFAULT_EPSILON);
             let Some(columns) = pixel_range(
@@ -366,14 +407,22 @@ impl Footprints {
                 wood: b.texture_weights.x,
             });
         }
+        out.centres.sort_unstable_by_key(|c| (c.row, c.column));
         out
     }
 
     /// Adds every ball's contribution to the image rows `rows` (plane row 0 is `rows.start`)
-    /// and widens the rows' spans to the columns it reaches.
+    /// and widens the rows' spans to the columns it reaches (and to the texels holding the
+    /// balls' centres).
     #[inline(never)]
     fn splat(&self, planes: &mut Planes, rows: Range<usize>) {
         let n = self.n;
+        for centre in self.centres.iter().filter(|c| rows.contains(&c.row)) {
+            if let Some(span) = planes.spans.get_mut(centre.row - rows.start) {
+                span.0 = span.0.min(centre.column);
+                span.1 = span.1.max(centre.column + 1);
+            }
+        }
         for ball in &self.balls {
             let Some(runs) = self.runs.get(ball.runs.clone()) else {
                 continue;
@@ -603,7 +652,7 @@ impl Finisher {
     /// Finishes the image rows `rows` from their sums (plane row 0 is `rows.start`) and
     /// appends them to the images (rows are finished in order, each once).
     #[inline(never)]
-    fn rows(&mut self, planes: &Planes, rows: Range<usize>) {
+    fn rows(&mut self, planes: &Planes, rows: Range<usize>, centres: &[Centre]) {
         let n = self.n;
         for (local, row) in rows.enumerate() {
             let (lo, hi) = planes.spans.get(local).copied().unwrap_or((n, 0));
@@ -625,7 +674,7 @@ impl Finisher {
                     albedo.get_mut(4 * hi..).unwrap_or_default(),
                     normals.get_mut(4 * hi..).unwrap_or_default(),
                 );
-                if !self.finish(planes, local * n, row, lo..hi) {
+                if !self.finish(planes, local * n, row, lo..hi, centres) {
                     let albedo = self.albedo_row.get_mut(4 * lo..4 * hi).unwrap_or_default();
                     let normals = self.normal_row.get_mut(4 * lo..4 * hi).unwrap_or_default();
                     defaults(albedo, normals);
@@ -648,6 +697,7 @@ impl Finisher {
         start: usize,
         row: usize,
         columns: Range<usize>,
+        centres: &[Centre],
     ) -> bool {
         let (lo, hi) = (columns.start, columns.end);
         let span = start + lo..start + hi;
@@ -677,10 +727,21 @@ impl Finisher {
         ) else {
             return false;
         };
-        // 1. The normal, and the coverage.
+        // 1. The normal, and the coverage: at least the least coverage of the texels holding a
+        //    ball's centre (see `Centre`).
         normals(gx, gy, self.relief, packed);
         unpack(packed, normal_row);
         coverages(sum, gx, gy, self.inverse_pixel, coverage);
+        let first = centres.partition_point(|c| c.row < row);
+        for centre in centres.iter().skip(first).take_while(|c| c.row == row) {
+            if let Some(coverage) = centre
+                .column
+                .checked_sub(lo)
+                .and_then(|i| coverage.get_mut(i))
+            {
+                *coverage = max(*coverage, centre.least);
+            }
+        }
         // 2. The base textures only where the creature is (or its anti-aliased rim); outside,
         //    the colour is kept (without detail, base 1) so filtering at the rim does not bleed
         //    black.
@@ -981,6 +1042,29 @@ mod tests {
             let n = decode([p[0], p[1], p[2], p[3]]);
             assert!((n.length() - 1.0).abs() < 0.02, "{n}");
         }
+    }
+
+    #[test]
+    fn a_ball_thinner_than_a_texel_between_texel_centres_still_shows() {
+        // Texels 10 units wide; a ball of radius 1 at (9, 1): no texel centre within its
+        // cutoff circle (4.4), the nearest, (5, 5), is 5.7 away.
+        let tiny = [ball(9.0, 1.0, 1.0, Vec3::ONE)];
+        let bounds = (Vec2::ZERO, Vec2::splat(40.0));
+        let (albedo, _) = render(&tiny, bounds, &TextureOptions::DEFAULT.with_size(4)).unwrap();
+        // Row 3 from the top holds y in [0, 10]; column 0 holds x in [0, 10].
+        let alpha = |x, y| albedo.pixel(x, y).unwrap()[3];
+        // A quarter disk of radius 1 in a 10 × 10 texel: 0.79% of it, 2 of 255.
+        assert_eq!(alpha(0, 3), 2);
+        let others = (0..4).flat_map(|y| (0..4).map(move |x| (x, y)));
+        assert!(
+            others
+                .filter(|&p| p != (0, 3))
+                .all(|(x, y)| alpha(x, y) == 0)
+        );
+        // A ball as wide as the texel: a quarter of a disk of radius 5, 20% of it.
+        let wide = [ball(9.0, 1.0, 5.0, Vec3::ONE)];
+        let (albedo, _) = render(&wide, bounds, &TextureOptions::DEFAULT.with_size(4)).unwrap();
+        assert!(albedo.pixel(0, 3).unwrap()[3] >= 50);
     }
 
     #[test]

@@ -288,12 +288,19 @@ impl Footprints {
     // the stages; each runs once per render or band.
     #[inline(never)]
     fn new(balls: &[Ball2d], (min, max): (Vec2, Vec2), texel: Vec2, n: usize) -> Self {
+        // Room for every footprint's columns and rows at once (at most the box of the cutoff
+        // circle each), so the tables do not grow step by step.
+        let (columns, rows) = balls.iter().fold((0, 0), |(columns, rows), b| {
+            let diameter = 2.0 * Falloff::SEED.cutoff_radius(b.ball.radius, DEFAULT_EPSILON);
+            let span = |texel: f32| math::ceil_non_negative(diameter / texel).saturating_add(2);
+            (columns + span(texel.x).min(n), rows + span(texel.y).min(n))
+        });
         let mut out = Self {
             balls: Vec::with_capacity(balls.len()),
-            runs: Vec::new(),
-            fx: Vec::new(),
-            fx_dx: Vec::new(),
-            centres: Vec::new(),
+            runs: Vec::with_capacity(rows),
+            fx: Vec::with_capacity(columns),
+            fx_dx: Vec::with_capacity(columns),
+            centres: Vec::with_capacity(balls.len()),
             n,
         };
         let peak = math::exp(-SEED_BLOBBINESS);
@@ -484,7 +491,7 @@ fn accumulate(planes: [&mut [f32]; 7], (fx, fx_dx): (&[f32], &[f32]), factors: [
 /// [`accumulate`]'s loop: the planes as separate parameters, so the compiler knows they do
 /// not overlap (no run-time overlap checks before each run).
 #[allow(clippy::too_many_arguments)]
-#[inline(never)]
+#[inline(never)] // inlined, the compiler loses that the planes do not overlap
 fn sum_7(
     sum: &mut [f32],
     gx: &mut [f32],
@@ -556,15 +563,19 @@ struct Planes {
 impl Planes {
     fn new(rows: usize, n: usize) -> Self {
         let len = rows * n;
+        // Planes of different lengths (by 80 bytes each), so that the same texel of two planes
+        // is unlikely to sit at the same address modulo 4 KiB, which would make the
+        // processor treat a load from one as depending on a store to the other.
+        let plane = |k: usize| vec![0.0; len + 20 * k];
         Self {
             n,
-            sum: vec![0.0; len],
-            gx: vec![0.0; len],
-            gy: vec![0.0; len],
-            r: vec![0.0; len],
-            g: vec![0.0; len],
-            b: vec![0.0; len],
-            wood: vec![0.0; len],
+            sum: plane(0),
+            gx: plane(1),
+            gy: plane(2),
+            r: plane(3),
+            g: plane(4),
+            b: plane(5),
+            wood: plane(6),
             spans: vec![(n, 0); rows],
         }
     }
@@ -605,8 +616,8 @@ struct Finisher {
     albedo: Vec<u8>,
     normals: Vec<u8>,
     /// One row of each image, finished before it is appended.
-    albedo_row: Vec<u8>,
-    normal_row: Vec<u8>,
+    albedo_row: Vec<[u8; 4]>,
+    normal_row: Vec<[u8; 4]>,
     extent: Vec2,
     texel: Vec2,
     side: f32,
@@ -618,8 +629,6 @@ struct Finisher {
     coverage: Vec<f32>,
     base: Vec<f32>,
     ice: Vec<f32>,
-    /// A row of RGBA texels packed in `u32`s (vector-friendly), before they become bytes.
-    packed: Vec<u32>,
 }
 
 impl Finisher {
@@ -632,8 +641,8 @@ impl Finisher {
             n,
             albedo: Vec::with_capacity(n * n * 4),
             normals: Vec::with_capacity(n * n * 4),
-            albedo_row: vec![0; n * 4],
-            normal_row: vec![0; n * 4],
+            albedo_row: vec![[0; 4]; n],
+            normal_row: vec![[0; 4]; n],
             extent,
             texel,
             side,
@@ -645,7 +654,6 @@ impl Finisher {
             coverage: vec![0.0; n],
             base: vec![1.0; n],
             ice: vec![0.0; n],
-            packed: vec![0; n],
         }
     }
 
@@ -658,32 +666,32 @@ impl Finisher {
             let (lo, hi) = planes.spans.get(local).copied().unwrap_or((n, 0));
             let (lo, hi) = (lo.min(n), hi.min(n));
             // Where no ball reaches, the albedo is transparent black and the normal flat.
-            let defaults = |albedo: &mut [u8], normals: &mut [u8]| {
-                albedo.fill(0);
-                for px in normals.chunks_exact_mut(4) {
-                    px.copy_from_slice(&FLAT_NORMAL);
-                }
+            let defaults = |albedo: &mut [[u8; 4]], normals: &mut [[u8; 4]]| {
+                albedo.fill([0; 4]);
+                normals.fill(FLAT_NORMAL);
             };
             let (albedo, normals) = (&mut self.albedo_row, &mut self.normal_row);
             if lo < hi {
                 defaults(
-                    albedo.get_mut(..4 * lo).unwrap_or_default(),
-                    normals.get_mut(..4 * lo).unwrap_or_default(),
+                    albedo.get_mut(..lo).unwrap_or_default(),
+                    normals.get_mut(..lo).unwrap_or_default(),
                 );
                 defaults(
-                    albedo.get_mut(4 * hi..).unwrap_or_default(),
-                    normals.get_mut(4 * hi..).unwrap_or_default(),
+                    albedo.get_mut(hi..).unwrap_or_default(),
+                    normals.get_mut(hi..).unwrap_or_default(),
                 );
                 if !self.finish(planes, local * n, row, lo..hi, centres) {
-                    let albedo = self.albedo_row.get_mut(4 * lo..4 * hi).unwrap_or_default();
-                    let normals = self.normal_row.get_mut(4 * lo..4 * hi).unwrap_or_default();
+                    let albedo = self.albedo_row.get_mut(lo..hi).unwrap_or_default();
+                    let normals = self.normal_row.get_mut(lo..hi).unwrap_or_default();
                     defaults(albedo, normals);
                 }
             } else {
                 defaults(albedo, normals);
             }
-            self.albedo.extend_from_slice(&self.albedo_row);
-            self.normals.extend_from_slice(&self.normal_row);
+            self.albedo
+                .extend_from_slice(self.albedo_row.as_flattened());
+            self.normals
+                .extend_from_slice(self.normal_row.as_flattened());
         }
     }
 
@@ -714,23 +722,21 @@ impl Finisher {
             return false;
         };
         let (Some(normal_row), Some(albedo_row)) = (
-            self.normal_row.get_mut(4 * lo..4 * hi),
-            self.albedo_row.get_mut(4 * lo..4 * hi),
+            self.normal_row.get_mut(lo..hi),
+            self.albedo_row.get_mut(lo..hi),
         ) else {
             return false;
         };
-        let (Some(coverage), Some(base), Some(ice), Some(packed)) = (
+        let (Some(coverage), Some(base), Some(ice)) = (
             self.coverage.get_mut(lo..hi),
             self.base.get_mut(lo..hi),
             self.ice.get_mut(lo..hi),
-            self.packed.get_mut(lo..hi),
         ) else {
             return false;
         };
         // 1. The normal, and the coverage: at least the least coverage of the texels holding a
         //    ball's centre (see `Centre`).
-        normals(gx, gy, self.relief, packed);
-        unpack(packed, normal_row);
+        normals(gx, gy, self.relief, normal_row);
         coverages(sum, gx, gy, self.inverse_pixel, coverage);
         let first = centres.partition_point(|c| c.row < row);
         for centre in centres.iter().skip(first).take_while(|c| c.row == row) {
@@ -764,8 +770,7 @@ impl Finisher {
             }
         }
         // 3. The albedo.
-        albedos([r, g, b], base, coverage, self.shading, packed);
-        unpack(packed, albedo_row);
+        albedos([r, g, b], base, coverage, self.shading, albedo_row);
         true
     }
 
@@ -787,11 +792,11 @@ impl Finisher {
     }
 }
 
-/// The normal of the height field `relief × field` from its gradient, packed (see [`rgba`]):
+/// The normal of the height field `relief × field` from its gradient, as texels (see [`rgba`]):
 /// `(−relief ∂F/∂x, −relief ∂F/∂y, 1)` is at least 1 long, so only an infinite one cannot be
 /// normalised (it gives the flat normal).
-fn normals(gx: &[f32], gy: &[f32], relief: f32, packed: &mut [u32]) {
-    for ((&gx, &gy), packed) in gx.iter().zip(gy).zip(packed) {
+fn normals(gx: &[f32], gy: &[f32], relief: f32, texels: &mut [[u8; 4]]) {
+    for ((&gx, &gy), texel) in gx.iter().zip(gy).zip(texels) {
         let (nx, ny) = (-relief * gx, -relief * gy);
         let length2 = nx * nx + ny * ny + 1.0;
         let finite = length2 < f32::INFINITY;
@@ -805,7 +810,7 @@ fn normals(gx: &[f32], gy: &[f32], relief: f32, packed: &mut [u32]) {
         } else {
             (0.0, 0.0, 1.0)
         };
-        *packed = rgba(nx * 0.5 + 0.5, ny * 0.5 + 0.5, nz * 0.5 + 0.5, 1.0);
+        *texel = rgba(nx * 0.5 + 0.5, ny * 0.5 + 0.5, nz * 0.5 + 0.5, 1.0);
     }
 }
 
@@ -898,23 +903,23 @@ fn blend(wood: &mut [f32], ice: &[f32], coverage: &[f32], [sum, wood_sum]: [&[f3
     }
 }
 
-/// The albedo, packed (see [`rgba`]): the field-weighted colour (colour sums / field) × base ×
+/// The albedo, as texels (see [`rgba`]): the field-weighted colour (colour sums / field) × base ×
 /// shading × field, that is the colour sums × base × shading; alpha the coverage.
 fn albedos(
     [r, g, b]: [&[f32]; 3],
     base: &[f32],
     coverage: &[f32],
     shading: f32,
-    packed: &mut [u32],
+    texels: &mut [[u8; 4]],
 ) {
     let texels = r
         .iter()
         .zip(g.iter().zip(b))
         .zip(base.iter().zip(coverage))
-        .zip(packed);
-    for (((&r, (&g, &b)), (&base, &coverage)), packed) in texels {
+        .zip(texels);
+    for (((&r, (&g, &b)), (&base, &coverage)), texel) in texels {
         let k = base * shading;
-        *packed = rgba(r * k, g * k, b * k, coverage);
+        *texel = rgba(r * k, g * k, b * k, coverage);
     }
 }
 
@@ -940,18 +945,11 @@ fn byte(v: f32) -> u32 {
     (unit(v) * 255.0 + TWO_23).to_bits() - TWO_23.to_bits()
 }
 
-/// Four channels in `[0, 1]` as an RGBA8 texel packed little-end first.
+/// Four channels in `[0, 1]` as an RGBA8 texel (packed in a `u32` first: shifts and ors
+/// that vectorise).
 #[inline]
-fn rgba(r: f32, g: f32, b: f32, a: f32) -> u32 {
-    byte(r) | byte(g) << 8 | byte(b) << 16 | byte(a) << 24
-}
-
-/// Packed texels to their bytes.
-#[inline]
-fn unpack(packed: &[u32], bytes: &mut [u8]) {
-    for (out, texel) in bytes.chunks_exact_mut(4).zip(packed) {
-        out.copy_from_slice(&texel.to_le_bytes());
-    }
+fn rgba(r: f32, g: f32, b: f32, a: f32) -> [u8; 4] {
+    (byte(r) | byte(g) << 8 | byte(b) << 16 | byte(a) << 24).to_le_bytes()
 }
 
 #[cfg(test)]

@@ -6,14 +6,14 @@
 //! approach cost about 19 million `exp` per creature). Per pixel the pass accumulates the field
 //! sum, its gradient, and the field-weighted colour and texture weights (`Σ f_i a_i / Σ f_i`).
 //!
-//! Four rows at a time: the balls' runs on those rows add into seven planes (one vector
-//! multiply-add per plane and texel), then each row is finished over the columns some ball
-//! reaches only (normals and coverage, the base textures where the creature is, the albedo,
-//! all in loops the compiler vectorises); the rest of a row is transparent black with a flat
-//! normal. The hot loops avoid what keeps the compiler from vectorising: float-to-integer
-//! conversions (bytes and floors come from adding `1.5 · 2²³`), `exp` calls
-//! ([`math::exp_poly`]), NaN-aware `min`/`max`, and overlapping slices (the seven planes are
-//! separate parameters of one function).
+//! Four rows at a time: the balls' runs on those rows add into seven planes (a multiply and
+//! an add per plane and texel, four texels per vector), then each row is finished over the
+//! columns some ball reaches only (normals and coverage, the base textures where the creature
+//! is, the albedo, all in loops the compiler vectorises); the rest of a row is transparent
+//! black with a flat normal. The hot loops avoid what keeps the compiler from vectorising:
+//! float-to-integer conversions (bytes and floors come from adding `1.5 · 2²³`), `exp` calls
+//! (a polynomial instead), NaN-aware `min`/`max`, and overlapping slices (the seven planes
+//! are separate parameters of one function).
 
 use alloc::vec;
 use alloc::vec::Vec;

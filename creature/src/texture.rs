@@ -305,6 +305,7 @@ impl Footprints {
         };
         let peak = math::exp(-SEED_BLOBBINESS);
         let inverse = texel.recip();
+        let n_f = n as f32;
         let mut scratch = RowScratch::default();
         let quarter_disk = core::f32::consts::FRAC_PI_4 / (texel.x * texel.y);
         let half = texel.min_element() * 0.5;
@@ -364,9 +365,12 @@ impl Footprints {
             // (from `first` to `last`, none if `first > last`), intersected with `columns`.
             let (c0f, c1f) = (c0 as f32, c1 as f32);
             let half = move |y: f32| math::sqrt(math::max(cutoff2 - y * y, 0.0));
+            // Clamped next to the image first, where `ceil_f` and `floor_f` are exact.
+            let column =
+                move |x: f32| math::min(math::max((x - min.x) * inverse.x - 0.5, -1.0), n_f);
             scratch.first.clear();
             scratch.first.extend((r0..r1 + 1).map(move |r| {
-                let first = math::ceil_f((centre.x - half(y(r)) - min.x) * inverse.x - 0.5);
+                let first = math::ceil_f(column(centre.x - half(y(r))));
                 if y(r) * y(r) <= cutoff2 {
                     math::max(first, c0f)
                 } else {
@@ -374,12 +378,10 @@ impl Footprints {
                 }
             }));
             scratch.last.clear();
-            scratch.last.extend((r0..r1 + 1).map(move |r| {
-                math::min(
-                    math::floor_f((centre.x + half(y(r)) - min.x) * inverse.x - 0.5),
-                    c1f,
-                )
-            }));
+            scratch.last.extend(
+                (r0..r1 + 1)
+                    .map(move |r| math::min(math::floor_f(column(centre.x + half(y(r)))), c1f)),
+            );
             scratch.fy.clear();
             scratch
                 .fy
@@ -1063,6 +1065,29 @@ mod tests {
         let wide = [ball(9.0, 1.0, 5.0, Vec3::ONE)];
         let (albedo, _) = render(&wide, bounds, &TextureOptions::DEFAULT.with_size(4)).unwrap();
         assert!(albedo.pixel(0, 3).unwrap()[3] >= 50);
+    }
+
+    #[test]
+    fn balls_much_larger_than_the_image_or_far_outside_it_render_sanely() {
+        // A ball 10⁶ times the box (its cutoff circle 10⁸ texels wide): every texel inside,
+        // the normals nearly flat.
+        let huge = [ball(0.3, -0.2, 1e6, Vec3::ONE)];
+        let bounds = (Vec2::splat(-1.0), Vec2::splat(1.0));
+        let (albedo, normals) =
+            render(&huge, bounds, &TextureOptions::DEFAULT.with_size(64)).unwrap();
+        assert!(albedo.rgba.chunks_exact(4).all(|p| p[3] == 255));
+        assert!(normals.rgba.chunks_exact(4).all(|p| p[2] >= 254));
+        // A ball whose cutoff circle misses the box: transparent, flat.
+        let far = [ball(100.0, 0.0, 5.0, Vec3::ONE)];
+        let (albedo, normals) =
+            render(&far, bounds, &TextureOptions::DEFAULT.with_size(16)).unwrap();
+        assert!(albedo.rgba.iter().all(|&b| b == 0));
+        assert!(
+            normals
+                .rgba
+                .chunks_exact(4)
+                .all(|p| p == [128, 128, 255, 255])
+        );
     }
 
     #[test]

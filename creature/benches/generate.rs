@@ -1,6 +1,7 @@
 //! `generate` (3D) per kind over 16 fixed seeds, and `generate_2d` end to end, without a texture and with a 256² texture and normal map, over
-//! 16 fixed seeds; and, as the reference in the same run, the texture rendered the seed's way
-//! (every ball's `exp` at every pixel, field sum and colour blend, no culling).
+//! 16 fixed seeds; the texture pass alone (`texture::render`, 256², the same 16 creatures);
+//! and, as the reference in the same run, the texture rendered the seed's way (every ball's
+//! `exp` at every pixel, field sum and colour blend, no culling).
 
 #![allow(clippy::expect_used)]
 
@@ -8,7 +9,7 @@ use core::hint::black_box;
 
 use creature::glam::Vec2;
 use creature::metaball::{Ball2, Falloff};
-use creature::{Kind, Params, Params2d, generate, generate_2d};
+use creature::{Kind, Params, Params2d, TextureOptions, generate, generate_2d, texture};
 use criterion::{Criterion, criterion_group, criterion_main};
 
 const SEEDS: u64 = 16;
@@ -29,6 +30,23 @@ fn bench(c: &mut Criterion) {
         b.iter(|| {
             seed = (seed + 1) % SEEDS;
             black_box(generate_2d(black_box(seed), &textured).expect("valid"))
+        });
+    });
+    // The texture pass alone: albedo and normal map of the same 16 creatures, as
+    // `generate_2d` renders them (its noise seed included).
+    let creatures: Vec<_> = (0..SEEDS)
+        .map(|seed| {
+            let c = generate_2d(seed, &plain).expect("valid");
+            let options = TextureOptions::DEFAULT.with_noise_seed((seed ^ (seed >> 32)) as u32);
+            (c.balls, c.bounds, options)
+        })
+        .collect();
+    group.bench_function("texture_256_only", |b| {
+        let mut i = 0;
+        b.iter(|| {
+            i = (i + 1) % creatures.len();
+            let (balls, bounds, options) = &creatures[i];
+            black_box(texture::render(black_box(balls), *bounds, options).expect("valid"))
         });
     });
     // Reference: the seed's texture pass, every ball at every pixel (value + colour blend),

@@ -68,6 +68,62 @@ pub(crate) fn ceil_non_negative(x: f32) -> usize {
     }
 }
 
+/// `min` without NaN handling: `b` when either is NaN. One instruction, also in vectorised
+/// loops (`f32::min` needs a few to return the number).
+#[inline]
+pub(crate) fn min(a: f32, b: f32) -> f32 {
+    if a < b { a } else { b }
+}
+
+/// `max` without NaN handling: `b` when either is NaN (see [`min`]).
+#[inline]
+pub(crate) fn max(a: f32, b: f32) -> f32 {
+    if a > b { a } else { b }
+}
+
+/// `floor` for `|v| < 2²²`, without `std` and without a float-to-integer conversion, so loops
+/// of it vectorise: adding and subtracting 1.5 · 2²³ rounds to the nearest integer, then one
+/// step down where that rounded up.
+#[inline]
+pub(crate) fn floor_f(v: f32) -> f32 {
+    const ROUND: f32 = 12_582_912.0;
+    let r = (v + ROUND) - ROUND;
+    if r > v { r - 1.0 } else { r }
+}
+
+/// `ceil` for `|v| < 2²²` (see [`floor_f`]).
+#[inline]
+pub(crate) fn ceil_f(v: f32) -> f32 {
+    -floor_f(-v)
+}
+
+/// `e^x` from arithmetic alone: `x` clamped to [−87, 88] (a NaN gives `e^−87`), split as
+/// `2^n · e^r` with `|r| ≤ ln 2 / 2` and `e^r` a degree-7 Taylor polynomial; within 2 units in
+/// the last place of `f32` over that range. The same bits with `std` or `libm` and on every
+/// platform, and no call, so loops of it vectorise.
+#[inline]
+pub(crate) fn exp_poly(x: f32) -> f32 {
+    // 1.5 · 2²³: adding it rounds to an integer, held in the low mantissa bits.
+    const ROUND: f32 = 12_582_912.0;
+    // ln 2 in two parts (0.693145751953125 and 1.4286068e-6, the first with 16 significant
+    // bits, so `n · LN2_HI` is exact for |n| < 256).
+    const LN2_HI: f32 = f32::from_bits(0x3f31_7200);
+    const LN2_LO: f32 = f32::from_bits(0x35bf_be8e);
+    let x = min(max(x, -87.0), 88.0);
+    let t = x * core::f32::consts::LOG2_E + ROUND;
+    let n = t - ROUND;
+    let r = x - n * LN2_HI - n * LN2_LO;
+    let p = 1.0
+        + r * (1.0
+            + r * (1.0 / 2.0
+                + r * (1.0 / 6.0
+                    + r * (1.0 / 24.0
+                        + r * (1.0 / 120.0 + r * (1.0 / 720.0 + r * (1.0 / 5040.0)))))));
+    // `t`'s bits are those of ROUND plus n; 2^n from its exponent bits (n in [−126, 127]).
+    let n = t.to_bits().wrapping_sub(ROUND.to_bits()) as i32;
+    p * f32::from_bits(((n + 127) as u32) << 23)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -83,5 +139,37 @@ mod tests {
         assert_eq!(ceil_non_negative(2.0), 2);
         assert_eq!(ceil_non_negative(2.01), 3);
         assert_eq!(ceil_non_negative(0.0), 0);
+        assert_eq!((min(1.0, 2.0), max(1.0, 2.0)), (1.0, 2.0));
+        assert_eq!((min(f32::NAN, 2.0), max(f32::NAN, 2.0)), (2.0, 2.0));
+        let cases = [
+            (0.0, 0.0, 0.0),
+            (0.5, 0.0, 1.0),
+            (1.0, 1.0, 1.0),
+            (2.5, 2.0, 3.0),
+            (-0.5, -1.0, 0.0),
+            (-1.5, -2.0, -1.0),
+            (3.999_999_8, 3.0, 4.0),
+            (-3.999_999_8, -4.0, -3.0),
+            (4e6 + 0.5, 4e6, 4e6 + 1.0),
+        ];
+        for (v, floor, ceil) in cases {
+            assert_eq!((floor_f(v), ceil_f(v)), (floor, ceil), "{v}");
+        }
+    }
+
+    #[test]
+    fn polynomial_exp_is_within_two_ulp() {
+        let mut worst = 0.0f64;
+        for i in 0..=200_000 {
+            let x = -87.0 + 175.0 * i as f32 / 200_000.0;
+            let exact = f64::from(x).exp();
+            let ulp = f64::from(f32::EPSILON) * exact;
+            worst = worst.max((f64::from(exp_poly(x)) - exact).abs() / ulp);
+        }
+        assert!(worst <= 2.0, "{worst} ulp");
+        assert_eq!(exp_poly(0.0), 1.0);
+        assert_eq!(exp_poly(-1000.0), exp_poly(-87.0));
+        assert_eq!(exp_poly(f32::NAN), exp_poly(-87.0));
+        assert!(exp_poly(1000.0).is_finite());
     }
 }

@@ -6,6 +6,8 @@ use alloc::vec::Vec;
 
 use glam::Vec2;
 
+use crate::math::{max, min};
+
 /// `floor` for the moderate magnitudes used here (core has no float `floor` without `std`).
 #[inline]
 pub(crate) fn floor_i(x: f32) -> i32 {
@@ -117,35 +119,61 @@ impl ValueTable {
         bottom + (top - bottom) * fy
     }
 
-    /// One row of the noise at height `y` (clamped to `[0, 1]`, like [`Self::at`]): the two
-    /// lattice rows around it interpolated in y, so [`Self::at_row`] only interpolates in x.
-    pub(crate) fn row(&self, y: f32, out: &mut Vec<f32>) {
-        let q = y.clamp(0.0, 1.0) * self.scale.y;
-        let iy = q as usize;
-        let fy = smooth(q - iy as f32);
-        let start = iy * self.columns;
-        out.clear();
-        let (Some(bottom), Some(top)) = (
-            self.values.get(start..start + self.columns),
-            self.values
-                .get(start + self.columns..start + 2 * self.columns),
-        ) else {
-            out.resize(self.columns, 0.0);
-            return;
-        };
-        out.extend(bottom.iter().zip(top).map(|(&a, &c)| a + (c - a) * fy));
+    /// The table interpolated in x at the points `xs` (each clamped to `[0, 1]`), lattice row
+    /// by lattice row: [`Expanded::row`] then only interpolates in y, a contiguous run the
+    /// compiler vectorises.
+    pub(crate) fn expand(&self, xs: &[f32]) -> Expanded {
+        // Each point's lattice column and smoothed weight, then row by row a plain lerp.
+        let weights: Vec<(usize, f32)> = xs
+            .iter()
+            .map(|&x| {
+                let q = x.clamp(0.0, 1.0) * self.scale.x;
+                let ix = q as usize;
+                (ix, smooth(q - ix as f32))
+            })
+            .collect();
+        let rows = self.values.len() / self.columns.max(1);
+        let mut values = Vec::with_capacity(rows * xs.len());
+        for lattice in self.values.chunks_exact(self.columns) {
+            values.extend(
+                weights
+                    .iter()
+                    .map(|&(ix, fx)| match lattice.get(ix..ix + 2) {
+                        Some(&[a, b]) => a + (b - a) * fx,
+                        _ => 0.0,
+                    }),
+            );
+        }
+        Expanded {
+            scale_y: self.scale.y,
+            width: xs.len(),
+            values,
+        }
     }
+}
 
-    /// The noise at `x` (clamped to `[0, 1]`) on a row made by [`Self::row`]: equal to
-    /// [`Self::at`] up to rounding.
+/// A [`ValueTable`] interpolated in x at fixed points (see [`ValueTable::expand`]).
+pub(crate) struct Expanded {
+    scale_y: f32,
+    width: usize,
+    values: Vec<f32>,
+}
+
+impl Expanded {
+    /// The two x-interpolated lattice rows around height `y` (clamped to `[0, 1]`) and the
+    /// weight of the upper one: the noise at point `i` is `a[i] + (b[i] − a[i]) · w`.
     #[inline]
-    pub(crate) fn at_row(&self, row: &[f32], x: f32) -> f32 {
-        let q = x.clamp(0.0, 1.0) * self.scale.x;
-        let ix = q as usize;
-        let fx = smooth(q - ix as f32);
-        match row.get(ix..ix + 2) {
-            Some(&[a, b]) => a + (b - a) * fx,
-            _ => 0.0,
+    pub(crate) fn row(&self, y: f32) -> (&[f32], &[f32], f32) {
+        let q = y.clamp(0.0, 1.0) * self.scale_y;
+        let iy = q as usize;
+        let w = smooth(q - iy as f32);
+        let start = iy * self.width;
+        match (
+            self.values.get(start..start + self.width),
+            self.values.get(start + self.width..start + 2 * self.width),
+        ) {
+            (Some(a), Some(b)) => (a, b, w),
+            _ => (&[], &[], 0.0),
         }
     }
 }
@@ -204,7 +232,7 @@ impl CellTable {
 
     /// The feature points that can be nearest on the row at height `y` (clamped to
     /// `[0, 1]`): per lattice column, the three candidate rows' x and squared y distance.
-    pub(crate) fn row(&self, y: f32, out: &mut CellRow) {
+    fn row(&self, y: f32, out: &mut CellRow) {
         let q = y.clamp(0.0, 1.0) * self.scale;
         let iy = q as usize + 1;
         out.x.clear();
@@ -223,58 +251,49 @@ impl CellTable {
         }
     }
 
-    /// The squared distances to the nearest and second-nearest feature points at `x` (clamped to
-    /// `[0, 1]`) on a row made by [`Self::row`]: equal to [`Self::at`]. Branch-free.
+    /// The 9 candidate feature points (x, squared y distance) of the points whose x falls in
+    /// lattice column `ix − 1` (stored as `ix`), on a row made by [`Self::row`].
     #[inline]
-    pub(crate) fn at_row(&self, row: &CellRow, x: f32) -> (f32, f32) {
-        let q = x.clamp(0.0, 1.0) * self.scale;
-        let ix = q as usize + 1;
-        let mut d1 = f32::MAX;
-        let mut d2 = f32::MAX;
-        if let (Some(xs), Some(dy2s)) = (row.x.get(ix - 1..=ix + 1), row.dy2.get(ix - 1..=ix + 1)) {
-            for (xs, dy2s) in xs.iter().zip(dy2s) {
-                for (&px, &dy2) in xs.iter().zip(dy2s) {
-                    let dx = px - q;
-                    let d = dx * dx + dy2;
-                    d2 = d2.min(d1.max(d));
-                    d1 = d1.min(d);
-                }
+    fn candidates(row: &CellRow, ix: usize) -> ([f32; 9], [f32; 9]) {
+        let mut xs = [0.0; 9];
+        let mut dy2s = [f32::MAX; 9];
+        if let (Some(x), Some(dy2)) = (
+            row.x.get(ix.wrapping_sub(1)..=ix + 1),
+            row.dy2.get(ix.wrapping_sub(1)..=ix + 1),
+        ) {
+            for ((x, dy2), (xs, dy2s)) in x
+                .iter()
+                .zip(dy2)
+                .zip(xs.chunks_exact_mut(3).zip(dy2s.chunks_exact_mut(3)))
+            {
+                xs.copy_from_slice(x);
+                dy2s.copy_from_slice(dy2);
             }
         }
-        (d1, d2)
+        (xs, dy2s)
     }
 }
 
 /// One row of [`CellTable`]'s candidate feature points (see [`CellTable::row`]).
 #[derive(Default)]
-pub(crate) struct CellRow {
+struct CellRow {
     x: Vec<[f32; 3]>,
     dy2: Vec<[f32; 3]>,
 }
 
-/// One row of the base textures (see [`BaseTextures::row`]): reused from row to row.
-#[derive(Default)]
-pub(crate) struct BaseRow {
-    y: f32,
-    warp: Vec<f32>,
-    grain: Vec<f32>,
-    frost: Vec<f32>,
-    cells: CellRow,
-}
-
-/// The procedural base textures of one render, tables built once.
 /// The centre of the wood texture's rings (below the square frame, so the rings arc).
 const WOOD_CENTRE: Vec2 = Vec2::new(0.5, -0.35);
 
-pub(crate) struct BaseTextures {
+/// The lattice tables of the base textures.
+struct Tables {
     warp: ValueTable,
     grain: ValueTable,
     cells: CellTable,
     frost: ValueTable,
 }
 
-impl BaseTextures {
-    pub(crate) fn new(seed: u32) -> Self {
+impl Tables {
+    fn new(seed: u32) -> Self {
         Self {
             warp: ValueTable::new(Vec2::splat(5.0), seed),
             grain: ValueTable::new(Vec2::new(60.0, 6.0), seed ^ 0x9e37_79b9),
@@ -285,9 +304,9 @@ impl BaseTextures {
 
     /// The wood-like base texture at `p` (the creature's square frame, `[0, 1]²`), in roughly
     /// `[0.58, 1]`: rings around a point below the creature, warped by value noise, with a
-    /// fine grain. The reference [`Self::wood_at`] is tested against.
+    /// fine grain. The reference [`BaseTextures::wood_row`] is tested against.
     #[cfg(test)]
-    pub(crate) fn wood(&self, p: Vec2) -> f32 {
+    fn wood(&self, p: Vec2) -> f32 {
         let r = (p - WOOD_CENTRE).length() * 14.0 + self.warp.at(p) * 0.9;
         let t = r - floor_i(r) as f32;
         // A soft triangle wave: dark thin rings on light wood.
@@ -296,49 +315,146 @@ impl BaseTextures {
     }
 
     /// The ice-like base texture at `p`, in roughly `[0.62, 1]`: pale cells with bright cracks
-    /// between them and a faint frost. The reference [`Self::ice_at`] is tested against.
+    /// between them and a faint frost. The reference [`BaseTextures::ice_row`] is tested
+    /// against.
     #[cfg(test)]
-    pub(crate) fn ice(&self, p: Vec2) -> f32 {
+    fn ice(&self, p: Vec2) -> f32 {
         let (d1, d2) = self.cells.at(p);
         let edge = (d2 - d1).min(0.25) * 4.0; // 0 on a crack, 1 inside a cell
         let crack = 1.0 - smooth(edge);
         0.62 + 0.1 * d1.min(1.0) + 0.2 * crack + 0.08 * self.frost.at(p)
     }
+}
 
-    /// Prepares `row` for the points `(x, y)` of one image row: [`Self::wood_at`] and
-    /// [`Self::ice_at`] then cost a few table look-ups and one or two square roots.
+/// The procedural base textures of one render at fixed x coordinates (the image's columns):
+/// the value noise interpolated in x once per render ([`ValueTable::expand`]), the cellular
+/// noise's columns grouped by lattice cell, so a row costs a few vector operations per point.
+pub(crate) struct BaseTextures {
+    cells: CellTable,
+    warp: Expanded,
+    grain: Expanded,
+    frost: Expanded,
+    /// Per point: the squared x distance to the wood's centre.
+    wood_dx2: Vec<f32>,
+    /// Per point: x in cellular-noise cells (clamped into the frame).
+    cell_x: Vec<f32>,
+    /// Runs of points in one lattice column: the run's end and the column (stored from 1).
+    cell_runs: Vec<(usize, usize)>,
+}
+
+/// One row of the base textures (see [`BaseTextures::row`]): reused from row to row.
+#[derive(Default)]
+pub(crate) struct BaseRow {
+    y: f32,
+    cells: CellRow,
+}
+
+impl BaseTextures {
+    /// The base textures of seed `seed` at the points whose x (in the square frame) are `xs`.
+    pub(crate) fn new(seed: u32, xs: &[f32]) -> Self {
+        let tables = Tables::new(seed);
+        let cell_x: Vec<f32> = xs
+            .iter()
+            .map(|&x| x.clamp(0.0, 1.0) * tables.cells.scale)
+            .collect();
+        let mut cell_runs: Vec<(usize, usize)> = Vec::new();
+        for (i, &q) in cell_x.iter().enumerate() {
+            let ix = q as usize + 1;
+            match cell_runs.last_mut() {
+                Some((end, last)) if *last == ix => *end = i + 1,
+                _ => cell_runs.push((i + 1, ix)),
+            }
+        }
+        Self {
+            warp: tables.warp.expand(xs),
+            grain: tables.grain.expand(xs),
+            frost: tables.frost.expand(xs),
+            wood_dx2: xs
+                .iter()
+                .map(|&x| (x - WOOD_CENTRE.x) * (x - WOOD_CENTRE.x))
+                .collect(),
+            cell_x,
+            cell_runs,
+            cells: tables.cells,
+        }
+    }
+
+    /// Prepares `row` for the points `(x, y)` of one image row.
     pub(crate) fn row(&self, y: f32, row: &mut BaseRow) {
         row.y = y;
-        self.warp.row(y, &mut row.warp);
-        self.grain.row(y, &mut row.grain);
-        self.frost.row(y, &mut row.frost);
         self.cells.row(y, &mut row.cells);
     }
 
-    /// [`Self::wood`] at `(x, row's y)`, up to rounding.
-    #[inline]
-    pub(crate) fn wood_at(&self, row: &BaseRow, x: f32) -> f32 {
-        let (dx, dy) = (x - WOOD_CENTRE.x, row.y - WOOD_CENTRE.y);
-        let r = crate::math::sqrt(dx * dx + dy * dy) * 14.0 + self.warp.at_row(&row.warp, x) * 0.9;
-        // r ≥ 0 (a distance plus a value in [0, 1)): truncation is the floor.
-        let t = r - (r as i32) as f32;
-        let ring = smooth((2.0 * t - 1.0).abs());
-        0.58 + 0.3 * ring + 0.12 * self.grain.at_row(&row.grain, x)
+    /// The wood-like texture ([`Tables::wood`] up to rounding) at the points `range` of `row`,
+    /// into `out` (one value per point of `range`).
+    pub(crate) fn wood_row(&self, row: &BaseRow, range: core::ops::Range<usize>, out: &mut [f32]) {
+        let (wa, wb, ww) = self.warp.row(row.y);
+        let (ga, gb, gw) = self.grain.row(row.y);
+        let dy = row.y - WOOD_CENTRE.y;
+        let dy2 = dy * dy;
+        let (Some(wa), Some(wb), Some(ga), Some(gb), Some(dx2)) = (
+            wa.get(range.clone()),
+            wb.get(range.clone()),
+            ga.get(range.clone()),
+            gb.get(range.clone()),
+            self.wood_dx2.get(range),
+        ) else {
+            return;
+        };
+        let points = wa.iter().zip(wb).zip(ga.iter().zip(gb)).zip(dx2).zip(out);
+        for ((((&wa, &wb), (&ga, &gb)), &dx2), out) in points {
+            let warp = wa + (wb - wa) * ww;
+            let r = crate::math::sqrt(dx2 + dy2) * 14.0 + warp * 0.9;
+            // 0 ≤ r < 30 (a distance in the frame ×14 plus a value in [0, 1)).
+            let t = r - crate::math::floor_f(r);
+            let ring = smooth((2.0 * t - 1.0).abs());
+            *out = 0.58 + 0.3 * ring + 0.12 * (ga + (gb - ga) * gw);
+        }
     }
 
-    /// [`Self::ice`] at `(x, row's y)`, up to rounding.
-    #[inline]
-    pub(crate) fn ice_at(&self, row: &BaseRow, x: f32) -> f32 {
-        let (d1, d2) = self.cells.at_row(&row.cells, x);
-        let edge = (d2 - d1).min(0.25) * 4.0;
-        let crack = 1.0 - smooth(edge);
-        0.62 + 0.1 * d1.min(1.0) + 0.2 * crack + 0.08 * self.frost.at_row(&row.frost, x)
+    /// The ice-like texture ([`Tables::ice`] up to rounding) at the points `range` of `row`,
+    /// into `out` (one value per point of `range`): lattice column by lattice column, each
+    /// point against the column's 9 candidate feature points.
+    pub(crate) fn ice_row(&self, row: &BaseRow, range: core::ops::Range<usize>, out: &mut [f32]) {
+        let (fa, fb, fw) = self.frost.row(row.y);
+        let mut start = 0;
+        for &(end, ix) in &self.cell_runs {
+            let run = start.max(range.start)..end.min(range.end);
+            start = end;
+            if run.is_empty() {
+                continue;
+            }
+            let (xs, dy2s) = CellTable::candidates(&row.cells, ix);
+            let local = run.start - range.start..run.end - range.start;
+            let (Some(q), Some(fa), Some(fb), Some(out)) = (
+                self.cell_x.get(run.clone()),
+                fa.get(run.clone()),
+                fb.get(run),
+                out.get_mut(local),
+            ) else {
+                continue;
+            };
+            for (((&q, &fa), &fb), out) in q.iter().zip(fa).zip(fb).zip(out) {
+                let mut d1 = f32::MAX;
+                let mut d2 = f32::MAX;
+                for (&px, &dy2) in xs.iter().zip(&dy2s) {
+                    let dx = px - q;
+                    let d = dx * dx + dy2;
+                    d2 = min(d2, max(d1, d));
+                    d1 = min(d1, d);
+                }
+                let edge = min(d2 - d1, 0.25) * 4.0; // 0 on a crack, 1 inside a cell
+                let crack = 1.0 - smooth(edge);
+                *out = 0.62 + 0.1 * min(d1, 1.0) + 0.2 * crack + 0.08 * (fa + (fb - fa) * fw);
+            }
+        }
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use alloc::vec;
 
     #[test]
     fn floor_matches_the_definition() {
@@ -363,26 +479,38 @@ mod tests {
 
     #[test]
     fn rows_match_the_point_lookups() {
-        let base = BaseTextures::new(5);
+        // A little outside [0, 1] too: clamped alike.
+        let xs: Vec<f32> = (0..97).map(|i| i as f32 / 90.0 - 0.03).collect();
+        let tables = Tables::new(5);
+        let base = BaseTextures::new(5, &xs);
+        let expanded = tables.grain.expand(&xs);
         let mut row = BaseRow::default();
+        let (mut wood, mut ice) = (vec![0.0; xs.len()], vec![0.0; xs.len()]);
         for j in 0..23 {
-            let y = j as f32 / 20.0 - 0.05; // a little outside [0, 1] too: clamped alike
+            let y = j as f32 / 20.0 - 0.05;
             base.row(y, &mut row);
-            for i in 0..97 {
-                let x = i as f32 / 90.0 - 0.03;
+            base.wood_row(&row, 0..xs.len(), &mut wood);
+            // A part of the row too: runs of cells cut at both ends.
+            base.ice_row(&row, 0..xs.len(), &mut ice);
+            let mut part = vec![0.0; 50];
+            base.ice_row(&row, 20..70, &mut part);
+            assert_eq!(&part[..], &ice[20..70]);
+            let (a, b, w) = expanded.row(y);
+            for (i, &x) in xs.iter().enumerate() {
                 let p = Vec2::new(x, y);
-                assert!((base.wood_at(&row, x) - base.wood(p)).abs() < 1e-4, "{p}");
-                assert!((base.ice_at(&row, x) - base.ice(p)).abs() < 1e-4, "{p}");
-                let (a, b) = base.cells.at_row(&row.cells, x);
-                let (c, d) = base.cells.at(p);
-                assert_eq!((a, b), (c, d), "{p}");
+                assert!((wood[i] - tables.wood(p)).abs() < 1e-4, "{p}");
+                assert!((ice[i] - tables.ice(p)).abs() < 1e-4, "{p}");
+                assert!(
+                    (a[i] + (b[i] - a[i]) * w - tables.grain.at(p)).abs() < 1e-5,
+                    "{p}"
+                );
             }
         }
     }
 
     #[test]
     fn noises_stay_in_range_and_vary() {
-        let base = BaseTextures::new(3);
+        let base = Tables::new(3);
         let mut lo = f32::MAX;
         let mut hi = f32::MIN;
         for i in 0..400 {

@@ -5,14 +5,25 @@
 //! so a ball costs one `exp` per row and column it reaches — not one per pixel (the seed's
 //! approach cost about 19 million `exp` per creature). Per pixel the pass accumulates the field
 //! sum, its gradient, and the field-weighted colour and texture weights (`Σ f_i a_i / Σ f_i`).
+//!
+//! Four rows at a time: the balls' runs on those rows add into seven planes (a multiply and
+//! an add per plane and texel, four texels per vector), then each row is finished over the
+//! columns some ball reaches only (normals and coverage, the base textures where the creature
+//! is, the albedo, all in loops the compiler vectorises); the rest of a row is transparent
+//! black with a flat normal. The hot loops avoid what keeps the compiler from vectorising:
+//! float-to-integer conversions (bytes and floors come from adding `1.5 · 2²³`), `exp` calls
+//! (a polynomial instead), NaN-aware `min`/`max`, and overlapping slices (the seven planes
+//! are separate parameters of one function).
 
 use alloc::vec;
 use alloc::vec::Vec;
+use core::ops::Range;
 
 use glam::Vec2;
 
 use creature_metaball::{DEFAULT_EPSILON, Falloff, SEED_BLOBBINESS};
 
+use crate::math::{max, min};
 use crate::types::Ball2d;
 use crate::{Error, math, noise};
 
@@ -145,9 +156,12 @@ impl Default for TextureOptions {
 ///   × `depth_shading` × field sum, clamped; the base textures are procedural (value noise
 ///   rings and cellular noise) in a square frame, so they are not stretched;
 /// - alpha is the pixel's coverage of the inside (`field ≥ 1`), anti-aliased with the
-///   first-order distance `(field − 1) / |∇field|`;
+///   first-order distance `(field − 1) / |∇field|`, and never 0 for a pixel holding a ball's
+///   centre (each ball's disk is inside, so a part thinner than a pixel, between pixel
+///   centres, still shows);
 /// - the normal of the height field `normal_relief × field`, `n = normalize(−r ∂F/∂x,
-///   −r ∂F/∂y, 1)`, encoded as `n · 0.5 + 0.5` (+x right, +y up: glTF's convention).
+///   −r ∂F/∂y, 1)`, encoded as `n · 0.5 + 0.5` (+x right, +y up: glTF's convention);
+/// - channels are rounded to the nearest byte (ties to even).
 ///
 /// ```
 /// use creature::glam::{Vec2, Vec3};
@@ -201,59 +215,118 @@ pub fn render(
     let footprints = Footprints::new(balls, bounds, texel, n);
     let mut finisher = Finisher::new(n, extent, texel, options);
     // Band by band: the sums of a few rows stay in the cache (and in memory the allocator
-    // reuses), and the base textures' rows are made once.
-    let mut planes = Planes::new(BAND_ROWS.min(n) * n);
+    // reuses); only the columns some ball reaches are summed, finished and cleared.
+    let mut planes = Planes::new(BAND_ROWS.min(n), n);
     for first in (0..n).step_by(BAND_ROWS) {
         let rows = first..(first + BAND_ROWS).min(n);
+        footprints.splat(&mut planes, rows.clone());
+        finisher.rows(&planes, rows, &footprints.centres);
         planes.clear();
-        footprints.splat(&mut planes, rows.clone(), n);
-        finisher.rows(&planes, rows);
     }
     Ok(finisher.images())
 }
 
 /// Rows of the image summed and finished at a time.
-const BAND_ROWS: usize = 16;
+const BAND_ROWS: usize = 4;
 
-/// One ball's footprint on the image: the pixels within its cutoff circle, the seed falloff
+/// The least coverage of a texel holding a ball's centre: one step of alpha.
+const MIN_COVERAGE: f32 = 1.0 / 255.0;
+
+/// The texel holding a ball's centre, and a lower bound on its coverage.
+///
+/// Each ball alone reaches the iso-level out to its radius `R` (the seed falloff is 1 there),
+/// so its disk is inside the creature. The disk's centre lies in the texel, which therefore
+/// holds at least a quarter disk of radius `min(R, tx/2, ty/2)`: that area over the texel's
+/// is its least coverage (and at least [`MIN_COVERAGE`]). The first-order coverage already
+/// exceeds it unless the ball is thin next to a texel; then it is what keeps a part thinner
+/// than a texel, lying between texel centres, from vanishing from the texture.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Centre {
+    row: usize,
+    column: usize,
+    least: f32,
+}
+
+/// One ball's footprint on the image: the texels within its cutoff circle, the seed falloff
 /// split into x and y factors, `f = e^(−B) · exp(B dx² / R²) · exp(B dy² / R²)`.
 struct Footprint {
-    centre: Vec2,
-    /// `B / R²` (negative).
-    k: f32,
-    cutoff2: f32,
-    columns: (usize, usize),
-    rows: (usize, usize),
-    /// Where the ball's column factors start in [`Footprints::fx`].
-    offset: usize,
+    /// The first row of the footprint, and where its runs start in [`Footprints::runs`] (one
+    /// per row).
+    first_row: usize,
+    runs: Range<usize>,
     colour: [f32; 3],
     wood: f32,
 }
 
+/// One row of a footprint: the texels whose centres lie within the cutoff circle (the culled
+/// field's support), from image column `column`, their column factors from `factors` in
+/// [`Footprints::fx`], and the row factors `fy` and `2k dy fy`.
+#[derive(Clone, Copy)]
+struct Run {
+    column: usize,
+    factors: usize,
+    len: usize,
+    fy: f32,
+    fy_dy: f32,
+}
+
 /// Every ball's footprint, and their column factors: per column of a footprint, the x factor
-/// `fx` and `2k dx fx`, so each pixel adds f = fx·fy, ∂f/∂x = (2k dx fx)·fy,
-/// ∂f/∂y = fx·(2k dy fy), and f times the colour and wood weight.
+/// `fx` at the texel's centre and `2k dx fx`, so each texel adds f = fx·fy,
+/// ∂f/∂x = (2k dx fx)·fy, ∂f/∂y = fx·(2k dy fy), and f times the colour and wood weight;
+/// and the texels holding the balls' centres, by row.
 struct Footprints {
     balls: Vec<Footprint>,
+    runs: Vec<Run>,
     fx: Vec<f32>,
     fx_dx: Vec<f32>,
-    min: Vec2,
-    max: Vec2,
-    texel: Vec2,
+    centres: Vec<Centre>,
+    n: usize,
 }
 
 impl Footprints {
+    // Out of line (like `splat`, `Planes::clear` and `Finisher::rows`) so that profiles name
+    // the stages; each runs once per render or band.
+    #[inline(never)]
     fn new(balls: &[Ball2d], (min, max): (Vec2, Vec2), texel: Vec2, n: usize) -> Self {
+        // Room for every footprint's columns and rows at once (at most the box of the cutoff
+        // circle each), so the tables do not grow step by step.
+        let (columns, rows) = balls.iter().fold((0, 0), |(columns, rows), b| {
+            let diameter = 2.0 * Falloff::SEED.cutoff_radius(b.ball.radius, DEFAULT_EPSILON);
+            let span = |texel: f32| math::ceil_non_negative(diameter / texel).saturating_add(2);
+            (columns + span(texel.x).min(n), rows + span(texel.y).min(n))
+        });
         let mut out = Self {
             balls: Vec::with_capacity(balls.len()),
-            fx: Vec::new(),
-            fx_dx: Vec::new(),
-            min,
-            max,
-            texel,
+            runs: Vec::with_capacity(rows),
+            fx: Vec::with_capacity(columns),
+            fx_dx: Vec::with_capacity(columns),
+            centres: Vec::with_capacity(balls.len()),
+            n,
         };
+        let peak = math::exp(-SEED_BLOBBINESS);
+        let inverse = texel.recip();
+        let n_f = n as f32;
+        let mut scratch = RowScratch::default();
+        let quarter_disk = core::f32::consts::FRAC_PI_4 / (texel.x * texel.y);
+        let half = texel.min_element() * 0.5;
         for b in balls {
             let centre = b.ball.center;
+            let (column, row) = (
+                noise::floor_i((centre.x - min.x) / texel.x),
+                noise::floor_i((max.y - centre.y) / texel.y),
+            );
+            if let (Ok(column @ 0..), Ok(row @ 0..)) =
+                (usize::try_from(column), usize::try_from(row))
+                && column < n
+                && row < n
+            {
+                let r = b.ball.radius.min(half);
+                out.centres.push(Centre {
+                    row,
+                    column,
+                    least: (r * r * quarter_disk).max(MIN_COVERAGE),
+                });
+            }
             let k = SEED_BLOBBINESS / (b.ball.radius * b.ball.radius);
             let cutoff = Falloff::SEED.cutoff_radius(b.ball.radius, DEFAULT_EPSILON);
             let Some(columns) = pixel_range(
@@ -272,83 +345,191 @@ impl Footprints {
             ) else {
                 continue;
             };
+            // Column and row factors, each in a loop of its own (they vectorise).
             let offset = out.fx.len();
-            for c in columns.0..=columns.1 {
-                let dx = min.x + (c as f32 + 0.5) * texel.x - centre.x;
-                let fx = math::exp(k * dx * dx);
-                out.fx.push(fx);
-                out.fx_dx.push(fx * dx * 2.0 * k);
+            let x = move |c: i32| min.x + (c as f32 + 0.5) * texel.x - centre.x;
+            // Exclusive ranges: inclusive ones do not vectorise.
+            let (c0, c1) = (columns.0 as i32, columns.1 as i32);
+            out.fx
+                .extend((c0..c1 + 1).map(move |c| math::exp_poly(k * x(c) * x(c))));
+            let fx = out.fx.get(offset..).unwrap_or_default();
+            out.fx_dx.extend(
+                (c0..c1 + 1)
+                    .zip(fx)
+                    .map(move |(c, &fx)| fx * x(c) * 2.0 * k),
+            );
+            let y = move |r: i32| max.y - (r as f32 + 0.5) * texel.y - centre.y;
+            let (r0, r1) = (rows.0 as i32, rows.1 as i32);
+            let cutoff2 = cutoff * cutoff;
+            // The columns whose centres are within the cutoff circle on each row, as floats
+            // (from `first` to `last`, none if `first > last`), intersected with `columns`.
+            let (c0f, c1f) = (c0 as f32, c1 as f32);
+            let half = move |y: f32| math::sqrt(math::max(cutoff2 - y * y, 0.0));
+            // Clamped next to the image first, where `ceil_f` and `floor_f` are exact.
+            let column =
+                move |x: f32| math::min(math::max((x - min.x) * inverse.x - 0.5, -1.0), n_f);
+            scratch.first.clear();
+            scratch.first.extend((r0..r1 + 1).map(move |r| {
+                let first = math::ceil_f(column(centre.x - half(y(r))));
+                if y(r) * y(r) <= cutoff2 {
+                    math::max(first, c0f)
+                } else {
+                    f32::MAX
+                }
+            }));
+            scratch.last.clear();
+            scratch.last.extend(
+                (r0..r1 + 1)
+                    .map(move |r| math::min(math::floor_f(column(centre.x + half(y(r)))), c1f)),
+            );
+            scratch.fy.clear();
+            scratch
+                .fy
+                .extend((r0..r1 + 1).map(move |r| peak * math::exp_poly(k * y(r) * y(r))));
+            let first_run = out.runs.len();
+            let rows_f = scratch.first.iter().zip(&scratch.last);
+            for ((r, (&first, &last)), &fy) in (r0..r1 + 1).zip(rows_f).zip(&scratch.fy) {
+                out.runs.push(if first <= last {
+                    // Whole numbers from c0 to c1.
+                    let (a, z) = (first as usize, last as usize);
+                    Run {
+                        column: a,
+                        factors: offset + a - columns.0,
+                        len: z + 1 - a,
+                        fy,
+                        fy_dy: fy * y(r) * 2.0 * k,
+                    }
+                } else {
+                    Run {
+                        column: 0,
+                        factors: 0,
+                        len: 0,
+                        fy: 0.0,
+                        fy_dy: 0.0,
+                    }
+                });
             }
             out.balls.push(Footprint {
-                centre,
-                k,
-                cutoff2: cutoff * cutoff,
-                columns,
-                rows,
-                offset,
+                first_row: rows.0,
+                runs: first_run..out.runs.len(),
                 colour: b.colour.to_array(),
                 wood: b.texture_weights.x,
             });
         }
+        out.centres.sort_unstable_by_key(|c| (c.row, c.column));
         out
     }
 
-    /// Adds every ball's contribution to the image rows `rows` (plane row 0 is `rows.start`).
-    fn splat(&self, planes: &mut Planes, rows: core::ops::Range<usize>, n: usize) {
-        let peak = math::exp(-SEED_BLOBBINESS);
+    /// Adds every ball's contribution to the image rows `rows` (plane row 0 is `rows.start`)
+    /// and widens the rows' spans to the columns it reaches (and to the texels holding the
+    /// balls' centres).
+    #[inline(never)]
+    fn splat(&self, planes: &mut Planes, rows: Range<usize>) {
+        let n = self.n;
+        for centre in self.centres.iter().filter(|c| rows.contains(&c.row)) {
+            if let Some(span) = planes.spans.get_mut(centre.row - rows.start) {
+                span.0 = span.0.min(centre.column);
+                span.1 = span.1.max(centre.column + 1);
+            }
+        }
         for ball in &self.balls {
-            let first = ball.rows.0.max(rows.start);
-            let last = ball.rows.1.min(rows.end.saturating_sub(1));
-            let (c0, c1) = ball.columns;
+            let Some(runs) = self.runs.get(ball.runs.clone()) else {
+                continue;
+            };
+            // The ball's runs on these rows.
+            let skip = rows.start.saturating_sub(ball.first_row);
+            let first = ball.first_row.max(rows.start);
             let [cr, cg, cb] = ball.colour;
-            for row in first..=last {
-                let dy = self.max.y - (row as f32 + 0.5) * self.texel.y - ball.centre.y;
-                let fy = peak * math::exp(ball.k * dy * dy);
-                let fy_dy = fy * dy * 2.0 * ball.k;
-                // Only the columns within the cutoff circle (the culled field's support).
-                let half = math::sqrt((ball.cutoff2 - dy * dy).max(0.0));
-                let Some((a, z)) = pixel_range(
-                    ball.centre.x - half - self.min.x,
-                    ball.centre.x + half - self.min.x,
-                    self.texel.x,
-                    n,
-                ) else {
-                    continue;
-                };
-                let (a, z) = (a.max(c0), z.min(c1));
-                if a > z {
+            for (local, run) in (first - rows.start..rows.len()).zip(runs.iter().skip(skip)) {
+                if run.len == 0 {
                     continue;
                 }
-                let factors = ball.offset + a - c0..=ball.offset + z - c0;
+                let factors = run.factors..run.factors + run.len;
                 let (Some(fx), Some(fx_dx)) =
                     (self.fx.get(factors.clone()), self.fx_dx.get(factors))
                 else {
                     continue;
                 };
-                // Seven contiguous runs, each `plane += column factor × row factor`: vector
-                // adds.
-                let start = (row - rows.start) * n;
-                let span = start + a..=start + z;
-                let p = &mut *planes;
-                let runs = [
-                    (&mut p.sum, fx, fy),
-                    (&mut p.gx, fx_dx, fy),
-                    (&mut p.gy, fx, fy_dy),
-                    (&mut p.r, fx, fy * cr),
-                    (&mut p.g, fx, fy * cg),
-                    (&mut p.b, fx, fy * cb),
-                    (&mut p.wood, fx, fy * ball.wood),
-                ];
-                for (plane, columns, factor) in runs {
-                    if let Some(out) = plane.get_mut(span.clone()) {
-                        for (o, &c) in out.iter_mut().zip(columns) {
-                            *o += c * factor;
-                        }
-                    }
+                if let Some(span) = planes.spans.get_mut(local) {
+                    span.0 = span.0.min(run.column);
+                    span.1 = span.1.max(run.column + run.len);
                 }
+                let fy = run.fy;
+                // Seven contiguous runs in one loop, `plane += column factor × row factor`:
+                // vector multiply-adds.
+                let start = local * n + run.column;
+                let span = start..start + run.len;
+                let p = &mut *planes;
+                let (Some(sum), Some(gx), Some(gy), Some(r), Some(g), Some(b), Some(wood)) = (
+                    p.sum.get_mut(span.clone()),
+                    p.gx.get_mut(span.clone()),
+                    p.gy.get_mut(span.clone()),
+                    p.r.get_mut(span.clone()),
+                    p.g.get_mut(span.clone()),
+                    p.b.get_mut(span.clone()),
+                    p.wood.get_mut(span),
+                ) else {
+                    continue;
+                };
+                accumulate(
+                    [sum, gx, gy, r, g, b, wood],
+                    (fx, fx_dx),
+                    [fy, fy, run.fy_dy, fy * cr, fy * cg, fy * cb, fy * ball.wood],
+                );
             }
         }
     }
+}
+
+/// `plane += column factor × row factor` for seven planes at once (field, gradient x and y,
+/// colour r, g, b and wood weight; the gradient x's column factors are `fx_dx`, the others'
+/// `fx`): one pass of vector multiply-adds.
+#[inline]
+fn accumulate(planes: [&mut [f32]; 7], (fx, fx_dx): (&[f32], &[f32]), factors: [f32; 7]) {
+    let [sum, gx, gy, r, g, b, wood] = planes;
+    sum_7(sum, gx, gy, r, g, b, wood, fx, fx_dx, factors);
+}
+
+/// [`accumulate`]'s loop: the planes as separate parameters, so the compiler knows they do
+/// not overlap (no run-time overlap checks before each run).
+#[allow(clippy::too_many_arguments)]
+#[inline(never)] // inlined, the compiler loses that the planes do not overlap
+fn sum_7(
+    sum: &mut [f32],
+    gx: &mut [f32],
+    gy: &mut [f32],
+    r: &mut [f32],
+    g: &mut [f32],
+    b: &mut [f32],
+    wood: &mut [f32],
+    fx: &[f32],
+    fx_dx: &[f32],
+    [f_sum, f_gx, f_gy, f_r, f_g, f_b, f_wood]: [f32; 7],
+) {
+    let texels = sum
+        .iter_mut()
+        .zip(gx.iter_mut().zip(gy.iter_mut()))
+        .zip(r.iter_mut().zip(g.iter_mut()))
+        .zip(b.iter_mut().zip(wood.iter_mut()))
+        .zip(fx.iter().zip(fx_dx));
+    for ((((sum, (gx, gy)), (r, g)), (b, wood)), (&fx, &fx_dx)) in texels {
+        *sum += fx * f_sum;
+        *gx += fx_dx * f_gx;
+        *gy += fx * f_gy;
+        *r += fx * f_r;
+        *g += fx * f_g;
+        *b += fx * f_b;
+        *wood += fx * f_wood;
+    }
+}
+
+/// Per row of a footprint, before they become [`Run`]s: the first and last column and the row
+/// factor (reused from ball to ball).
+#[derive(Default)]
+struct RowScratch {
+    first: Vec<f32>,
+    last: Vec<f32>,
+    fy: Vec<f32>,
 }
 
 /// The pixels whose centres `(i + 0.5) · texel` lie in `[lo, hi]`, clamped to the image.
@@ -364,9 +545,12 @@ fn pixel_range(lo: f32, hi: f32, texel: f32, n: usize) -> Option<(usize, usize)>
     (first <= last).then_some((first, last))
 }
 
-/// Per-pixel sums, one plane each (so rows are contiguous runs the compiler vectorises):
-/// field, gradient x and y, colour r, g, b (field-weighted) and wood weight (field-weighted).
+/// Per-texel sums of a band of rows, one plane each (so rows are contiguous runs the compiler
+/// vectorises): field, gradient x and y, colour r, g, b (field-weighted) and wood weight
+/// (field-weighted); and per row the columns some ball reaches. Outside a row's span every
+/// sum is 0.
 struct Planes {
+    n: usize,
     sum: Vec<f32>,
     gx: Vec<f32>,
     gy: Vec<f32>,
@@ -374,41 +558,68 @@ struct Planes {
     g: Vec<f32>,
     b: Vec<f32>,
     wood: Vec<f32>,
+    /// Per row: the columns `start..end` some ball reaches (`start ≥ end`: none).
+    spans: Vec<(usize, usize)>,
 }
 
 impl Planes {
-    fn new(len: usize) -> Self {
+    fn new(rows: usize, n: usize) -> Self {
+        let len = rows * n;
+        // Planes of different lengths (by 80 bytes each), so that the same texel of two planes
+        // is unlikely to sit at the same address modulo 4 KiB, which would make the
+        // processor treat a load from one as depending on a store to the other.
+        let plane = |k: usize| vec![0.0; len + 20 * k];
         Self {
-            sum: vec![0.0; len],
-            gx: vec![0.0; len],
-            gy: vec![0.0; len],
-            r: vec![0.0; len],
-            g: vec![0.0; len],
-            b: vec![0.0; len],
-            wood: vec![0.0; len],
+            n,
+            sum: plane(0),
+            gx: plane(1),
+            gy: plane(2),
+            r: plane(3),
+            g: plane(4),
+            b: plane(5),
+            wood: plane(6),
+            spans: vec![(n, 0); rows],
         }
     }
 
+    /// Zeroes the rows' spans (all that was summed into) and empties the spans.
+    #[inline(never)]
     fn clear(&mut self) {
-        for plane in [
-            &mut self.sum,
-            &mut self.gx,
-            &mut self.gy,
-            &mut self.r,
-            &mut self.g,
-            &mut self.b,
-            &mut self.wood,
-        ] {
-            plane.fill(0.0);
+        let n = self.n;
+        for (row, span) in self.spans.iter_mut().enumerate() {
+            if span.0 < span.1 {
+                let texels = row * n + span.0..row * n + span.1;
+                for plane in [
+                    &mut self.sum,
+                    &mut self.gx,
+                    &mut self.gy,
+                    &mut self.r,
+                    &mut self.g,
+                    &mut self.b,
+                    &mut self.wood,
+                ] {
+                    if let Some(texels) = plane.get_mut(texels.clone()) {
+                        texels.fill(0.0);
+                    }
+                }
+            }
+            *span = (n, 0);
         }
     }
 }
+
+/// The normal map's texel where no ball reaches: `(0, 0, 1)` encoded.
+const FLAT_NORMAL: [u8; 4] = [128, 128, 255, 255];
 
 /// Turns summed rows into the albedo and normal images.
 struct Finisher {
     n: usize,
+    /// The images, appended row by row.
     albedo: Vec<u8>,
     normals: Vec<u8>,
+    /// One row of each image, finished before it is appended.
+    albedo_row: Vec<[u8; 4]>,
+    normal_row: Vec<[u8; 4]>,
     extent: Vec2,
     texel: Vec2,
     side: f32,
@@ -419,127 +630,150 @@ struct Finisher {
     noise_row: noise::BaseRow,
     coverage: Vec<f32>,
     base: Vec<f32>,
+    ice: Vec<f32>,
 }
 
 impl Finisher {
     fn new(n: usize, extent: Vec2, texel: Vec2, options: &TextureOptions) -> Self {
+        let side = extent.max_element();
+        // Base texture coordinates: the image in a square frame of side `side`.
+        let x_scale = texel.x / side;
+        let xs: Vec<f32> = (0..n).map(|col| (col as f32 + 0.5) * x_scale).collect();
         Self {
             n,
-            albedo: vec![0u8; n * n * 4],
-            normals: vec![0u8; n * n * 4],
+            albedo: Vec::with_capacity(n * n * 4),
+            normals: Vec::with_capacity(n * n * 4),
+            albedo_row: vec![[0; 4]; n],
+            normal_row: vec![[0; 4]; n],
             extent,
             texel,
-            side: extent.max_element(),
+            side,
             inverse_pixel: 1.0 / texel.max_element(),
             relief: options.normal_relief,
             shading: options.depth_shading,
-            base_textures: noise::BaseTextures::new(options.noise_seed),
+            base_textures: noise::BaseTextures::new(options.noise_seed, &xs),
             noise_row: noise::BaseRow::default(),
             coverage: vec![0.0; n],
             base: vec![1.0; n],
+            ice: vec![0.0; n],
         }
     }
 
-    /// Finishes the image rows `rows` from their sums (plane row 0 is `rows.start`), each in
-    /// three passes: normals and coverage (branch-free, vectorised), the base textures where
-    /// the creature is (scalar), then the albedo (vectorised).
-    fn rows(&mut self, planes: &Planes, rows: core::ops::Range<usize>) {
+    /// Finishes the image rows `rows` from their sums (plane row 0 is `rows.start`) and
+    /// appends them to the images (rows are finished in order, each once).
+    #[inline(never)]
+    fn rows(&mut self, planes: &Planes, rows: Range<usize>, centres: &[Centre]) {
         let n = self.n;
-        let (relief, shading, inverse_pixel) = (self.relief, self.shading, self.inverse_pixel);
-        // Base texture coordinates: the image in a square frame of side `side`.
-        let x_scale = self.texel.x / self.side;
-        let sums = planes
-            .sum
-            .chunks_exact(n)
-            .zip(planes.gx.chunks_exact(n).zip(planes.gy.chunks_exact(n)))
-            .zip(planes.r.chunks_exact(n).zip(planes.g.chunks_exact(n)))
-            .zip(planes.b.chunks_exact(n).zip(planes.wood.chunks_exact(n)));
-        let images = self
-            .albedo
-            .chunks_exact_mut(4 * n)
-            .zip(self.normals.chunks_exact_mut(4 * n))
-            .skip(rows.start);
-        for (row, ((((sum, (gx, gy)), (r, g)), (b, wood)), (albedo_row, normal_row))) in
-            rows.zip(sums.zip(images))
-        {
-            // 1. The normal of the height field `relief × field` (flat where no ball reaches):
-            //    (−relief ∂F/∂x, −relief ∂F/∂y, 1) is at least 1 long, so only an infinite one
-            //    cannot be normalised. And the coverage of the inside, `field ≥ 1`, anti-aliased
-            //    with the first-order distance (field − 1) / |∇field| (0 where no ball reaches).
-            let pixels = sum
-                .iter()
-                .zip(gx.iter().zip(gy))
-                .zip(normal_row.chunks_exact_mut(4).zip(&mut self.coverage));
-            for ((&sum, (&gx, &gy)), (normal_px, coverage)) in pixels {
-                let (nx, ny) = (-relief * gx, -relief * gy);
-                let length2 = nx * nx + ny * ny + 1.0;
-                let finite = length2 < f32::INFINITY;
-                let inverse = if finite {
-                    1.0 / math::sqrt(length2)
-                } else {
-                    0.0
-                };
-                let (nx, ny, nz) = if finite {
-                    (nx * inverse, ny * inverse, inverse)
-                } else {
-                    (0.0, 0.0, 1.0)
-                };
-                normal_px.copy_from_slice(&[
-                    to_byte(nx * 0.5 + 0.5),
-                    to_byte(ny * 0.5 + 0.5),
-                    to_byte(nz * 0.5 + 0.5),
-                    255,
-                ]);
-                let slope = math::sqrt(gx * gx + gy * gy).max(1e-6);
-                *coverage = ((sum - 1.0) / slope * inverse_pixel + 0.5).clamp(0.0, 1.0);
+        for (local, row) in rows.enumerate() {
+            let (lo, hi) = planes.spans.get(local).copied().unwrap_or((n, 0));
+            let (lo, hi) = (lo.min(n), hi.min(n));
+            // Where no ball reaches, the albedo is transparent black and the normal flat.
+            let defaults = |albedo: &mut [[u8; 4]], normals: &mut [[u8; 4]]| {
+                albedo.fill([0; 4]);
+                normals.fill(FLAT_NORMAL);
+            };
+            let (albedo, normals) = (&mut self.albedo_row, &mut self.normal_row);
+            if lo < hi {
+                defaults(
+                    albedo.get_mut(..lo).unwrap_or_default(),
+                    normals.get_mut(..lo).unwrap_or_default(),
+                );
+                defaults(
+                    albedo.get_mut(hi..).unwrap_or_default(),
+                    normals.get_mut(hi..).unwrap_or_default(),
+                );
+                if !self.finish(planes, local * n, row, lo..hi, centres) {
+                    let albedo = self.albedo_row.get_mut(lo..hi).unwrap_or_default();
+                    let normals = self.normal_row.get_mut(lo..hi).unwrap_or_default();
+                    defaults(albedo, normals);
+                }
+            } else {
+                defaults(albedo, normals);
             }
-            // 2. The base textures only where the creature is (or its anti-aliased rim);
-            //    outside, the colour is kept (without detail) so filtering at the rim does not
-            //    bleed black.
-            let y = (self.extent.y - (row as f32 + 0.5) * self.texel.y) / self.side;
-            let mut noise_ready = false;
-            let pixels = self
-                .coverage
-                .iter()
-                .zip(sum.iter().zip(wood))
-                .zip(&mut self.base);
-            for (col, ((&coverage, (&sum, &wood)), base)) in pixels.enumerate() {
-                if !(coverage > 0.0) {
-                    *base = 1.0;
-                    continue;
-                }
-                if !noise_ready {
-                    self.base_textures.row(y, &mut self.noise_row);
-                    noise_ready = true;
-                }
-                let x = (col as f32 + 0.5) * x_scale;
-                let wood = (wood / sum).clamp(0.0, 1.0);
-                let mut mix = 0.0;
-                if wood > 1e-3 {
-                    mix += wood * self.base_textures.wood_at(&self.noise_row, x);
-                }
-                if wood < 1.0 - 1e-3 {
-                    mix += (1.0 - wood) * self.base_textures.ice_at(&self.noise_row, x);
-                }
-                *base = mix;
-            }
-            // 3. Albedo: the field-weighted colour (colour sums / field) × base × shading ×
-            //    field, that is the colour sums × base × shading.
-            let pixels = r
-                .iter()
-                .zip(g.iter().zip(b))
-                .zip(self.base.iter().zip(&self.coverage))
-                .zip(albedo_row.chunks_exact_mut(4));
-            for (((&r, (&g, &b)), (&base, &coverage)), albedo_px) in pixels {
-                let k = base * shading;
-                albedo_px.copy_from_slice(&[
-                    to_byte(r * k),
-                    to_byte(g * k),
-                    to_byte(b * k),
-                    to_byte(coverage),
-                ]);
+            self.albedo
+                .extend_from_slice(self.albedo_row.as_flattened());
+            self.normals
+                .extend_from_slice(self.normal_row.as_flattened());
+        }
+    }
+
+    /// Finishes the columns `columns` (some ball reaches them) of image row `row`, whose sums
+    /// start at `start` in the planes, into the row buffers, in three passes: normals and
+    /// coverage, the base textures where the creature is, then the albedo (all vectorised).
+    /// `false` if a buffer is too short (never: then the caller fills in the defaults).
+    fn finish<'a>(
+        &mut self,
+        planes: &'a Planes,
+        start: usize,
+        row: usize,
+        columns: Range<usize>,
+        centres: &[Centre],
+    ) -> bool {
+        let (lo, hi) = (columns.start, columns.end);
+        let span = start + lo..start + hi;
+        let plane = |p: &'a Vec<f32>| p.get(span.clone());
+        let (Some(sum), Some(gx), Some(gy), Some(r), Some(g), Some(b), Some(wood)) = (
+            plane(&planes.sum),
+            plane(&planes.gx),
+            plane(&planes.gy),
+            plane(&planes.r),
+            plane(&planes.g),
+            plane(&planes.b),
+            plane(&planes.wood),
+        ) else {
+            return false;
+        };
+        let (Some(normal_row), Some(albedo_row)) = (
+            self.normal_row.get_mut(lo..hi),
+            self.albedo_row.get_mut(lo..hi),
+        ) else {
+            return false;
+        };
+        let (Some(coverage), Some(base), Some(ice)) = (
+            self.coverage.get_mut(lo..hi),
+            self.base.get_mut(lo..hi),
+            self.ice.get_mut(lo..hi),
+        ) else {
+            return false;
+        };
+        // 1. The normal, and the coverage: at least the least coverage of the texels holding a
+        //    ball's centre (see `Centre`).
+        normals(gx, gy, self.relief, normal_row);
+        coverages(sum, gx, gy, self.inverse_pixel, coverage);
+        let first = centres.partition_point(|c| c.row < row);
+        for centre in centres.iter().skip(first).take_while(|c| c.row == row) {
+            if let Some(coverage) = centre
+                .column
+                .checked_sub(lo)
+                .and_then(|i| coverage.get_mut(i))
+            {
+                *coverage = max(*coverage, centre.least);
             }
         }
+        // 2. The base textures only where the creature is (or its anti-aliased rim); outside,
+        //    the colour is kept (without detail, base 1) so filtering at the rim does not bleed
+        //    black.
+        base.fill(1.0);
+        if let Some(covered) = covered(coverage) {
+            let y = (self.extent.y - (row as f32 + 0.5) * self.texel.y) / self.side;
+            let textures = &self.base_textures;
+            textures.row(y, &mut self.noise_row);
+            let columns = lo + covered.start..lo + covered.end;
+            if let (Some(base), Some(ice), Some(coverage), Some(sum), Some(wood)) = (
+                base.get_mut(covered.clone()),
+                ice.get_mut(covered.clone()),
+                coverage.get(covered.clone()),
+                sum.get(covered.clone()),
+                wood.get(covered),
+            ) {
+                textures.wood_row(&self.noise_row, columns.clone(), base);
+                textures.ice_row(&self.noise_row, columns, ice);
+                blend(base, ice, coverage, [sum, wood]);
+            }
+        }
+        // 3. The albedo.
+        albedos([r, g, b], base, coverage, self.shading, albedo_row);
+        true
     }
 
     /// The finished albedo and normal map.
@@ -560,11 +794,164 @@ impl Finisher {
     }
 }
 
-/// `[0, 1]` to a byte, rounded; NaN gives 0 (`max` returns the number, not the NaN).
+/// The normal of the height field `relief × field` from its gradient, as texels (see [`rgba`]):
+/// `(−relief ∂F/∂x, −relief ∂F/∂y, 1)` is at least 1 long, so only an infinite one cannot be
+/// normalised (it gives the flat normal).
+fn normals(gx: &[f32], gy: &[f32], relief: f32, texels: &mut [[u8; 4]]) {
+    for ((&gx, &gy), texel) in gx.iter().zip(gy).zip(texels) {
+        let (nx, ny) = (-relief * gx, -relief * gy);
+        let length2 = nx * nx + ny * ny + 1.0;
+        let finite = length2 < f32::INFINITY;
+        let inverse = if finite {
+            1.0 / math::sqrt(length2)
+        } else {
+            0.0
+        };
+        let (nx, ny, nz) = if finite {
+            (nx * inverse, ny * inverse, inverse)
+        } else {
+            (0.0, 0.0, 1.0)
+        };
+        *texel = rgba(nx * 0.5 + 0.5, ny * 0.5 + 0.5, nz * 0.5 + 0.5, 1.0);
+    }
+}
+
+/// The coverage of the inside, `field ≥ 1`, anti-aliased with the first-order distance
+/// `(field − 1) / |∇field|` in texels (`inverse_pixel` is 1 / the texel's larger side):
+/// `clamp(distance + 1/2, 0, 1)`.
+///
+/// Eight texels at a time: when none is within half a texel of the iso-line (compared
+/// squared), they are 0 or 1 without a square root and a division.
+fn coverages(sum: &[f32], gx: &[f32], gy: &[f32], inverse_pixel: f32, coverage: &mut [f32]) {
+    const CHUNK: usize = 8;
+    let one = |sum: f32, gx: f32, gy: f32| {
+        let slope = max(math::sqrt(gx * gx + gy * gy), 1e-6);
+        unit((sum - 1.0) / slope * inverse_pixel + 0.5)
+    };
+    let chunks = coverage
+        .chunks_exact_mut(CHUNK)
+        .zip(sum.chunks_exact(CHUNK))
+        .zip(gx.chunks_exact(CHUNK).zip(gy.chunks_exact(CHUNK)));
+    for ((coverage, sum), (gx, gy)) in chunks {
+        // Fixed-size arrays, so the loops below unroll into vector code.
+        let (Ok(coverage), Ok(sum), Ok(gx), Ok(gy)) = (
+            <&mut [f32; CHUNK]>::try_from(coverage),
+            <&[f32; CHUNK]>::try_from(sum),
+            <&[f32; CHUNK]>::try_from(gx),
+            <&[f32; CHUNK]>::try_from(gy),
+        ) else {
+            continue;
+        };
+        let mut rim = [false; CHUNK];
+        for (rim, ((&sum, &gx), &gy)) in rim.iter_mut().zip(sum.iter().zip(gx).zip(gy)) {
+            let d = (sum - 1.0) * inverse_pixel;
+            // |d| / slope < 1/2 (slope at least 1e-6, as above).
+            *rim = 4.0 * d * d < max(gx * gx + gy * gy, 1e-12);
+        }
+        let texels = coverage.iter_mut().zip(sum).zip(gx.iter().zip(gy));
+        if rim.contains(&true) {
+            for ((coverage, &sum), (&gx, &gy)) in texels {
+                *coverage = one(sum, gx, gy);
+            }
+        } else {
+            for ((coverage, &sum), _) in texels {
+                *coverage = if sum >= 1.0 { 1.0 } else { 0.0 };
+            }
+        }
+    }
+    let done = coverage.len() / CHUNK * CHUNK;
+    let rest = coverage
+        .iter_mut()
+        .zip(sum.iter().zip(gx.iter().zip(gy)))
+        .skip(done);
+    for (coverage, (&sum, (&gx, &gy))) in rest {
+        *coverage = one(sum, gx, gy);
+    }
+}
+
+/// The texels with a coverage above 0: from the first to the last, `None` if there is none.
+/// Eight at a time (vector compares), then texel by texel within the chunk.
+fn covered(coverage: &[f32]) -> Option<Range<usize>> {
+    const CHUNK: usize = 8;
+    let any = |chunk: &[f32]| chunk.iter().fold(false, |any, &c| any | (c > 0.0));
+    let first_chunk = coverage.chunks(CHUNK).position(any)?;
+    let last_chunk = coverage.chunks(CHUNK).rposition(any)?;
+    let first = first_chunk * CHUNK
+        + coverage
+            .get(first_chunk * CHUNK..)?
+            .iter()
+            .position(|&c| c > 0.0)?;
+    let last_start = last_chunk * CHUNK;
+    let last = last_start
+        + coverage
+            .get(last_start..(last_start + CHUNK).min(coverage.len()))?
+            .iter()
+            .rposition(|&c| c > 0.0)?;
+    Some(first..last + 1)
+}
+
+/// The base texture where the texel is covered: the wood-like texture (in `wood`, which it
+/// becomes) and the ice-like one blended by the field-weighted wood weight (`wood_sum / sum`);
+/// 1 (no detail) where it is not.
+fn blend(wood: &mut [f32], ice: &[f32], coverage: &[f32], [sum, wood_sum]: [&[f32]; 2]) {
+    let texels = wood
+        .iter_mut()
+        .zip(ice)
+        .zip(coverage.iter().zip(sum.iter().zip(wood_sum)));
+    for ((wood, &ice), (&coverage, (&sum, &wood_sum))) in texels {
+        let share = unit(wood_sum / sum);
+        let mix = ice + (*wood - ice) * share;
+        *wood = if coverage > 0.0 { mix } else { 1.0 };
+    }
+}
+
+/// The albedo, as texels (see [`rgba`]): the field-weighted colour (colour sums / field) × base ×
+/// shading × field, that is the colour sums × base × shading; alpha the coverage.
+fn albedos(
+    [r, g, b]: [&[f32]; 3],
+    base: &[f32],
+    coverage: &[f32],
+    shading: f32,
+    texels: &mut [[u8; 4]],
+) {
+    let texels = r
+        .iter()
+        .zip(g.iter().zip(b))
+        .zip(base.iter().zip(coverage))
+        .zip(texels);
+    for (((&r, (&g, &b)), (&base, &coverage)), texel) in texels {
+        let k = base * shading;
+        *texel = rgba(r * k, g * k, b * k, coverage);
+    }
+}
+
+/// Clamps to `[0, 1]`; NaN gives 0.
 #[inline]
-#[allow(clippy::manual_clamp)] // `clamp` keeps a NaN; `max` then `min` turn it into 0
+fn unit(v: f32) -> f32 {
+    min(max(v, 0.0), 1.0)
+}
+
+/// `[0, 1]` to a byte, rounded to nearest (ties to even); NaN gives 0.
+#[cfg(test)]
 fn to_byte(v: f32) -> u8 {
-    (v.max(0.0).min(1.0) * 255.0 + 0.5) as u8
+    byte(v) as u8
+}
+
+/// [`to_byte`] as a `u32` (a value from 0 to 255).
+#[inline]
+fn byte(v: f32) -> u32 {
+    // `t + 2²³` for `t` in [0, 255] has the exponent of 2²³ and `t` rounded (to nearest, ties
+    // to even) as its mantissa: a float add and a bit cast, which vectorise (a float to
+    // integer conversion does not without SSE4).
+    const TWO_23: f32 = 8_388_608.0;
+    (unit(v) * 255.0 + TWO_23).to_bits() - TWO_23.to_bits()
+}
+
+/// Four channels in `[0, 1]` as an RGBA8 texel (packed in a `u32` first: shifts and ors
+/// that vectorise).
+#[inline]
+fn rgba(r: f32, g: f32, b: f32, a: f32) -> [u8; 4] {
+    (byte(r) | byte(g) << 8 | byte(b) << 16 | byte(a) << 24).to_le_bytes()
 }
 
 #[cfg(test)]
@@ -655,6 +1042,52 @@ mod tests {
             let n = decode([p[0], p[1], p[2], p[3]]);
             assert!((n.length() - 1.0).abs() < 0.02, "{n}");
         }
+    }
+
+    #[test]
+    fn a_ball_thinner_than_a_texel_between_texel_centres_still_shows() {
+        // Texels 10 units wide; a ball of radius 1 at (9, 1): no texel centre within its
+        // cutoff circle (4.4), the nearest, (5, 5), is 5.7 away.
+        let tiny = [ball(9.0, 1.0, 1.0, Vec3::ONE)];
+        let bounds = (Vec2::ZERO, Vec2::splat(40.0));
+        let (albedo, _) = render(&tiny, bounds, &TextureOptions::DEFAULT.with_size(4)).unwrap();
+        // Row 3 from the top holds y in [0, 10]; column 0 holds x in [0, 10].
+        let alpha = |x, y| albedo.pixel(x, y).unwrap()[3];
+        // A quarter disk of radius 1 in a 10 × 10 texel: 0.79% of it, 2 of 255.
+        assert_eq!(alpha(0, 3), 2);
+        let others = (0..4).flat_map(|y| (0..4).map(move |x| (x, y)));
+        assert!(
+            others
+                .filter(|&p| p != (0, 3))
+                .all(|(x, y)| alpha(x, y) == 0)
+        );
+        // A ball as wide as the texel: a quarter of a disk of radius 5, 20% of it.
+        let wide = [ball(9.0, 1.0, 5.0, Vec3::ONE)];
+        let (albedo, _) = render(&wide, bounds, &TextureOptions::DEFAULT.with_size(4)).unwrap();
+        assert!(albedo.pixel(0, 3).unwrap()[3] >= 50);
+    }
+
+    #[test]
+    fn balls_much_larger_than_the_image_or_far_outside_it_render_sanely() {
+        // A ball 10⁶ times the box (its cutoff circle 10⁸ texels wide): every texel inside,
+        // the normals nearly flat.
+        let huge = [ball(0.3, -0.2, 1e6, Vec3::ONE)];
+        let bounds = (Vec2::splat(-1.0), Vec2::splat(1.0));
+        let (albedo, normals) =
+            render(&huge, bounds, &TextureOptions::DEFAULT.with_size(64)).unwrap();
+        assert!(albedo.rgba.chunks_exact(4).all(|p| p[3] == 255));
+        assert!(normals.rgba.chunks_exact(4).all(|p| p[2] >= 254));
+        // A ball whose cutoff circle misses the box: transparent, flat.
+        let far = [ball(100.0, 0.0, 5.0, Vec3::ONE)];
+        let (albedo, normals) =
+            render(&far, bounds, &TextureOptions::DEFAULT.with_size(16)).unwrap();
+        assert!(albedo.rgba.iter().all(|&b| b == 0));
+        assert!(
+            normals
+                .rgba
+                .chunks_exact(4)
+                .all(|p| p == [128, 128, 255, 255])
+        );
     }
 
     #[test]

@@ -276,6 +276,36 @@ fn strong_simplification_stays_within_its_distance_of_the_outline() {
     assert_eq!(problems_2d(&c, &params), Vec::<String>::new());
 }
 
+/// Regression (found by the 2D validity property with 20,000 cases): a thin creature
+/// (thickness 5 over 509 units) with a 10² texture got an all-transparent texture. Its texels
+/// are 27 × 51 units: no texel centre is inside the creature, and the first-order coverage is 0
+/// beyond half a texel from the iso-line. Now a texel holding a ball's centre (each ball's disk
+/// is inside) never has alpha 0, so no part of the creature vanishes from its texture.
+#[test]
+fn regression_a_creature_thinner_than_a_texel_is_not_lost_from_its_texture() {
+    let params = Params2d::DEFAULT
+        .with_spine_thickness(Span::new(5.0, 5.0))
+        .with_limb_thickness(Span::new(5.0, 5.0))
+        .with_spine_length(Span::new(100.0, 100.0))
+        .with_spine_bones(IntSpan::new(6, 6))
+        .with_texture_size(10);
+    let c = generate_2d(4_969_741_311_956_482_907, &params).unwrap();
+    assert_eq!(problems_2d(&c, &params), Vec::<String>::new());
+    let texture = c.texture.as_ref().unwrap();
+    let (min, max) = c.bounds;
+    let texel = (max - min) / 10.0;
+    assert!(
+        texel.min_element() > 5.0 * params.spine_thickness.max,
+        "{texel}"
+    );
+    for b in &c.balls {
+        let col = ((b.ball.center.x - min.x) / texel.x) as u32;
+        let row = ((max.y - b.ball.center.y) / texel.y) as u32;
+        let alpha = texture.pixel(col.min(9), row.min(9)).unwrap()[3];
+        assert!(alpha > 0, "ball at {} in an empty texel", b.ball.center);
+    }
+}
+
 /// Regression (found by the 3D validity property): a flier with 3-segment cross-sections has
 /// bones with a single body vertex beside them, so their sockets have zero width; the head,
 /// sized by the width at the second neck bone, collapsed to a point (vertices 41 to 82 of 125

@@ -1,6 +1,6 @@
 //! Analytic two-bone inverse kinematics with a pole hint.
 
-use glam::{Mat3, Quat, Vec3};
+use glam::{BVec4A, Mat3, Quat, Vec3, Vec4};
 
 use crate::math::sqrt;
 
@@ -84,9 +84,8 @@ pub(crate) fn solve_finite(
 
 /// A two-bone chain being solved, in three steps: [`aim`](Self::aim) (the direction to the
 /// target), [`bend`](Self::bend) (the middle joint) and [`rotate`](Self::rotate) (the bone
-/// rotations). Solving many chains step by step, each step for all of them, lets a processor
-/// overlap the square roots and divisions of neighbouring chains; the results are those of
-/// [`solve_finite`].
+/// rotations). The reference for [`solve_many`], which does the same operations for four
+/// chains at once.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct Shape {
     root: Vec3,
@@ -197,6 +196,325 @@ impl Shape {
     }
 }
 
+/// One two-bone problem for [`solve_many`]: finite inputs, lengths `>= 0` (as for
+/// `solve_finite`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Problem {
+    pub(crate) root: Vec3,
+    pub(crate) target: Vec3,
+    pub(crate) upper: f32,
+    pub(crate) lower: f32,
+    pub(crate) pole: Vec3,
+}
+
+impl Problem {
+    /// Storage before a first solve.
+    pub(crate) const EMPTY: Self = Self {
+        root: Vec3::ZERO,
+        target: Vec3::NEG_Y,
+        upper: 0.5,
+        lower: 0.5,
+        pole: Vec3::Z,
+    };
+}
+
+/// Solves every problem, four at a time (one chain per SIMD lane), calling `put(index, chain)`
+/// for each: the results are those of `solve_finite`, bit for bit. The lanes do every
+/// operation of the scalar solve in the same order; a chain that would take one of its rare
+/// branches (target on the root, pole along the chain) is solved again on its own.
+pub(crate) fn solve_many(problems: &[Problem], mut put: impl FnMut(usize, TwoBone)) {
+    for (c, chunk) in problems.chunks(4).enumerate() {
+        solve4(chunk, 4 * c, &mut put);
+    }
+}
+
+/// Four `Vec3`s, one per lane.
+#[derive(Clone, Copy)]
+struct V3 {
+    x: Vec4,
+    y: Vec4,
+    z: Vec4,
+}
+
+impl V3 {
+    #[inline(always)]
+    fn gather(v: [Vec3; 4]) -> Self {
+        Self {
+            x: Vec4::new(v[0].x, v[1].x, v[2].x, v[3].x),
+            y: Vec4::new(v[0].y, v[1].y, v[2].y, v[3].y),
+            z: Vec4::new(v[0].z, v[1].z, v[2].z, v[3].z),
+        }
+    }
+
+    #[inline(always)]
+    fn lane(self, k: usize) -> Vec3 {
+        Vec3::new(self.x[k], self.y[k], self.z[k])
+    }
+
+    #[inline(always)]
+    fn add(self, o: Self) -> Self {
+        Self {
+            x: self.x + o.x,
+            y: self.y + o.y,
+            z: self.z + o.z,
+        }
+    }
+
+    #[inline(always)]
+    fn sub(self, o: Self) -> Self {
+        Self {
+            x: self.x - o.x,
+            y: self.y - o.y,
+            z: self.z - o.z,
+        }
+    }
+
+    #[inline(always)]
+    fn scale(self, s: Vec4) -> Self {
+        Self {
+            x: self.x * s,
+            y: self.y * s,
+            z: self.z * s,
+        }
+    }
+
+    /// `Vec3::dot`'s order: `(x x' + y y') + z z'`.
+    #[inline(always)]
+    fn dot(self, o: Self) -> Vec4 {
+        self.x * o.x + self.y * o.y + self.z * o.z
+    }
+
+    /// `Vec3::cross`.
+    #[inline(always)]
+    fn cross(self, o: Self) -> Self {
+        Self {
+            x: self.y * o.z - o.y * self.z,
+            y: self.z * o.x - o.z * self.x,
+            z: self.x * o.y - o.x * self.y,
+        }
+    }
+
+    #[inline(always)]
+    fn select(mask: BVec4A, a: Self, b: Self) -> Self {
+        Self {
+            x: Vec4::select(mask, a.x, b.x),
+            y: Vec4::select(mask, a.y, b.y),
+            z: Vec4::select(mask, a.z, b.z),
+        }
+    }
+}
+
+/// Four quaternions, one per lane.
+#[derive(Clone, Copy)]
+struct Q4 {
+    x: Vec4,
+    y: Vec4,
+    z: Vec4,
+    w: Vec4,
+}
+
+impl Q4 {
+    #[inline(always)]
+    fn lane(self, k: usize) -> Quat {
+        Quat::from_xyzw(self.x[k], self.y[k], self.z[k], self.w[k])
+    }
+
+    /// `a * b` in the order of operations of glam's SSE2 `Quat::mul_quat`.
+    #[inline(always)]
+    fn mul(a: Self, b: Self) -> Self {
+        Self {
+            x: (a.x * b.w + a.w * b.x) + (a.y * b.z - a.z * b.y),
+            y: (a.w * b.y - a.x * b.z) + (a.z * b.x + a.y * b.w),
+            z: (a.x * b.y + a.w * b.z) + (a.z * b.w - a.y * b.x),
+            w: (a.w * b.w - a.x * b.x) + (-(a.z * b.z) - a.y * b.y),
+        }
+    }
+
+    /// `Quat::normalize` (glam's SSE2 order: `(x² + z²) + (y² + w²)`, then a division).
+    #[inline(always)]
+    fn normalize(self) -> Self {
+        let length =
+            ((self.x * self.x + self.z * self.z) + (self.y * self.y + self.w * self.w)).sqrt();
+        Self {
+            x: self.x / length,
+            y: self.y / length,
+            z: self.z / length,
+            w: self.w / length,
+        }
+    }
+
+    #[inline(always)]
+    fn select(mask: BVec4A, a: Self, b: Self) -> Self {
+        Self {
+            x: Vec4::select(mask, a.x, b.x),
+            y: Vec4::select(mask, a.y, b.y),
+            z: Vec4::select(mask, a.z, b.z),
+            w: Vec4::select(mask, a.w, b.w),
+        }
+    }
+
+    #[inline(always)]
+    fn finite(self) -> BVec4A {
+        self.x.is_finite_mask()
+            & self.y.is_finite_mask()
+            & self.z.is_finite_mask()
+            & self.w.is_finite_mask()
+    }
+}
+
+/// `Quat::from_mat3(&Mat3::from_cols(x, y, z))`, lane by lane (glam's four branches, each
+/// lane taking its own).
+#[inline(always)]
+fn from_axes4(x: V3, y: V3, z: V3) -> Q4 {
+    let (m00, m01, m02) = (x.x, x.y, x.z);
+    let (m10, m11, m12) = (y.x, y.y, y.z);
+    let (m20, m21, m22) = (z.x, z.y, z.z);
+    let zero = Vec4::ZERO;
+    let low_z = m22.cmple(zero);
+    let dif10 = m11 - m00;
+    let sum10 = m11 + m00;
+    let omm22 = Vec4::ONE - m22;
+    let opm22 = Vec4::ONE + m22;
+    let case_x = low_z & dif10.cmple(zero);
+    let case_z = !low_z & sum10.cmple(zero);
+    let four = Vec4::select(
+        low_z,
+        Vec4::select(case_x, omm22 - dif10, omm22 + dif10),
+        Vec4::select(case_z, opm22 - sum10, opm22 + sum10),
+    );
+    let inv = Vec4::splat(0.5) / four.sqrt();
+    let own = four * inv;
+    let p01 = (m01 + m10) * inv;
+    let p02 = (m02 + m20) * inv;
+    let p12 = (m12 + m21) * inv;
+    let d12 = (m12 - m21) * inv;
+    let d20 = (m20 - m02) * inv;
+    let d01 = (m01 - m10) * inv;
+    // (x, y, z, w) for the cases x, y, z and w of glam's `from_rotation_axes`.
+    let pick = |cx: Vec4, cy: Vec4, cz: Vec4, cw: Vec4| {
+        Vec4::select(
+            low_z,
+            Vec4::select(case_x, cx, cy),
+            Vec4::select(case_z, cz, cw),
+        )
+    };
+    Q4 {
+        x: pick(own, p01, p02, d12),
+        y: pick(p01, own, p12, d20),
+        z: pick(p02, p12, own, d01),
+        w: pick(d12, d20, d01, own),
+    }
+}
+
+/// `bone_rotation` for four lanes.
+#[inline(always)]
+fn bone_rotation4(frame: Q4, along: Vec4, across: Vec4) -> Q4 {
+    let zero = Vec4::ZERO;
+    let r2 = along * along + across * across;
+    let bone = r2.cmpgt(zero) & r2.is_finite_mask();
+    let r = r2.sqrt();
+    let forward = along.cmpge(zero);
+    let x = Vec4::select(forward, across, r - along);
+    let w = Vec4::select(forward, r + along, across);
+    let inv = Vec4::ONE / (x * x + w * w).sqrt();
+    let half = Q4 {
+        x: x * inv,
+        y: zero,
+        z: zero,
+        w: w * inv,
+    };
+    let q = Q4::mul(frame, half);
+    let flip = Q4 {
+        x: zero,
+        y: Vec4::ONE,
+        z: zero,
+        w: zero,
+    };
+    let q = Q4::select(forward, q, Q4::mul(q, flip));
+    let identity = Q4 {
+        x: zero,
+        y: zero,
+        z: zero,
+        w: Vec4::ONE,
+    };
+    Q4::select(bone & q.finite(), q, identity)
+}
+
+/// Up to four chains solved lane by lane as `Shape` does one, passed to `put` with their
+/// indices from `first`; a chain that needs one of `Shape`'s rare branches is solved on its own.
+#[inline(always)]
+fn solve4(chunk: &[Problem], first: usize, put: &mut impl FnMut(usize, TwoBone)) {
+    let Some(&p0) = chunk.first() else {
+        return;
+    };
+    // Missing lanes repeat the first problem; their results are not used.
+    let p1 = chunk.get(1).copied().unwrap_or(p0);
+    let p2 = chunk.get(2).copied().unwrap_or(p0);
+    let p3 = chunk.get(3).copied().unwrap_or(p0);
+    let zero = Vec4::ZERO;
+    let root = V3::gather([p0.root, p1.root, p2.root, p3.root]);
+    let target = V3::gather([p0.target, p1.target, p2.target, p3.target]);
+    let pole = V3::gather([p0.pole, p1.pole, p2.pole, p3.pole]);
+    let upper = Vec4::new(p0.upper, p1.upper, p2.upper, p3.upper);
+    let lower = Vec4::new(p0.lower, p1.lower, p2.lower, p3.lower);
+
+    // `Shape::aim`.
+    let offset = target.sub(root);
+    let distance = offset.dot(offset).sqrt();
+    let common = distance.is_finite_mask() & distance.cmpgt(Vec4::splat(1e-12));
+    let dir = V3 {
+        x: offset.x / distance,
+        y: offset.y / distance,
+        z: offset.z / distance,
+    };
+
+    // `Shape::bend`.
+    let off_axis = pole.sub(dir.scale(pole.dot(dir)));
+    let rcp = Vec4::ONE / off_axis.dot(off_axis).sqrt();
+    let common = common & rcp.is_finite_mask() & rcp.cmpgt(zero);
+    let bend = off_axis.scale(rcp);
+    let reach = upper + lower;
+    let fold = (upper - lower).abs();
+    let clamped = distance.max(fold).min(reach);
+    let exact = clamped.cmpeq(distance);
+    let reached = exact
+        | (clamped - distance)
+            .abs()
+            .cmple(Vec4::splat(1e-6) * reach.max(Vec4::splat(1e-12)));
+    let end = V3::select(exact, target, root.add(dir.scale(clamped)));
+    let folded = clamped.cmple(zero) | upper.cmpeq(zero);
+    let along = ((upper * upper - lower * lower + clamped * clamped)
+        / (Vec4::splat(2.0) * clamped))
+        .max(-upper)
+        .min(upper);
+    let across = (upper * upper - along * along).max(zero).sqrt();
+    let along = Vec4::select(folded, zero, along);
+    let across = Vec4::select(folded, zero, across);
+    let middle = root.add(dir.scale(along)).add(bend.scale(across));
+
+    // `Shape::rotate`.
+    let frame = from_axes4(dir.cross(bend), dir, bend).normalize();
+    let upper_rotation = bone_rotation4(frame, along, across);
+    let lower_rotation = bone_rotation4(frame, clamped - along, -across);
+
+    let rare = !common.bitmask();
+    for (k, p) in chunk.iter().enumerate().take(4) {
+        let chain = if rare & (1 << k) == 0 {
+            TwoBone {
+                root: root.lane(k),
+                middle: middle.lane(k),
+                end: end.lane(k),
+                upper_rotation: upper_rotation.lane(k),
+                lower_rotation: lower_rotation.lane(k),
+                reached: reached.test(k),
+            }
+        } else {
+            solve_finite(p.root, p.target, p.upper, p.lower, p.pole)
+        };
+        put(first + k, chain);
+    }
+}
+
 /// The rotation taking +Y onto `dir` and +Z onto `bend` (orthonormal).
 #[inline]
 fn chain_frame(dir: Vec3, bend: Vec3) -> Quat {
@@ -235,6 +553,8 @@ fn bone_rotation(frame: Quat, along: f32, across: f32) -> Quat {
 
 #[cfg(test)]
 mod tests {
+    use alloc::vec::Vec;
+
     use super::*;
     use crate::math::{cos, sin};
 
@@ -307,6 +627,68 @@ mod tests {
                     assert!((q * Vec3::Z).distance(expected.normalize()) < 1e-3, "{k}");
                     assert!((q.length() - 1.0).abs() < 1e-5);
                 }
+            }
+        }
+    }
+
+    #[test]
+    fn four_lanes_solve_bit_for_bit_as_one() {
+        // Reachable, unreachable, folded and straight-down targets, zero and unequal lengths,
+        // a target on the root and a pole along the chain (the lanes' rare branches), in
+        // batches of every length up to 11 so that partial chunks are covered.
+        let mut problems = Vec::new();
+        for k in 0..240 {
+            let a = k as f32 * 0.61;
+            let r = 0.02 + 2.2 * ((k * 7) % 23) as f32 / 23.0;
+            let root = Vec3::new(0.3 * cos(a), 1.0 + 0.1 * sin(2.0 * a), -0.2 * sin(a));
+            let mut target = root + Vec3::new(r * sin(a), -r * cos(0.5 * a), 0.4 * r * cos(a));
+            let (mut upper, lower) = (0.3 + 0.05 * (k % 9) as f32, 0.25 + 0.07 * (k % 5) as f32);
+            let mut pole = Vec3::new(0.2 * sin(3.0 * a), 0.1, 1.0);
+            match k % 17 {
+                3 => target = root,
+                5 => pole = target - root,
+                7 => target = root - Vec3::Y * (upper + lower),
+                11 => upper = 0.0,
+                13 => target = root + Vec3::Z * 1e-7,
+                _ => {}
+            }
+            problems.push(Problem {
+                root,
+                target,
+                upper,
+                lower,
+                pole,
+            });
+        }
+        for len in 1..=11 {
+            for batch in problems.chunks(len) {
+                let mut seen = 0;
+                solve_many(batch, |i, chain| {
+                    let p = batch[i];
+                    let one = solve_finite(p.root, p.target, p.upper, p.lower, p.pole);
+                    for (a, b) in [
+                        (chain.root, one.root),
+                        (chain.middle, one.middle),
+                        (chain.end, one.end),
+                    ] {
+                        assert_eq!(
+                            a.to_array().map(f32::to_bits),
+                            b.to_array().map(f32::to_bits)
+                        );
+                    }
+                    for (a, b) in [
+                        (chain.upper_rotation, one.upper_rotation),
+                        (chain.lower_rotation, one.lower_rotation),
+                    ] {
+                        assert_eq!(
+                            a.to_array().map(f32::to_bits),
+                            b.to_array().map(f32::to_bits)
+                        );
+                    }
+                    assert_eq!(chain.reached, one.reached);
+                    seen += 1;
+                });
+                assert_eq!(seen, batch.len());
             }
         }
     }

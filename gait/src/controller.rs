@@ -3,11 +3,11 @@
 
 use alloc::vec::Vec;
 
-use glam::{Mat3A, Quat, Vec2, Vec3, Vec3A};
+use glam::{Mat3A, Quat, Vec2, Vec3, Vec3A, Vec4};
 
 use crate::error::{GaitError, finite, finite3, in_range};
 use crate::ground::Ground;
-use crate::ik::{Problem, TwoBone, solve_many, solve_two_bone};
+use crate::ik::{Lanes, SPARE, TwoBone, V3, solve_lanes, solve_two_bone};
 use crate::leg::{Chain, Layout, Leg, LimbKind, Pose, layout};
 use crate::math::{
     abs, atan2, ceil, clamp_sym, cos, floor_non_negative, quat_yxz, sin_turns, smoothing, sqrt,
@@ -219,10 +219,39 @@ pub struct Controller {
     /// head's rotation is then unchanged and its target, in body space, is this point (a
     /// `Vec3A`: its fourth lane is defined, see `intend`).
     look_cache: Option<([u32; 3], Vec3A)>,
-    /// The legs' IK problems, this update.
-    problems: Vec<Problem>,
+    /// The legs four at a time (the last group padded with its first leg), in SIMD lanes
+    /// for the IK: hips, poles and segment lengths.
+    leg_lanes: Vec<LegLanes>,
     /// The options' centre of mass (see `transform_a`).
     centre_of_mass: Vec3A,
+}
+
+/// Up to four legs' hips, poles and segment lengths, one per SIMD lane; missing lanes repeat
+/// the first leg.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct LegLanes {
+    hip: V3,
+    pole: V3,
+    upper: Vec4,
+    lower: Vec4,
+}
+
+impl LegLanes {
+    fn new(legs: &[Leg]) -> Self {
+        let leg = |k: usize| legs.get(k).or(legs.first()).copied();
+        let lanes = [leg(0), leg(1), leg(2), leg(3)];
+        let get = |f: fn(&Leg) -> Vec3| lanes.map(|l| l.as_ref().map_or(Vec3::ZERO, f));
+        let len = |f: fn(&Leg) -> f32| {
+            let [a, b, c, d] = lanes.map(|l| l.as_ref().map_or(0.0, f));
+            Vec4::new(a, b, c, d)
+        };
+        Self {
+            hip: V3::gather(get(|l| l.hip)),
+            pole: V3::gather(get(|l| l.pole)),
+            upper: len(|l| l.upper),
+            lower: len(|l| l.lower),
+        }
+    }
 }
 
 /// Bisection steps of [`Controller::keep_within_reach`]: the reaction kept is within 2⁻¹⁰ of
@@ -341,7 +370,7 @@ impl Controller {
             react_k: 0.0,
             look_k: 0.0,
             look_cache: None,
-            problems: alloc::vec![Problem::EMPTY; legs.len()],
+            leg_lanes: legs.chunks(4).map(LegLanes::new).collect(),
             centre_of_mass: Vec3A::from(options.centre_of_mass),
         })
     }
@@ -1081,32 +1110,40 @@ impl Controller {
         let w = self.blend;
         let reacted = self.reacted_pose();
         let rotation = Mat3A::from_quat(reacted.rotation);
-        for (((leg, state), rest), problem) in self
-            .legs
+        // Four legs at a time, one per SIMD lane (see `solve_lanes`).
+        let mut spare = [SPARE; 3];
+        for ((lanes, states), rest) in self
+            .leg_lanes
             .iter()
-            .zip(&self.states)
-            .zip(&self.rest_world)
-            .zip(&mut self.problems)
+            .zip(self.states.chunks_mut(4))
+            .zip(self.rest_world.chunks(4))
         {
-            *problem = Problem {
-                root: rotation * leg.hip + reacted.translation,
-                target: if w == 1.0 {
-                    state.foot
-                } else {
-                    rest.lerp(state.foot, w)
-                },
-                upper: leg.upper,
-                lower: leg.lower,
-                pole: rotation * leg.pole,
+            // Missing lanes repeat the first leg.
+            let target = |k: usize| {
+                let k = if k < states.len() { k } else { 0 };
+                match (states.get(k), rest.get(k)) {
+                    (Some(s), _) if w == 1.0 => s.foot,
+                    (Some(s), Some(r)) => r.lerp(s.foot, w),
+                    _ => Vec3::ZERO,
+                }
             };
-        }
-        // Four legs at a time (see `solve_many`).
-        let states = &mut self.states;
-        solve_many(&self.problems, |i, joints| {
-            if let Some(state) = states.get_mut(i) {
-                state.joints = joints;
+            let problem = Lanes {
+                root: lanes.hip.transform(&rotation, reacted.translation),
+                target: V3::gather([target(0), target(1), target(2), target(3)]),
+                pole: lanes.pole.rotate(&rotation),
+                upper: lanes.upper,
+                lower: lanes.lower,
+            };
+            let mut out = states
+                .iter_mut()
+                .map(|s| &mut s.joints)
+                .chain(spare.iter_mut());
+            if let (Some(a), Some(b), Some(c), Some(d)) =
+                (out.next(), out.next(), out.next(), out.next())
+            {
+                solve_lanes(&problem, [a, b, c, d]);
             }
-        });
+        }
     }
 
     fn measure(&mut self, pose: &Pose) {

@@ -1,6 +1,6 @@
 //! Analytic two-bone inverse kinematics with a pole hint.
 
-use glam::{BVec4A, Mat3, Quat, Vec3, Vec4};
+use glam::{BVec4A, Mat3, Mat3A, Mat4, Quat, Vec3, Vec4};
 
 use crate::math::sqrt;
 
@@ -84,7 +84,7 @@ pub(crate) fn solve_finite(
 
 /// A two-bone chain being solved, in three steps: [`aim`](Self::aim) (the direction to the
 /// target), [`bend`](Self::bend) (the middle joint) and [`rotate`](Self::rotate) (the bone
-/// rotations). The reference for [`solve_many`], which does the same operations for four
+/// rotations). The reference for [`solve_lanes`], which does the same operations for four
 /// chains at once.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct Shape {
@@ -196,49 +196,165 @@ impl Shape {
     }
 }
 
-/// One two-bone problem for [`solve_many`]: finite inputs, lengths `>= 0` (as for
-/// `solve_finite`).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct Problem {
-    pub(crate) root: Vec3,
-    pub(crate) target: Vec3,
-    pub(crate) upper: f32,
-    pub(crate) lower: f32,
-    pub(crate) pole: Vec3,
+/// Four two-bone problems, one per SIMD lane, for [`solve_lanes`]: finite inputs, lengths
+/// `>= 0` (as for `solve_finite`).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Lanes {
+    pub(crate) root: V3,
+    pub(crate) target: V3,
+    pub(crate) pole: V3,
+    pub(crate) upper: Vec4,
+    pub(crate) lower: Vec4,
 }
 
-impl Problem {
-    /// Storage before a first solve.
-    pub(crate) const EMPTY: Self = Self {
-        root: Vec3::ZERO,
-        target: Vec3::NEG_Y,
-        upper: 0.5,
-        lower: 0.5,
-        pole: Vec3::Z,
+/// A chain of zero length at the origin: storage for unused lanes.
+pub(crate) const SPARE: TwoBone = TwoBone {
+    root: Vec3::ZERO,
+    middle: Vec3::ZERO,
+    end: Vec3::ZERO,
+    upper_rotation: Quat::IDENTITY,
+    lower_rotation: Quat::IDENTITY,
+    reached: true,
+};
+
+/// Solves four chains at once into `out`, bit for bit as `solve_finite` solves each: the lanes
+/// do every operation of the scalar solve in the same order, and a chain that needs one of its
+/// rare branches (target on the root, pole along the chain) is solved again on its own.
+pub(crate) fn solve_lanes(p: &Lanes, out: [&mut TwoBone; 4]) {
+    let [o0, o1, o2, o3] = out;
+    let zero = Vec4::ZERO;
+    let (root, target, pole, upper, lower) = (p.root, p.target, p.pole, p.upper, p.lower);
+    let [r0, r1, r2, r3] = root.split();
+    (o0.root, o1.root, o2.root, o3.root) = (r0, r1, r2, r3);
+
+    // `Shape::aim`.
+    let offset = target.sub(root);
+    let distance = offset.dot(offset).sqrt();
+    let common = distance.is_finite_mask() & distance.cmpgt(Vec4::splat(1e-12));
+    let dir = V3 {
+        x: offset.x / distance,
+        y: offset.y / distance,
+        z: offset.z / distance,
     };
-}
 
-/// Solves every problem, four at a time (one chain per SIMD lane), calling `put(index, chain)`
-/// for each: the results are those of `solve_finite`, bit for bit. The lanes do every
-/// operation of the scalar solve in the same order; a chain that would take one of its rare
-/// branches (target on the root, pole along the chain) is solved again on its own.
-pub(crate) fn solve_many(problems: &[Problem], mut put: impl FnMut(usize, TwoBone)) {
-    for (c, chunk) in problems.chunks(4).enumerate() {
-        solve4(chunk, 4 * c, &mut put);
+    // `Shape::bend`.
+    let off_axis = pole.sub(dir.scale(pole.dot(dir)));
+    let rcp = Vec4::ONE / off_axis.dot(off_axis).sqrt();
+    let common = common & rcp.is_finite_mask() & rcp.cmpgt(zero);
+    let bend = off_axis.scale(rcp);
+    let reach = upper + lower;
+    let fold = (upper - lower).abs();
+    let clamped = distance.max(fold).min(reach);
+    let exact = clamped.cmpeq(distance);
+    let reached = exact
+        | (clamped - distance)
+            .abs()
+            .cmple(Vec4::splat(1e-6) * reach.max(Vec4::splat(1e-12)));
+    (o0.reached, o1.reached, o2.reached, o3.reached) = (
+        reached.test(0),
+        reached.test(1),
+        reached.test(2),
+        reached.test(3),
+    );
+    let [e0, e1, e2, e3] = V3::select(exact, target, root.add(dir.scale(clamped))).split();
+    (o0.end, o1.end, o2.end, o3.end) = (e0, e1, e2, e3);
+    let folded = clamped.cmple(zero) | upper.cmpeq(zero);
+    let along = ((upper * upper - lower * lower + clamped * clamped)
+        / (Vec4::splat(2.0) * clamped))
+        .max(-upper)
+        .min(upper);
+    let across = (upper * upper - along * along).max(zero).sqrt();
+    let along = Vec4::select(folded, zero, along);
+    let across = Vec4::select(folded, zero, across);
+    let [m0, m1, m2, m3] = root.add(dir.scale(along)).add(bend.scale(across)).split();
+    (o0.middle, o1.middle, o2.middle, o3.middle) = (m0, m1, m2, m3);
+
+    // `Shape::rotate`.
+    let frame = from_axes4(dir.cross(bend), dir, bend).normalize();
+    let [u0, u1, u2, u3] = bone_rotation4(frame, along, across).split();
+    (
+        o0.upper_rotation,
+        o1.upper_rotation,
+        o2.upper_rotation,
+        o3.upper_rotation,
+    ) = (u0, u1, u2, u3);
+    let [l0, l1, l2, l3] = bone_rotation4(frame, clamped - along, -across).split();
+    (
+        o0.lower_rotation,
+        o1.lower_rotation,
+        o2.lower_rotation,
+        o3.lower_rotation,
+    ) = (l0, l1, l2, l3);
+
+    let rare = !common.bitmask();
+    if rare & 0xf != 0 {
+        for (k, o) in [o0, o1, o2, o3].into_iter().enumerate() {
+            if rare & (1 << k) != 0 {
+                *o = solve_finite(
+                    root.lane(k),
+                    target.lane(k),
+                    upper[k],
+                    lower[k],
+                    pole.lane(k),
+                );
+            }
+        }
     }
 }
 
 /// Four `Vec3`s, one per lane.
-#[derive(Clone, Copy)]
-struct V3 {
-    x: Vec4,
-    y: Vec4,
-    z: Vec4,
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct V3 {
+    pub(crate) x: Vec4,
+    pub(crate) y: Vec4,
+    pub(crate) z: Vec4,
 }
 
 impl V3 {
+    /// `m * v + t` for each lane's `v`, in the order of operations of `Mat3A * Vec3`
+    /// (`(x_axis v.x + y_axis v.y) + z_axis v.z`).
     #[inline(always)]
-    fn gather(v: [Vec3; 4]) -> Self {
+    pub(crate) fn transform(self, m: &Mat3A, t: Vec3) -> Self {
+        let row = |a: f32, b: f32, c: f32, t: f32| {
+            Vec4::splat(a) * self.x
+                + Vec4::splat(b) * self.y
+                + Vec4::splat(c) * self.z
+                + Vec4::splat(t)
+        };
+        Self {
+            x: row(m.x_axis.x, m.y_axis.x, m.z_axis.x, t.x),
+            y: row(m.x_axis.y, m.y_axis.y, m.z_axis.y, t.y),
+            z: row(m.x_axis.z, m.y_axis.z, m.z_axis.z, t.z),
+        }
+    }
+
+    /// `m * v` for each lane's `v`, as [`transform`](Self::transform) without a translation.
+    #[inline(always)]
+    pub(crate) fn rotate(self, m: &Mat3A) -> Self {
+        let row = |a: f32, b: f32, c: f32| {
+            Vec4::splat(a) * self.x + Vec4::splat(b) * self.y + Vec4::splat(c) * self.z
+        };
+        Self {
+            x: row(m.x_axis.x, m.y_axis.x, m.z_axis.x),
+            y: row(m.x_axis.y, m.y_axis.y, m.z_axis.y),
+            z: row(m.x_axis.z, m.y_axis.z, m.z_axis.z),
+        }
+    }
+
+    /// The four lanes (a transpose).
+    #[inline(always)]
+    fn split(self) -> [Vec3; 4] {
+        let m = Mat4::from_cols(self.x, self.y, self.z, Vec4::ZERO).transpose();
+        [
+            m.x_axis.truncate(),
+            m.y_axis.truncate(),
+            m.z_axis.truncate(),
+            m.w_axis.truncate(),
+        ]
+    }
+
+    #[inline(always)]
+    pub(crate) fn gather(v: [Vec3; 4]) -> Self {
         Self {
             x: Vec4::new(v[0].x, v[1].x, v[2].x, v[3].x),
             y: Vec4::new(v[0].y, v[1].y, v[2].y, v[3].y),
@@ -314,9 +430,16 @@ struct Q4 {
 }
 
 impl Q4 {
+    /// The four lanes (a transpose).
     #[inline(always)]
-    fn lane(self, k: usize) -> Quat {
-        Quat::from_xyzw(self.x[k], self.y[k], self.z[k], self.w[k])
+    fn split(self) -> [Quat; 4] {
+        let m = Mat4::from_cols(self.x, self.y, self.z, self.w).transpose();
+        [
+            Quat::from_vec4(m.x_axis),
+            Quat::from_vec4(m.y_axis),
+            Quat::from_vec4(m.z_axis),
+            Quat::from_vec4(m.w_axis),
+        ]
     }
 
     /// `a * b` in the order of operations of glam's SSE2 `Quat::mul_quat`.
@@ -440,81 +563,6 @@ fn bone_rotation4(frame: Q4, along: Vec4, across: Vec4) -> Q4 {
     Q4::select(bone & q.finite(), q, identity)
 }
 
-/// Up to four chains solved lane by lane as `Shape` does one, passed to `put` with their
-/// indices from `first`; a chain that needs one of `Shape`'s rare branches is solved on its own.
-#[inline(always)]
-fn solve4(chunk: &[Problem], first: usize, put: &mut impl FnMut(usize, TwoBone)) {
-    let Some(&p0) = chunk.first() else {
-        return;
-    };
-    // Missing lanes repeat the first problem; their results are not used.
-    let p1 = chunk.get(1).copied().unwrap_or(p0);
-    let p2 = chunk.get(2).copied().unwrap_or(p0);
-    let p3 = chunk.get(3).copied().unwrap_or(p0);
-    let zero = Vec4::ZERO;
-    let root = V3::gather([p0.root, p1.root, p2.root, p3.root]);
-    let target = V3::gather([p0.target, p1.target, p2.target, p3.target]);
-    let pole = V3::gather([p0.pole, p1.pole, p2.pole, p3.pole]);
-    let upper = Vec4::new(p0.upper, p1.upper, p2.upper, p3.upper);
-    let lower = Vec4::new(p0.lower, p1.lower, p2.lower, p3.lower);
-
-    // `Shape::aim`.
-    let offset = target.sub(root);
-    let distance = offset.dot(offset).sqrt();
-    let common = distance.is_finite_mask() & distance.cmpgt(Vec4::splat(1e-12));
-    let dir = V3 {
-        x: offset.x / distance,
-        y: offset.y / distance,
-        z: offset.z / distance,
-    };
-
-    // `Shape::bend`.
-    let off_axis = pole.sub(dir.scale(pole.dot(dir)));
-    let rcp = Vec4::ONE / off_axis.dot(off_axis).sqrt();
-    let common = common & rcp.is_finite_mask() & rcp.cmpgt(zero);
-    let bend = off_axis.scale(rcp);
-    let reach = upper + lower;
-    let fold = (upper - lower).abs();
-    let clamped = distance.max(fold).min(reach);
-    let exact = clamped.cmpeq(distance);
-    let reached = exact
-        | (clamped - distance)
-            .abs()
-            .cmple(Vec4::splat(1e-6) * reach.max(Vec4::splat(1e-12)));
-    let end = V3::select(exact, target, root.add(dir.scale(clamped)));
-    let folded = clamped.cmple(zero) | upper.cmpeq(zero);
-    let along = ((upper * upper - lower * lower + clamped * clamped)
-        / (Vec4::splat(2.0) * clamped))
-        .max(-upper)
-        .min(upper);
-    let across = (upper * upper - along * along).max(zero).sqrt();
-    let along = Vec4::select(folded, zero, along);
-    let across = Vec4::select(folded, zero, across);
-    let middle = root.add(dir.scale(along)).add(bend.scale(across));
-
-    // `Shape::rotate`.
-    let frame = from_axes4(dir.cross(bend), dir, bend).normalize();
-    let upper_rotation = bone_rotation4(frame, along, across);
-    let lower_rotation = bone_rotation4(frame, clamped - along, -across);
-
-    let rare = !common.bitmask();
-    for (k, p) in chunk.iter().enumerate().take(4) {
-        let chain = if rare & (1 << k) == 0 {
-            TwoBone {
-                root: root.lane(k),
-                middle: middle.lane(k),
-                end: end.lane(k),
-                upper_rotation: upper_rotation.lane(k),
-                lower_rotation: lower_rotation.lane(k),
-                reached: reached.test(k),
-            }
-        } else {
-            solve_finite(p.root, p.target, p.upper, p.lower, p.pole)
-        };
-        put(first + k, chain);
-    }
-}
-
 /// The rotation taking +Y onto `dir` and +Z onto `bend` (orthonormal).
 #[inline]
 fn chain_frame(dir: Vec3, bend: Vec3) -> Quat {
@@ -634,10 +682,10 @@ mod tests {
     #[test]
     fn four_lanes_solve_bit_for_bit_as_one() {
         // Reachable, unreachable, folded and straight-down targets, zero and unequal lengths,
-        // a target on the root and a pole along the chain (the lanes' rare branches), in
-        // batches of every length up to 11 so that partial chunks are covered.
+        // a target on the root and a pole along the chain (the lanes' rare branches), four at
+        // a time in every position.
         let mut problems = Vec::new();
-        for k in 0..240 {
+        for k in 0..243 {
             let a = k as f32 * 0.61;
             let r = 0.02 + 2.2 * ((k * 7) % 23) as f32 / 23.0;
             let root = Vec3::new(0.3 * cos(a), 1.0 + 0.1 * sin(2.0 * a), -0.2 * sin(a));
@@ -652,43 +700,27 @@ mod tests {
                 13 => target = root + Vec3::Z * 1e-7,
                 _ => {}
             }
-            problems.push(Problem {
-                root,
-                target,
-                upper,
-                lower,
-                pole,
-            });
+            problems.push((root, target, upper, lower, pole));
         }
-        for len in 1..=11 {
-            for batch in problems.chunks(len) {
-                let mut seen = 0;
-                solve_many(batch, |i, chain| {
-                    let p = batch[i];
-                    let one = solve_finite(p.root, p.target, p.upper, p.lower, p.pole);
-                    for (a, b) in [
-                        (chain.root, one.root),
-                        (chain.middle, one.middle),
-                        (chain.end, one.end),
-                    ] {
-                        assert_eq!(
-                            a.to_array().map(f32::to_bits),
-                            b.to_array().map(f32::to_bits)
-                        );
-                    }
-                    for (a, b) in [
-                        (chain.upper_rotation, one.upper_rotation),
-                        (chain.lower_rotation, one.lower_rotation),
-                    ] {
-                        assert_eq!(
-                            a.to_array().map(f32::to_bits),
-                            b.to_array().map(f32::to_bits)
-                        );
-                    }
-                    assert_eq!(chain.reached, one.reached);
-                    seen += 1;
-                });
-                assert_eq!(seen, batch.len());
+        let bits = |c: &TwoBone| {
+            let v = [c.root, c.middle, c.end].map(|v| v.to_array().map(f32::to_bits));
+            let q = [c.upper_rotation, c.lower_rotation].map(|q| q.to_array().map(f32::to_bits));
+            (v, q, c.reached)
+        };
+        for p in problems.windows(4) {
+            let lanes = Lanes {
+                root: V3::gather([p[0].0, p[1].0, p[2].0, p[3].0]),
+                target: V3::gather([p[0].1, p[1].1, p[2].1, p[3].1]),
+                upper: Vec4::new(p[0].2, p[1].2, p[2].2, p[3].2),
+                lower: Vec4::new(p[0].3, p[1].3, p[2].3, p[3].3),
+                pole: V3::gather([p[0].4, p[1].4, p[2].4, p[3].4]),
+            };
+            let mut out = [SPARE; 4];
+            let [a, b, c, d] = &mut out;
+            solve_lanes(&lanes, [a, b, c, d]);
+            for (chain, &(root, target, upper, lower, pole)) in out.iter().zip(p) {
+                let one = solve_finite(root, target, upper, lower, pole);
+                assert_eq!(bits(chain), bits(&one));
             }
         }
     }

@@ -10,7 +10,8 @@ use crate::ground::Ground;
 use crate::ik::{Lanes, SPARE, TwoBone, V3, solve_lanes, solve_two_bone};
 use crate::leg::{Chain, Layout, Leg, LimbKind, Pose, layout};
 use crate::math::{
-    abs, atan2, ceil, clamp_sym, cos, floor_non_negative, quat_yxz, sin_turns, smoothing, sqrt,
+    abs, atan2, atan2_lanes, ceil, clamp_sym, cos, floor_non_negative, quat_yxz, sin_turns,
+    smoothing, sqrt,
 };
 use crate::metrics::{GaitMetrics, SupportPolygon};
 use crate::options::GaitOptions;
@@ -222,6 +223,8 @@ pub struct Controller {
     /// The legs four at a time (the last group padded with its first leg), in SIMD lanes
     /// for the IK: hips, poles and segment lengths.
     leg_lanes: Vec<LegLanes>,
+    /// Each leg's arctangents of the reaction, this update (see `foot_angles`).
+    angles: Vec<f32>,
     /// The options' centre of mass (see `transform_a`).
     centre_of_mass: Vec3A,
 }
@@ -231,6 +234,7 @@ pub struct Controller {
 #[derive(Debug, Clone, Copy, PartialEq)]
 struct LegLanes {
     hip: V3,
+    rest: V3,
     pole: V3,
     upper: Vec4,
     lower: Vec4,
@@ -247,6 +251,7 @@ impl LegLanes {
         };
         Self {
             hip: V3::gather(get(|l| l.hip)),
+            rest: V3::gather(get(|l| l.rest)),
             pole: V3::gather(get(|l| l.pole)),
             upper: len(|l| l.upper),
             lower: len(|l| l.lower),
@@ -371,6 +376,7 @@ impl Controller {
             look_k: 0.0,
             look_cache: None,
             leg_lanes: legs.chunks(4).map(LegLanes::new).collect(),
+            angles: alloc::vec![0.0; legs.len()],
             centre_of_mass: Vec3A::from(options.centre_of_mass),
         })
     }
@@ -865,6 +871,7 @@ impl Controller {
     // ----- reaction ---------------------------------------------------------------------------
 
     fn react(&mut self, pose: &Pose) {
+        self.foot_angles(pose);
         let o = &self.options;
         // Bob: the feet's mean height offset from rest. Sway: their mean top-view angle offset
         // about the body's origin (Trifox). Pitch and roll: the slopes of the height offsets
@@ -883,20 +890,20 @@ impl Controller {
         if count > 0 {
             centre /= count as f32;
         }
-        let inverse = Mat3A::from_quat(pose.rotation).transpose();
-        for ((leg, state), rest_world) in self.legs.iter().zip(&self.states).zip(&self.rest_world) {
+        for (((leg, state), rest_world), angles) in self
+            .legs
+            .iter()
+            .zip(&self.states)
+            .zip(&self.rest_world)
+            .zip(&self.angles)
+        {
             if leg.kind != LimbKind::Leg || !state.grounded {
                 continue;
             }
             let e = state.foot.y - rest_world.y;
             height += e;
-            // The angle from the rest direction to the foot's, seen from above about the body's
-            // origin (angles measured from +Z toward +X): one arctangent of cross and dot.
-            let local = inverse * (state.foot - pose.translation);
+            yaw += angles;
             let rest = leg.rest;
-            let cross = rest.z * local.x - rest.x * local.z;
-            let dot = rest.z * local.z + rest.x * local.x;
-            yaw += atan2(cross, dot);
             let (x, z) = (rest.x - centre.x, rest.z - centre.y);
             ex += e * x;
             xx += x * x;
@@ -947,6 +954,33 @@ impl Controller {
                 _ => 0.0,
             };
             self.states[i].hip_roll = roll * self.blend;
+        }
+    }
+
+    /// Each foot's angle from its leg's rest direction, seen from above about the body's origin
+    /// (measured from +Z toward +X), four legs at a time (see `atan2_lanes`); computed for every
+    /// leg, used for those on the ground.
+    fn foot_angles(&mut self, pose: &Pose) {
+        let inverse = Mat3A::from_quat(pose.rotation).transpose();
+        let t = pose.translation;
+        let states = &self.states;
+        for (c, (lanes, angles)) in self
+            .leg_lanes
+            .iter()
+            .zip(self.angles.chunks_mut(4))
+            .enumerate()
+        {
+            // Missing lanes repeat the first leg.
+            let leg = |k: usize| if k < angles.len() { 4 * c + k } else { 4 * c };
+            let foot = |k: usize| states.get(leg(k)).map_or(Vec3::ZERO, |s| s.foot - t);
+            let local = V3::gather([foot(0), foot(1), foot(2), foot(3)]).rotate(&inverse);
+            let rest = lanes.rest;
+            let cross = rest.z * local.x - rest.x * local.z;
+            let dot = rest.z * local.z + rest.x * local.x;
+            let yaw = atan2_lanes(cross, dot);
+            for (k, a) in angles.iter_mut().enumerate() {
+                *a = yaw[k];
+            }
         }
     }
 
@@ -1379,16 +1413,20 @@ fn cast_down<G: Ground + ?Sized>(
     let above = o.cast_height * size;
     let origin = point + Vec3::Y * above;
     let hit = ground.cast_down(origin, above + o.cast_depth * size)?;
-    if !hit.is_valid() {
+    // `hit.is_valid()`, then unit normals (as `HeightField` and `Plane` give) kept and others
+    // normalised; a normal that passes as a unit is finite and long enough already.
+    let n = hit.normal;
+    let n2 = n.length_squared();
+    let normal = if abs(n2 - 1.0) <= 1e-6 {
+        n
+    } else if n.is_finite() && n2 > 1e-12 {
+        n.normalize_or(Vec3::Y)
+    } else {
+        return None;
+    };
+    if !(hit.point.is_finite() && hit.distance.is_finite()) {
         return None;
     }
-    // Unit normals (as `HeightField` and `Plane` give) are kept; others are normalised.
-    let n = hit.normal;
-    let normal = if abs(n.length_squared() - 1.0) <= 1e-6 {
-        n
-    } else {
-        n.normalize_or(Vec3::Y)
-    };
     Some((hit.point, normal))
 }
 

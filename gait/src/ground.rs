@@ -435,7 +435,9 @@ impl HeightField {
         if origin.y < h {
             return None;
         }
-        let distance = (origin.y - h) / down;
+        // Dividing by exactly 1 (every straight-down cast) changes nothing: skip it.
+        let rise = origin.y - h;
+        let distance = if down == 1.0 { rise } else { rise / down };
         if !(distance <= max_distance) {
             return None;
         }

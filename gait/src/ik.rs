@@ -500,6 +500,38 @@ fn from_axes4(x: V3, y: V3, z: V3) -> Q4 {
     let opm22 = Vec4::ONE + m22;
     let case_x = low_z & dif10.cmple(zero);
     let case_z = !low_z & sum10.cmple(zero);
+    let (low, x_case, z_case) = (low_z.bitmask(), case_x.bitmask(), case_z.bitmask());
+    // Usually every lane takes the same branch (legs are alike): then only its formulas.
+    if low == 0 && z_case == 0xf {
+        let four = opm22 - sum10;
+        let inv = Vec4::splat(0.5) / four.sqrt();
+        return Q4 {
+            x: (m02 + m20) * inv,
+            y: (m12 + m21) * inv,
+            z: four * inv,
+            w: (m01 - m10) * inv,
+        };
+    }
+    if low == 0 && z_case == 0 {
+        let four = opm22 + sum10;
+        let inv = Vec4::splat(0.5) / four.sqrt();
+        return Q4 {
+            x: (m12 - m21) * inv,
+            y: (m20 - m02) * inv,
+            z: (m01 - m10) * inv,
+            w: four * inv,
+        };
+    }
+    if low == 0xf && x_case == 0xf {
+        let four = omm22 - dif10;
+        let inv = Vec4::splat(0.5) / four.sqrt();
+        return Q4 {
+            x: four * inv,
+            y: (m01 + m10) * inv,
+            z: (m02 + m20) * inv,
+            w: (m12 - m21) * inv,
+        };
+    }
     let four = Vec4::select(
         low_z,
         Vec4::select(case_x, omm22 - dif10, omm22 + dif10),
@@ -537,8 +569,15 @@ fn bone_rotation4(frame: Q4, along: Vec4, across: Vec4) -> Q4 {
     let bone = r2.cmpgt(zero) & r2.is_finite_mask();
     let r = r2.sqrt();
     let forward = along.cmpge(zero);
-    let x = Vec4::select(forward, across, r - along);
-    let w = Vec4::select(forward, r + along, across);
+    let all_forward = forward.all();
+    let (x, w) = if all_forward {
+        (across, r + along)
+    } else {
+        (
+            Vec4::select(forward, across, r - along),
+            Vec4::select(forward, r + along, across),
+        )
+    };
     let inv = Vec4::ONE / (x * x + w * w).sqrt();
     let half = Q4 {
         x: x * inv,
@@ -553,14 +592,23 @@ fn bone_rotation4(frame: Q4, along: Vec4, across: Vec4) -> Q4 {
         z: zero,
         w: zero,
     };
-    let q = Q4::select(forward, q, Q4::mul(q, flip));
+    // The half turn and the fallback only where a lane needs them (rarely).
+    let q = if all_forward {
+        q
+    } else {
+        Q4::select(forward, q, Q4::mul(q, flip))
+    };
+    let keep = bone & q.finite();
+    if keep.all() {
+        return q;
+    }
     let identity = Q4 {
         x: zero,
         y: zero,
         z: zero,
         w: Vec4::ONE,
     };
-    Q4::select(bone & q.finite(), q, identity)
+    Q4::select(keep, q, identity)
 }
 
 /// The rotation taking +Y onto `dir` and +Z onto `bend` (orthonormal).
@@ -707,7 +755,18 @@ mod tests {
             let q = [c.upper_rotation, c.lower_rotation].map(|q| q.to_array().map(f32::to_bits));
             (v, q, c.reached)
         };
-        for p in problems.windows(4) {
+        // Mixed neighbours, and four alike (every lane taking the same branches, the lanes'
+        // shortcuts).
+        let alike: Vec<_> = problems
+            .iter()
+            .flat_map(|&(root, target, upper, lower, pole)| {
+                (0..4).map(move |k| {
+                    let nudge = Vec3::new(1e-3, -2e-3, 1.5e-3) * k as f32;
+                    (root, target + nudge, upper, lower, pole)
+                })
+            })
+            .collect();
+        for p in problems.windows(4).chain(alike.chunks(4)) {
             let lanes = Lanes {
                 root: V3::gather([p[0].0, p[1].0, p[2].0, p[3].0]),
                 target: V3::gather([p[0].1, p[1].1, p[2].1, p[3].1]),

@@ -319,6 +319,27 @@ mod tests {
     }
 
     #[test]
+    fn atan2_lanes_is_atan2_bit_for_bit() {
+        // Every octant, the axes, signed zeros and non-finite lanes among finite ones.
+        let mut values: alloc::vec::Vec<f32> = (-40..=40).map(|k| k as f32 * 0.173).collect();
+        values.extend([0.0, -0.0, 1e-30, -1e-30, 3e7, f32::INFINITY, f32::NAN]);
+        for (n, &y) in values.iter().enumerate() {
+            let xs: [f32; 4] = core::array::from_fn(|k| values[(n * 7 + k * 13) % values.len()]);
+            let ys = [y, -y, xs[3], 0.5 * y];
+            let lanes = atan2_lanes(Vec4::from_array(ys), Vec4::from_array(xs));
+            for k in 0..4 {
+                assert_eq!(
+                    lanes[k].to_bits(),
+                    atan2(ys[k], xs[k]).to_bits(),
+                    "atan2({}, {})",
+                    ys[k],
+                    xs[k]
+                );
+            }
+        }
+    }
+
+    #[test]
     fn polynomial_sin_cos_match_the_backend() {
         for k in -400..=400 {
             let x = k as f32 * (FRAC_PI_2 / 400.0);

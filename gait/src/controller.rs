@@ -223,6 +223,10 @@ pub struct Controller {
     /// The legs four at a time (the last group padded with its first leg), in SIMD lanes
     /// for the IK: hips, poles and segment lengths.
     leg_lanes: Vec<LegLanes>,
+    /// The reacted body's hips, four legs at a time, and its rotation when they are this
+    /// update's (see `keep_within_reach`).
+    hips: Vec<V3>,
+    reacted_rotation: Option<Mat3A>,
     /// Each leg's arctangents of the reaction, this update (see `foot_angles`).
     angles: Vec<f32>,
     /// The options' centre of mass (see `transform_a`).
@@ -377,6 +381,8 @@ impl Controller {
             look_cache: None,
             leg_lanes: legs.chunks(4).map(LegLanes::new).collect(),
             angles: alloc::vec![0.0; legs.len()],
+            hips: legs.chunks(4).map(|l| LegLanes::new(l).hip).collect(),
+            reacted_rotation: None,
             centre_of_mass: Vec3A::from(options.centre_of_mass),
         })
     }
@@ -990,6 +996,29 @@ impl Controller {
     /// body already steps (see `action`).
     fn keep_within_reach(&mut self, pose: &Pose) {
         let reaction = self.reaction;
+        // The reacted body's hips, four legs at a time; kept for the IK when every planted foot
+        // is within reach of them (as usual), which then need not place them again.
+        let rotation = Mat3A::from_quat((pose.rotation * reaction.rotation).normalize());
+        let origin = pose.translation + reaction.offset;
+        let mut out = false;
+        for ((lanes, hips), (legs, states)) in self
+            .leg_lanes
+            .iter()
+            .zip(&mut self.hips)
+            .zip(self.legs.chunks(4).zip(self.states.chunks(4)))
+        {
+            *hips = lanes.hip.transform(&rotation, origin);
+            for ((leg, state), hip) in legs.iter().zip(states).zip(hips.split()) {
+                let reach = leg.upper + leg.lower;
+                out |= leg.kind == LimbKind::Leg
+                    && state.planted
+                    && state.foot.distance_squared(hip) > reach * reach;
+            }
+        }
+        if !out {
+            self.reacted_rotation = Some(rotation);
+            return;
+        }
         let out_of_reach = |offset: Vec3, rotation: Quat| {
             let rotation = Mat3A::from_quat((pose.rotation * rotation).normalize());
             let origin = pose.translation + offset;
@@ -1142,13 +1171,21 @@ impl Controller {
 
     fn solve_joints(&mut self) {
         let w = self.blend;
-        let reacted = self.reacted_pose();
-        let rotation = Mat3A::from_quat(reacted.rotation);
+        // The hips placed by `keep_within_reach` for this update, if it kept the reaction.
+        let kept = self.reacted_rotation.take();
+        let (rotation, translation) = match kept {
+            Some(rotation) => (rotation, Vec3::ZERO),
+            None => {
+                let reacted = self.reacted_pose();
+                (Mat3A::from_quat(reacted.rotation), reacted.translation)
+            }
+        };
         // Four legs at a time, one per SIMD lane (see `solve_lanes`).
         let mut spare = [SPARE; 3];
-        for ((lanes, states), rest) in self
+        for (((lanes, hips), states), rest) in self
             .leg_lanes
             .iter()
+            .zip(&self.hips)
             .zip(self.states.chunks_mut(4))
             .zip(self.rest_world.chunks(4))
         {
@@ -1162,7 +1199,11 @@ impl Controller {
                 }
             };
             let problem = Lanes {
-                root: lanes.hip.transform(&rotation, reacted.translation),
+                root: if kept.is_some() {
+                    *hips
+                } else {
+                    lanes.hip.transform(&rotation, translation)
+                },
                 target: V3::gather([target(0), target(1), target(2), target(3)]),
                 pole: lanes.pole.rotate(&rotation),
                 upper: lanes.upper,

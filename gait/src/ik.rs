@@ -343,7 +343,7 @@ impl V3 {
 
     /// The four lanes (a transpose).
     #[inline(always)]
-    fn split(self) -> [Vec3; 4] {
+    pub(crate) fn split(self) -> [Vec3; 4] {
         let m = Mat4::from_cols(self.x, self.y, self.z, Vec4::ZERO).transpose();
         [
             m.x_axis.truncate(),

@@ -969,17 +969,22 @@ impl Controller {
     fn foot_angles(&mut self, pose: &Pose) {
         let inverse = Mat3A::from_quat(pose.rotation).transpose();
         let t = pose.translation;
-        let states = &self.states;
-        for (c, (lanes, angles)) in self
+        for ((lanes, angles), states) in self
             .leg_lanes
             .iter()
             .zip(self.angles.chunks_mut(4))
-            .enumerate()
+            .zip(self.states.chunks(4))
         {
             // Missing lanes repeat the first leg.
-            let leg = |k: usize| if k < angles.len() { 4 * c + k } else { 4 * c };
-            let foot = |k: usize| states.get(leg(k)).map_or(Vec3::ZERO, |s| s.foot - t);
-            let local = V3::gather([foot(0), foot(1), foot(2), foot(3)]).rotate(&inverse);
+            let feet = match states {
+                [a, b, c, d] => [a.foot - t, b.foot - t, c.foot - t, d.foot - t],
+                [first, ..] => {
+                    let foot = |k: usize| states.get(k).unwrap_or(first).foot - t;
+                    [foot(0), foot(1), foot(2), foot(3)]
+                }
+                [] => continue,
+            };
+            let local = V3::gather(feet).rotate(&inverse);
             let rest = lanes.rest;
             let cross = rest.z * local.x - rest.x * local.z;
             let dot = rest.z * local.z + rest.x * local.x;
@@ -1189,14 +1194,21 @@ impl Controller {
             .zip(self.states.chunks_mut(4))
             .zip(self.rest_world.chunks(4))
         {
+            let target = |s: &LegState, r: Option<&Vec3>| match r {
+                Some(r) if w != 1.0 => r.lerp(s.foot, w),
+                _ => s.foot,
+            };
             // Missing lanes repeat the first leg.
-            let target = |k: usize| {
-                let k = if k < states.len() { k } else { 0 };
-                match (states.get(k), rest.get(k)) {
-                    (Some(s), _) if w == 1.0 => s.foot,
-                    (Some(s), Some(r)) => r.lerp(s.foot, w),
-                    _ => Vec3::ZERO,
+            let targets = match &*states {
+                [a, b, c, d] if w == 1.0 => [a.foot, b.foot, c.foot, d.foot],
+                [first, ..] => {
+                    let lane = |k: usize| match states.get(k) {
+                        Some(s) => target(s, rest.get(k)),
+                        None => target(first, rest.first()),
+                    };
+                    [lane(0), lane(1), lane(2), lane(3)]
                 }
+                [] => continue,
             };
             let problem = Lanes {
                 root: if kept.is_some() {
@@ -1204,19 +1216,27 @@ impl Controller {
                 } else {
                     lanes.hip.transform(&rotation, translation)
                 },
-                target: V3::gather([target(0), target(1), target(2), target(3)]),
+                target: V3::gather(targets),
                 pole: lanes.pole.rotate(&rotation),
                 upper: lanes.upper,
                 lower: lanes.lower,
             };
-            let mut out = states
-                .iter_mut()
-                .map(|s| &mut s.joints)
-                .chain(spare.iter_mut());
-            if let (Some(a), Some(b), Some(c), Some(d)) =
-                (out.next(), out.next(), out.next(), out.next())
-            {
-                solve_lanes(&problem, [a, b, c, d]);
+            match states {
+                [a, b, c, d] => solve_lanes(
+                    &problem,
+                    [&mut a.joints, &mut b.joints, &mut c.joints, &mut d.joints],
+                ),
+                _ => {
+                    let mut out = states
+                        .iter_mut()
+                        .map(|s| &mut s.joints)
+                        .chain(spare.iter_mut());
+                    if let (Some(a), Some(b), Some(c), Some(d)) =
+                        (out.next(), out.next(), out.next(), out.next())
+                    {
+                        solve_lanes(&problem, [a, b, c, d]);
+                    }
+                }
             }
         }
     }

@@ -623,7 +623,19 @@ impl Controller {
         let mut escapes_started = 0usize;
         for (i, leg) in self.legs.iter().enumerate() {
             let rest_world = rotation * leg.rest + body;
-            let (anchor, normal, grounded) = cast_anchor(leg, rest_world, o, ground);
+            // `cast_anchor` without the normal, which only a step whose target stays at the
+            // anchor uses: it is cast again then (`anchor_normal`).
+            let (anchor, grounded) = if leg.kind == LimbKind::Arm {
+                (rest_world, true)
+            } else {
+                let (origin, max_distance) = down_ray(rest_world, leg.size, o);
+                match ground.cast_down_point(origin, max_distance) {
+                    Some(point) => (point, true),
+                    None => (rest_world, false),
+                }
+            };
+            let anchor_normal =
+                || cast_down(ground, rest_world, leg.size, o).map_or(Vec3::Y, |(_, n)| n);
             let motion = horizontal(velocity + angular_velocity.cross(rest_world - body));
             if still && motion.length() > still_limit {
                 still = false;
@@ -658,7 +670,7 @@ impl Controller {
                     leg,
                     o,
                     anchor,
-                    normal,
+                    anchor_normal,
                     motion,
                     forward,
                     rest_world.y,
@@ -837,11 +849,12 @@ impl Controller {
                 continue;
             }
             let state = &mut self.states[i];
+            let normal = state.normal;
             let (target, target_normal) = step_target(
                 leg,
                 o,
                 state.anchor,
-                state.normal,
+                || normal,
                 self.motion[i],
                 forward,
                 self.rest_world[i].y,
@@ -1471,9 +1484,8 @@ fn cast_down<G: Ground + ?Sized>(
     size: f32,
     o: &GaitOptions,
 ) -> Option<(Vec3, Vec3)> {
-    let above = o.cast_height * size;
-    let origin = point + Vec3::Y * above;
-    let hit = ground.cast_down(origin, above + o.cast_depth * size)?;
+    let (origin, max_distance) = down_ray(point, size, o);
+    let hit = ground.cast_down(origin, max_distance)?;
     // `hit.is_valid()`, then unit normals (as `HeightField` and `Plane` give) kept and others
     // normalised; a normal that passes as a unit is finite and long enough already.
     let n = hit.normal;
@@ -1491,6 +1503,13 @@ fn cast_down<G: Ground + ?Sized>(
     Some((hit.point, normal))
 }
 
+/// The ray of [`cast_down`]: its origin above `point` and its length.
+#[inline(always)]
+fn down_ray(point: Vec3, size: f32, o: &GaitOptions) -> (Vec3, f32) {
+    let above = o.cast_height * size;
+    (point + Vec3::Y * above, above + o.cast_depth * size)
+}
+
 /// Where a step should land: ahead of the anchor along the anchor's horizontal `motion`, by the
 /// reach in that direction × overshoot (ramped in with speed, × the speed multiplier, capped at
 /// the reach), projected onto the ground from `rest_y` (the rest position's height) or the
@@ -1501,7 +1520,7 @@ fn step_target<G: Ground + ?Sized>(
     leg: &Leg,
     o: &GaitOptions,
     anchor: Vec3,
-    anchor_normal: Vec3,
+    anchor_normal: impl FnOnce() -> Vec3,
     motion: Vec3,
     forward: Vec3,
     rest_y: f32,
@@ -1520,13 +1539,13 @@ fn step_target<G: Ground + ?Sized>(
         return (target, Vec3::Y);
     }
     if target == anchor {
-        return (anchor, anchor_normal);
+        return (anchor, anchor_normal());
     }
     // Cast from the rest height so steep ground ahead is found from above.
     let probe = Vec3::new(target.x, rest_y.max(anchor.y), target.z);
     match cast_down(ground, probe, leg.size, o) {
         Some(hit) => hit,
-        None => (anchor, anchor_normal),
+        None => (anchor, anchor_normal()),
     }
 }
 

@@ -227,6 +227,9 @@ pub struct Controller {
     /// update's (see `keep_within_reach`).
     hips: Vec<V3>,
     reacted_rotation: Option<Mat3A>,
+    /// Each planted leg's stray from its anchor and the reach in that direction, this update
+    /// (step 2 of `action`, for step 4).
+    strayed: Vec<(f32, f32)>,
     /// Each leg's arctangents of the reaction, this update (see `foot_angles`).
     angles: Vec<f32>,
     /// The options' centre of mass (see `transform_a`).
@@ -381,6 +384,7 @@ impl Controller {
             look_cache: None,
             leg_lanes: legs.chunks(4).map(LegLanes::new).collect(),
             angles: alloc::vec![0.0; legs.len()],
+            strayed: alloc::vec![(0.0, 0.0); legs.len()],
             hips: legs.chunks(4).map(|l| LegLanes::new(l).hip).collect(),
             reacted_rotation: None,
             centre_of_mass: Vec3A::from(options.centre_of_mass),
@@ -579,8 +583,10 @@ impl Controller {
             self.look_k = smoothing(dt, self.options.look_time);
         }
 
-        self.action(dt, &pose, velocity, angular_velocity, ground);
-        self.react(&pose);
+        // The pose's rotation as a matrix, for the action and the reaction.
+        let rotation = Mat3A::from_quat(pose.rotation);
+        self.action(dt, &pose, &rotation, velocity, angular_velocity, ground);
+        self.react(&pose, &rotation);
         self.keep_within_reach(&pose);
         self.intend(&pose, angular_velocity);
         for i in 0..self.chains.len() {
@@ -597,6 +603,7 @@ impl Controller {
         &mut self,
         dt: f32,
         pose: &Pose,
+        rotation: &Mat3A,
         velocity: Vec3,
         angular_velocity: Vec3,
         ground: &G,
@@ -606,7 +613,7 @@ impl Controller {
             .try_normalize()
             .unwrap_or(Vec3::Z);
         let body = pose.translation;
-        let rotation = Mat3A::from_quat(pose.rotation);
+        let rotation = *rotation;
         let speed_factor = o.speed_multiplier.max(1.0);
         let arm_idle = if self.has_arms {
             sin_turns(self.idle_phase)
@@ -703,12 +710,13 @@ impl Controller {
         }
 
         // 2. Which planted legs want to step.
-        for (((leg, state), want), motion) in self
+        for ((((leg, state), want), motion), strayed) in self
             .legs
             .iter()
             .zip(&self.states)
             .zip(&mut self.wants)
             .zip(&self.motion)
+            .zip(&mut self.strayed)
         {
             if state.stepping || (leg.kind == LimbKind::Leg && !state.grounded) {
                 *want = 0;
@@ -724,7 +732,9 @@ impl Controller {
             } else {
                 0.0
             };
-            let allowed = o.reach.evaluate(d) * leg.size;
+            let reach_here = o.reach.evaluate(d);
+            *strayed = (distance, reach_here);
+            let allowed = reach_here * leg.size;
             let mut flags = if distance > allowed { WANT } else { 0 };
             // Turning (in place): the foot's direction from the body has turned too far from the
             // rest direction. Only for a foot that trails its rest position's motion: one that
@@ -801,13 +811,14 @@ impl Controller {
             }
         }
         if group_moves {
-            for ((((leg, state), want), group), motion) in self
+            for (((((leg, state), want), group), motion), &(distance, reach_here)) in self
                 .legs
                 .iter()
                 .zip(&self.states)
                 .zip(&mut self.wants)
                 .zip(&self.layout.groups)
                 .zip(&self.motion)
+                .zip(&self.strayed)
             {
                 if leg.kind != LimbKind::Leg
                     || *group != active
@@ -822,13 +833,9 @@ impl Controller {
                 if !trailing {
                     continue;
                 }
-                let distance = stray.length();
-                let d = if distance > 1e-9 {
-                    stray.dot(forward) / distance
-                } else {
-                    0.0
-                };
-                if distance > o.group_join * o.reach.evaluate(d) * leg.size {
+                // The stray's length and the reach in its direction, as step 2 found them
+                // (every leg here went through it, and no foot has moved since).
+                if distance > o.group_join * reach_here * leg.size {
                     *want = WANT;
                 }
             }
@@ -889,8 +896,8 @@ impl Controller {
 
     // ----- reaction ---------------------------------------------------------------------------
 
-    fn react(&mut self, pose: &Pose) {
-        self.foot_angles(pose);
+    fn react(&mut self, pose: &Pose, rotation: &Mat3A) {
+        self.foot_angles(pose, rotation);
         let o = &self.options;
         // Bob: the feet's mean height offset from rest. Sway: their mean top-view angle offset
         // about the body's origin (Trifox). Pitch and roll: the slopes of the height offsets
@@ -979,8 +986,8 @@ impl Controller {
     /// Each foot's angle from its leg's rest direction, seen from above about the body's origin
     /// (measured from +Z toward +X), four legs at a time (see `atan2_lanes`); computed for every
     /// leg, used for those on the ground.
-    fn foot_angles(&mut self, pose: &Pose) {
-        let inverse = Mat3A::from_quat(pose.rotation).transpose();
+    fn foot_angles(&mut self, pose: &Pose, rotation: &Mat3A) {
+        let inverse = rotation.transpose();
         let t = pose.translation;
         for ((lanes, angles), states) in self
             .leg_lanes
@@ -1441,14 +1448,20 @@ fn validate_pose(pose: Pose) -> Result<Pose, GaitError> {
     }
     let t = pose.translation.abs().max_element();
     in_range(t, "pose coordinate", 0.0, MAX_COORDINATE)?;
-    let len = pose.rotation.length();
+    // The square root of these two squared lengths, and only these, rounds to exactly 1
+    // (that of 1 + 2⁻²³ is a hair below 1 + 2⁻²⁴): such a rotation is kept as it is, since
+    // dividing by exactly 1 changes nothing.
+    let len2 = pose.rotation.length_squared();
+    if len2 == 1.0 || len2 == 1.0 + f32::EPSILON {
+        return Ok(pose);
+    }
+    let len = sqrt(len2);
     if !(len > 1e-6) {
         return Err(GaitError::ZeroVector {
             what: "pose rotation",
             index: 0,
         });
     }
-    // Dividing by exactly 1 changes nothing: skip it for poses that are normalised already.
     let rotation = if len == 1.0 {
         pose.rotation
     } else {
@@ -1581,6 +1594,25 @@ mod tests {
             c.update(dt, pose, Vec3::Z, Vec3::ZERO, &Plane::GROUND)
                 .unwrap();
         }
+    }
+
+    #[test]
+    fn validate_pose_skips_exactly_the_square_roots_that_are_one() {
+        // The two squared lengths `validate_pose` keeps without a square root are those, among
+        // their neighbours, whose square root is exactly 1.
+        let kept = |x: f32| x == 1.0 || x == 1.0 + f32::EPSILON;
+        let mut x = f32::from_bits(1.0f32.to_bits() - 200);
+        for _ in 0..400 {
+            assert_eq!(sqrt(x) == 1.0, kept(x), "{x}");
+            x = f32::from_bits(x.to_bits() + 1);
+        }
+        // And such a rotation is kept as it is, others divided by their length.
+        let q = Quat::from_xyzw(0.0, 0.6, 0.0, 0.8);
+        assert!(kept(q.length_squared()));
+        assert_eq!(validate_pose(Pose::new(Vec3::ZERO, q)).unwrap().rotation, q);
+        let q = Quat::from_xyzw(0.6, 0.0, 0.0, 0.8000002);
+        let v = validate_pose(Pose::new(Vec3::ZERO, q)).unwrap().rotation;
+        assert_eq!(v, q / q.length());
     }
 
     #[test]

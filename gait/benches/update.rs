@@ -10,35 +10,12 @@
 
 use core::hint::black_box;
 
-use creature_gait::glam::{Quat, Vec2, Vec3};
-use creature_gait::{Controller, FnGround, GaitOptions, Ground, HeightField, Leg, Pose, RayHit};
+mod herd;
+
+use creature_gait::glam::Vec3;
+use creature_gait::{FnGround, Ground, HeightField, RayHit};
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
-
-const CREATURES: usize = 1000;
-const DT: f32 = 1.0 / 60.0;
-
-fn hexapod() -> Vec<Leg> {
-    let mut legs = Vec::new();
-    for k in 0..3 {
-        let z = 0.9 - 0.9 * k as f32;
-        for side in [1.0f32, -1.0] {
-            legs.push(Leg::new(
-                Vec3::new(0.25 * side, 0.0, z),
-                Vec3::new(0.35 * side, -0.8, z),
-                0.5,
-                0.5,
-            ));
-        }
-    }
-    legs
-}
-
-fn terrain() -> HeightField {
-    HeightField::from_fn(Vec2::splat(-100.0), 0.5, 401, 401, |x, z| {
-        0.3 * (x * 0.37).sin() * (z * 0.29).cos() + 0.05 * (x * 2.1 + z * 1.7).sin()
-    })
-    .expect("valid field")
-}
+use herd::{CREATURES, Herd, terrain};
 
 /// The plain reference ground: march down in 1 cm steps until below the bilinear height.
 fn marched(field: &HeightField, origin: Vec3, direction: Vec3, max: f32) -> Option<RayHit> {
@@ -59,76 +36,21 @@ fn marched(field: &HeightField, origin: Vec3, direction: Vec3, max: f32) -> Opti
     None
 }
 
-struct Herd {
-    controllers: Vec<Controller>,
-    positions: Vec<Vec3>,
-    velocities: Vec<Vec3>,
-}
-
-fn herd(ground: &impl Ground, field: &HeightField) -> Herd {
-    let legs = hexapod();
-    let mut herd = Herd {
-        controllers: Vec::new(),
-        positions: Vec::new(),
-        velocities: Vec::new(),
-    };
-    for i in 0..CREATURES {
-        let position = Vec3::new(
-            (i % 40) as f32 * 4.0 - 80.0,
-            0.0,
-            (i / 40) as f32 * 6.0 - 80.0,
-        );
-        let velocity = Vec3::new(0.0, 0.0, 0.5 + (i % 7) as f32 * 0.2);
-        let mut c = Controller::new(&legs, &GaitOptions::DEFAULT).expect("valid legs");
-        // Warm up: a second of walking so steps are under way.
-        let mut p = position;
-        for _ in 0..60 {
-            p += velocity * DT;
-            let y = field.height(p.x, p.z).expect("on the field") + 0.8;
-            c.update(
-                DT,
-                Pose::new(Vec3::new(p.x, y, p.z), Quat::IDENTITY),
-                velocity,
-                Vec3::ZERO,
-                ground,
-            )
-            .expect("valid update");
-        }
-        herd.controllers.push(c);
-        herd.positions.push(p);
-        herd.velocities.push(velocity);
-    }
-    herd
-}
-
 fn step(herd: &mut Herd, ground: &impl Ground, field: &HeightField) {
-    for ((c, p), v) in herd
-        .controllers
-        .iter_mut()
-        .zip(&mut herd.positions)
-        .zip(&herd.velocities)
-    {
-        *p += *v * DT;
-        if p.z > 90.0 {
-            p.z -= 170.0;
-        }
-        let y = field.height(p.x, p.z).unwrap_or(0.0) + 0.8;
-        let pose = Pose::new(Vec3::new(p.x, y, p.z), Quat::IDENTITY);
-        black_box(c.update(DT, pose, *v, Vec3::ZERO, ground)).expect("valid update");
-    }
+    black_box(herd.step(ground, field)).expect("valid update");
 }
 
 fn bench(c: &mut Criterion) {
-    let field = terrain();
+    let field = terrain().expect("valid field");
     let reference = FnGround(|o: Vec3, d: Vec3, m: f32| marched(&field, o, d, m));
     let mut group = c.benchmark_group("1000_hexapods_height_field");
     group.throughput(Throughput::Elements((CREATURES * 6) as u64));
     group.sample_size(20);
-    let mut exact = herd(&field, &field);
+    let mut exact = Herd::new(CREATURES, &field, &field).expect("valid herd");
     group.bench_function("creature_gait_exact_cast", |b| {
         b.iter(|| step(&mut exact, &field, &field));
     });
-    let mut slow = herd(&reference, &field);
+    let mut slow = Herd::new(CREATURES, &reference, &field).expect("valid herd");
     group.bench_function("reference_ray_march", |b| {
         b.iter(|| step(&mut slow, &reference, &field));
     });

@@ -3,14 +3,15 @@
 
 use alloc::vec::Vec;
 
-use glam::{Mat3A, Quat, Vec2, Vec3};
+use glam::{Mat3A, Quat, Vec2, Vec3, Vec3A, Vec4};
 
 use crate::error::{GaitError, finite, finite3, in_range};
 use crate::ground::Ground;
-use crate::ik::{Shape, TwoBone, solve_two_bone};
+use crate::ik::{Lanes, SPARE, TwoBone, V3, solve_lanes, solve_two_bone};
 use crate::leg::{Chain, Layout, Leg, LimbKind, Pose, layout};
 use crate::math::{
-    abs, atan2, ceil, clamp_sym, cos, floor_non_negative, quat_yxz, sin_turns, smoothing, sqrt,
+    abs, atan2, atan2_lanes, ceil, clamp_sym, cos, floor_non_negative, quat_yxz, sin_turns,
+    smoothing, sqrt,
 };
 use crate::metrics::{GaitMetrics, SupportPolygon};
 use crate::options::GaitOptions;
@@ -216,10 +217,53 @@ pub struct Controller {
     react_k: f32,
     look_k: f32,
     /// The look-at's `(yaw, pitch, blend)` bits of the last update and what they gave: the
-    /// head's rotation is then unchanged and its target, in body space, is this point.
-    look_cache: Option<([u32; 3], Vec3)>,
-    /// The legs' IK solved up to the bone rotations, this update.
-    shapes: Vec<Shape>,
+    /// head's rotation is then unchanged and its target, in body space, is this point (a
+    /// `Vec3A`: its fourth lane is defined, see `intend`).
+    look_cache: Option<([u32; 3], Vec3A)>,
+    /// The legs four at a time (the last group padded with its first leg), in SIMD lanes
+    /// for the IK: hips, poles and segment lengths.
+    leg_lanes: Vec<LegLanes>,
+    /// The reacted body's hips, four legs at a time, and its rotation when they are this
+    /// update's (see `keep_within_reach`).
+    hips: Vec<V3>,
+    reacted_rotation: Option<Mat3A>,
+    /// Each planted leg's stray from its anchor and the reach in that direction, this update
+    /// (step 2 of `action`, for step 4).
+    strayed: Vec<(f32, f32)>,
+    /// Each leg's arctangents of the reaction, this update (see `foot_angles`).
+    angles: Vec<f32>,
+    /// The options' centre of mass (see `transform_a`).
+    centre_of_mass: Vec3A,
+}
+
+/// Up to four legs' hips, poles and segment lengths, one per SIMD lane; missing lanes repeat
+/// the first leg.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct LegLanes {
+    hip: V3,
+    rest: V3,
+    pole: V3,
+    upper: Vec4,
+    lower: Vec4,
+}
+
+impl LegLanes {
+    fn new(legs: &[Leg]) -> Self {
+        let leg = |k: usize| legs.get(k).or(legs.first()).copied();
+        let lanes = [leg(0), leg(1), leg(2), leg(3)];
+        let get = |f: fn(&Leg) -> Vec3| lanes.map(|l| l.as_ref().map_or(Vec3::ZERO, f));
+        let len = |f: fn(&Leg) -> f32| {
+            let [a, b, c, d] = lanes.map(|l| l.as_ref().map_or(0.0, f));
+            Vec4::new(a, b, c, d)
+        };
+        Self {
+            hip: V3::gather(get(|l| l.hip)),
+            rest: V3::gather(get(|l| l.rest)),
+            pole: V3::gather(get(|l| l.pole)),
+            upper: len(|l| l.upper),
+            lower: len(|l| l.lower),
+        }
+    }
 }
 
 /// Bisection steps of [`Controller::keep_within_reach`]: the reaction kept is within 2⁻¹⁰ of
@@ -338,7 +382,12 @@ impl Controller {
             react_k: 0.0,
             look_k: 0.0,
             look_cache: None,
-            shapes: alloc::vec![Shape::EMPTY; legs.len()],
+            leg_lanes: legs.chunks(4).map(LegLanes::new).collect(),
+            angles: alloc::vec![0.0; legs.len()],
+            strayed: alloc::vec![(0.0, 0.0); legs.len()],
+            hips: legs.chunks(4).map(|l| LegLanes::new(l).hip).collect(),
+            reacted_rotation: None,
+            centre_of_mass: Vec3A::from(options.centre_of_mass),
         })
     }
 
@@ -534,8 +583,10 @@ impl Controller {
             self.look_k = smoothing(dt, self.options.look_time);
         }
 
-        self.action(dt, &pose, velocity, angular_velocity, ground);
-        self.react(&pose);
+        // The pose's rotation as a matrix, for the action and the reaction.
+        let rotation = Mat3A::from_quat(pose.rotation);
+        self.action(dt, &pose, &rotation, velocity, angular_velocity, ground);
+        self.react(&pose, &rotation);
         self.keep_within_reach(&pose);
         self.intend(&pose, angular_velocity);
         for i in 0..self.chains.len() {
@@ -552,6 +603,7 @@ impl Controller {
         &mut self,
         dt: f32,
         pose: &Pose,
+        rotation: &Mat3A,
         velocity: Vec3,
         angular_velocity: Vec3,
         ground: &G,
@@ -561,7 +613,7 @@ impl Controller {
             .try_normalize()
             .unwrap_or(Vec3::Z);
         let body = pose.translation;
-        let rotation = Mat3A::from_quat(pose.rotation);
+        let rotation = *rotation;
         let speed_factor = o.speed_multiplier.max(1.0);
         let arm_idle = if self.has_arms {
             sin_turns(self.idle_phase)
@@ -578,7 +630,19 @@ impl Controller {
         let mut escapes_started = 0usize;
         for (i, leg) in self.legs.iter().enumerate() {
             let rest_world = rotation * leg.rest + body;
-            let (anchor, normal, grounded) = cast_anchor(leg, rest_world, o, ground);
+            // `cast_anchor` without the normal, which only a step whose target stays at the
+            // anchor uses: it is cast again then (`anchor_normal`).
+            let (anchor, grounded) = if leg.kind == LimbKind::Arm {
+                (rest_world, true)
+            } else {
+                let (origin, max_distance) = down_ray(rest_world, leg.size, o);
+                match ground.cast_down_point(origin, max_distance) {
+                    Some(point) => (point, true),
+                    None => (rest_world, false),
+                }
+            };
+            let anchor_normal =
+                || cast_down(ground, rest_world, leg.size, o).map_or(Vec3::Y, |(_, n)| n);
             let motion = horizontal(velocity + angular_velocity.cross(rest_world - body));
             if still && motion.length() > still_limit {
                 still = false;
@@ -613,7 +677,7 @@ impl Controller {
                     leg,
                     o,
                     anchor,
-                    normal,
+                    anchor_normal,
                     motion,
                     forward,
                     rest_world.y,
@@ -646,12 +710,13 @@ impl Controller {
         }
 
         // 2. Which planted legs want to step.
-        for (((leg, state), want), motion) in self
+        for ((((leg, state), want), motion), strayed) in self
             .legs
             .iter()
             .zip(&self.states)
             .zip(&mut self.wants)
             .zip(&self.motion)
+            .zip(&mut self.strayed)
         {
             if state.stepping || (leg.kind == LimbKind::Leg && !state.grounded) {
                 *want = 0;
@@ -667,7 +732,9 @@ impl Controller {
             } else {
                 0.0
             };
-            let allowed = o.reach.evaluate(d) * leg.size;
+            let reach_here = o.reach.evaluate(d);
+            *strayed = (distance, reach_here);
+            let allowed = reach_here * leg.size;
             let mut flags = if distance > allowed { WANT } else { 0 };
             // Turning (in place): the foot's direction from the body has turned too far from the
             // rest direction. Only for a foot that trails its rest position's motion: one that
@@ -744,13 +811,14 @@ impl Controller {
             }
         }
         if group_moves {
-            for ((((leg, state), want), group), motion) in self
+            for (((((leg, state), want), group), motion), &(distance, reach_here)) in self
                 .legs
                 .iter()
                 .zip(&self.states)
                 .zip(&mut self.wants)
                 .zip(&self.layout.groups)
                 .zip(&self.motion)
+                .zip(&self.strayed)
             {
                 if leg.kind != LimbKind::Leg
                     || *group != active
@@ -765,13 +833,9 @@ impl Controller {
                 if !trailing {
                     continue;
                 }
-                let distance = stray.length();
-                let d = if distance > 1e-9 {
-                    stray.dot(forward) / distance
-                } else {
-                    0.0
-                };
-                if distance > o.group_join * o.reach.evaluate(d) * leg.size {
+                // The stray's length and the reach in its direction, as step 2 found them
+                // (every leg here went through it, and no foot has moved since).
+                if distance > o.group_join * reach_here * leg.size {
                     *want = WANT;
                 }
             }
@@ -792,11 +856,12 @@ impl Controller {
                 continue;
             }
             let state = &mut self.states[i];
+            let normal = state.normal;
             let (target, target_normal) = step_target(
                 leg,
                 o,
                 state.anchor,
-                state.normal,
+                || normal,
                 self.motion[i],
                 forward,
                 self.rest_world[i].y,
@@ -831,7 +896,8 @@ impl Controller {
 
     // ----- reaction ---------------------------------------------------------------------------
 
-    fn react(&mut self, pose: &Pose) {
+    fn react(&mut self, pose: &Pose, rotation: &Mat3A) {
+        self.foot_angles(pose, rotation);
         let o = &self.options;
         // Bob: the feet's mean height offset from rest. Sway: their mean top-view angle offset
         // about the body's origin (Trifox). Pitch and roll: the slopes of the height offsets
@@ -850,20 +916,20 @@ impl Controller {
         if count > 0 {
             centre /= count as f32;
         }
-        let inverse = Mat3A::from_quat(pose.rotation).transpose();
-        for ((leg, state), rest_world) in self.legs.iter().zip(&self.states).zip(&self.rest_world) {
+        for (((leg, state), rest_world), angles) in self
+            .legs
+            .iter()
+            .zip(&self.states)
+            .zip(&self.rest_world)
+            .zip(&self.angles)
+        {
             if leg.kind != LimbKind::Leg || !state.grounded {
                 continue;
             }
             let e = state.foot.y - rest_world.y;
             height += e;
-            // The angle from the rest direction to the foot's, seen from above about the body's
-            // origin (angles measured from +Z toward +X): one arctangent of cross and dot.
-            let local = inverse * (state.foot - pose.translation);
+            yaw += angles;
             let rest = leg.rest;
-            let cross = rest.z * local.x - rest.x * local.z;
-            let dot = rest.z * local.z + rest.x * local.x;
-            yaw += atan2(cross, dot);
             let (x, z) = (rest.x - centre.x, rest.z - centre.y);
             ex += e * x;
             xx += x * x;
@@ -917,12 +983,67 @@ impl Controller {
         }
     }
 
+    /// Each foot's angle from its leg's rest direction, seen from above about the body's origin
+    /// (measured from +Z toward +X), four legs at a time (see `atan2_lanes`); computed for every
+    /// leg, used for those on the ground.
+    fn foot_angles(&mut self, pose: &Pose, rotation: &Mat3A) {
+        let inverse = rotation.transpose();
+        let t = pose.translation;
+        for ((lanes, angles), states) in self
+            .leg_lanes
+            .iter()
+            .zip(self.angles.chunks_mut(4))
+            .zip(self.states.chunks(4))
+        {
+            // Missing lanes repeat the first leg.
+            let feet = match states {
+                [a, b, c, d] => [a.foot - t, b.foot - t, c.foot - t, d.foot - t],
+                [first, ..] => {
+                    let foot = |k: usize| states.get(k).unwrap_or(first).foot - t;
+                    [foot(0), foot(1), foot(2), foot(3)]
+                }
+                [] => continue,
+            };
+            let local = V3::gather(feet).rotate(&inverse);
+            let rest = lanes.rest;
+            let cross = rest.z * local.x - rest.x * local.z;
+            let dot = rest.z * local.z + rest.x * local.x;
+            let yaw = atan2_lanes(cross, dot);
+            for (k, a) in angles.iter_mut().enumerate() {
+                *a = yaw[k];
+            }
+        }
+    }
+
     /// Scales the body's reaction (bob, breathing, sway) back toward none, as little as needed,
     /// so that no planted foot is beyond its leg's reach from the reacted hip: on a long body a
     /// small pitch or roll moves the far hips a long way. A foot out of reach of the unreacted
     /// body already steps (see `action`).
     fn keep_within_reach(&mut self, pose: &Pose) {
         let reaction = self.reaction;
+        // The reacted body's hips, four legs at a time; kept for the IK when every planted foot
+        // is within reach of them (as usual), which then need not place them again.
+        let rotation = Mat3A::from_quat((pose.rotation * reaction.rotation).normalize());
+        let origin = pose.translation + reaction.offset;
+        let mut out = false;
+        for ((lanes, hips), (legs, states)) in self
+            .leg_lanes
+            .iter()
+            .zip(&mut self.hips)
+            .zip(self.legs.chunks(4).zip(self.states.chunks(4)))
+        {
+            *hips = lanes.hip.transform(&rotation, origin);
+            for ((leg, state), hip) in legs.iter().zip(states).zip(hips.split()) {
+                let reach = leg.upper + leg.lower;
+                out |= leg.kind == LimbKind::Leg
+                    && state.planted
+                    && state.foot.distance_squared(hip) > reach * reach;
+            }
+        }
+        if !out {
+            self.reacted_rotation = Some(rotation);
+            return;
+        }
         let out_of_reach = |offset: Vec3, rotation: Quat| {
             let rotation = Mat3A::from_quat((pose.rotation * rotation).normalize());
             let origin = pose.translation + offset;
@@ -988,12 +1109,12 @@ impl Controller {
                 } else {
                     Quat::IDENTITY.slerp(full, self.blend).normalize()
                 };
-                let local = self.head + full * Vec3::Z * (2.0 * self.mean_size);
+                let local = Vec3A::from(self.head + full * Vec3::Z * (2.0 * self.mean_size));
                 self.look_cache = Some((key, local));
                 local
             }
         };
-        look.target = pose.transform_point(local);
+        look.target = transform_a(pose, local);
     }
 
     // ----- follow-through ---------------------------------------------------------------------
@@ -1075,30 +1196,68 @@ impl Controller {
 
     fn solve_joints(&mut self) {
         let w = self.blend;
-        let reacted = self.reacted_pose();
-        let rotation = Mat3A::from_quat(reacted.rotation);
-        for (((leg, state), rest), shape) in self
-            .legs
+        // The hips placed by `keep_within_reach` for this update, if it kept the reaction.
+        let kept = self.reacted_rotation.take();
+        let (rotation, translation) = match kept {
+            Some(rotation) => (rotation, Vec3::ZERO),
+            None => {
+                let reacted = self.reacted_pose();
+                (Mat3A::from_quat(reacted.rotation), reacted.translation)
+            }
+        };
+        // Four legs at a time, one per SIMD lane (see `solve_lanes`).
+        let mut spare = [SPARE; 3];
+        for (((lanes, hips), states), rest) in self
+            .leg_lanes
             .iter()
-            .zip(&self.states)
-            .zip(&self.rest_world)
-            .zip(&mut self.shapes)
+            .zip(&self.hips)
+            .zip(self.states.chunks_mut(4))
+            .zip(self.rest_world.chunks(4))
         {
-            let hip = rotation * leg.hip + reacted.translation;
-            let pole = rotation * leg.pole;
-            let foot = if w == 1.0 {
-                state.foot
-            } else {
-                rest.lerp(state.foot, w)
+            let target = |s: &LegState, r: Option<&Vec3>| match r {
+                Some(r) if w != 1.0 => r.lerp(s.foot, w),
+                _ => s.foot,
             };
-            *shape = Shape::aim(hip, foot, pole);
-        }
-        // The rest of the IK in two more passes over the legs (see `Shape`).
-        for (leg, shape) in self.legs.iter().zip(&mut self.shapes) {
-            shape.bend(leg.upper, leg.lower);
-        }
-        for (state, shape) in self.states.iter_mut().zip(&self.shapes) {
-            state.joints = shape.rotate();
+            // Missing lanes repeat the first leg.
+            let targets = match &*states {
+                [a, b, c, d] if w == 1.0 => [a.foot, b.foot, c.foot, d.foot],
+                [first, ..] => {
+                    let lane = |k: usize| match states.get(k) {
+                        Some(s) => target(s, rest.get(k)),
+                        None => target(first, rest.first()),
+                    };
+                    [lane(0), lane(1), lane(2), lane(3)]
+                }
+                [] => continue,
+            };
+            let problem = Lanes {
+                root: if kept.is_some() {
+                    *hips
+                } else {
+                    lanes.hip.transform(&rotation, translation)
+                },
+                target: V3::gather(targets),
+                pole: lanes.pole.rotate(&rotation),
+                upper: lanes.upper,
+                lower: lanes.lower,
+            };
+            match states {
+                [a, b, c, d] => solve_lanes(
+                    &problem,
+                    [&mut a.joints, &mut b.joints, &mut c.joints, &mut d.joints],
+                ),
+                _ => {
+                    let mut out = states
+                        .iter_mut()
+                        .map(|s| &mut s.joints)
+                        .chain(spare.iter_mut());
+                    if let (Some(a), Some(b), Some(c), Some(d)) =
+                        (out.next(), out.next(), out.next(), out.next())
+                    {
+                        solve_lanes(&problem, [a, b, c, d]);
+                    }
+                }
+            }
         }
     }
 
@@ -1129,7 +1288,7 @@ impl Controller {
             }
         }
         let skate = sqrt(skate);
-        let com = pose.transform_point(self.options.centre_of_mass);
+        let com = transform_a(pose, self.centre_of_mass);
         self.metrics.max_overstretch = over.max(0.0);
         self.metrics.legs_in_air = in_air;
         self.metrics.stability_margin = self.support.margin(Vec2::new(com.x, com.z));
@@ -1265,6 +1424,16 @@ impl Controller {
     }
 }
 
+/// `pose.transform_point(point)`, bit for bit, for a point kept as a `Vec3A`. Rotating a
+/// `Vec3` field by a quaternion loads it with the four bytes after it as the unused fourth
+/// lane, and when those are a denormal as a float, every SIMD multiplication of the rotation
+/// takes a microcode assist: 13 % of an update's time for the look-at's target alone. A
+/// `Vec3A` in memory has its own, defined, fourth lane.
+#[inline]
+fn transform_a(pose: &Pose, point: Vec3A) -> Vec3 {
+    Vec3::from(pose.rotation * point) + pose.translation
+}
+
 fn horizontal(v: Vec3) -> Vec3 {
     Vec3::new(v.x, 0.0, v.z)
 }
@@ -1279,14 +1448,20 @@ fn validate_pose(pose: Pose) -> Result<Pose, GaitError> {
     }
     let t = pose.translation.abs().max_element();
     in_range(t, "pose coordinate", 0.0, MAX_COORDINATE)?;
-    let len = pose.rotation.length();
+    // The square root of these two squared lengths, and only these, rounds to exactly 1
+    // (that of 1 + 2⁻²³ is a hair below 1 + 2⁻²⁴): such a rotation is kept as it is, since
+    // dividing by exactly 1 changes nothing.
+    let len2 = pose.rotation.length_squared();
+    if len2 == 1.0 || len2 == 1.0 + f32::EPSILON {
+        return Ok(pose);
+    }
+    let len = sqrt(len2);
     if !(len > 1e-6) {
         return Err(GaitError::ZeroVector {
             what: "pose rotation",
             index: 0,
         });
     }
-    // Dividing by exactly 1 changes nothing: skip it for poses that are normalised already.
     let rotation = if len == 1.0 {
         pose.rotation
     } else {
@@ -1322,20 +1497,30 @@ fn cast_down<G: Ground + ?Sized>(
     size: f32,
     o: &GaitOptions,
 ) -> Option<(Vec3, Vec3)> {
-    let above = o.cast_height * size;
-    let origin = point + Vec3::Y * above;
-    let hit = ground.cast_down(origin, above + o.cast_depth * size)?;
-    if !hit.is_valid() {
+    let (origin, max_distance) = down_ray(point, size, o);
+    let hit = ground.cast_down(origin, max_distance)?;
+    // `hit.is_valid()`, then unit normals (as `HeightField` and `Plane` give) kept and others
+    // normalised; a normal that passes as a unit is finite and long enough already.
+    let n = hit.normal;
+    let n2 = n.length_squared();
+    let normal = if abs(n2 - 1.0) <= 1e-6 {
+        n
+    } else if n.is_finite() && n2 > 1e-12 {
+        n.normalize_or(Vec3::Y)
+    } else {
+        return None;
+    };
+    if !(hit.point.is_finite() && hit.distance.is_finite()) {
         return None;
     }
-    // Unit normals (as `HeightField` and `Plane` give) are kept; others are normalised.
-    let n = hit.normal;
-    let normal = if abs(n.length_squared() - 1.0) <= 1e-6 {
-        n
-    } else {
-        n.normalize_or(Vec3::Y)
-    };
     Some((hit.point, normal))
+}
+
+/// The ray of [`cast_down`]: its origin above `point` and its length.
+#[inline(always)]
+fn down_ray(point: Vec3, size: f32, o: &GaitOptions) -> (Vec3, f32) {
+    let above = o.cast_height * size;
+    (point + Vec3::Y * above, above + o.cast_depth * size)
 }
 
 /// Where a step should land: ahead of the anchor along the anchor's horizontal `motion`, by the
@@ -1348,7 +1533,7 @@ fn step_target<G: Ground + ?Sized>(
     leg: &Leg,
     o: &GaitOptions,
     anchor: Vec3,
-    anchor_normal: Vec3,
+    anchor_normal: impl FnOnce() -> Vec3,
     motion: Vec3,
     forward: Vec3,
     rest_y: f32,
@@ -1367,13 +1552,13 @@ fn step_target<G: Ground + ?Sized>(
         return (target, Vec3::Y);
     }
     if target == anchor {
-        return (anchor, anchor_normal);
+        return (anchor, anchor_normal());
     }
     // Cast from the rest height so steep ground ahead is found from above.
     let probe = Vec3::new(target.x, rest_y.max(anchor.y), target.z);
     match cast_down(ground, probe, leg.size, o) {
         Some(hit) => hit,
-        None => (anchor, anchor_normal),
+        None => (anchor, anchor_normal()),
     }
 }
 
@@ -1408,6 +1593,42 @@ mod tests {
             let pose = Pose::new(Vec3::new(0.0, 0.8, f as f32 * dt), Quat::IDENTITY);
             c.update(dt, pose, Vec3::Z, Vec3::ZERO, &Plane::GROUND)
                 .unwrap();
+        }
+    }
+
+    #[test]
+    fn validate_pose_skips_exactly_the_square_roots_that_are_one() {
+        // The two squared lengths `validate_pose` keeps without a square root are those, among
+        // their neighbours, whose square root is exactly 1.
+        let kept = |x: f32| x == 1.0 || x == 1.0 + f32::EPSILON;
+        let mut x = f32::from_bits(1.0f32.to_bits() - 200);
+        for _ in 0..400 {
+            assert_eq!(sqrt(x) == 1.0, kept(x), "{x}");
+            x = f32::from_bits(x.to_bits() + 1);
+        }
+        // And such a rotation is kept as it is, others divided by their length.
+        let q = Quat::from_xyzw(0.0, 0.6, 0.0, 0.8);
+        assert!(kept(q.length_squared()));
+        assert_eq!(validate_pose(Pose::new(Vec3::ZERO, q)).unwrap().rotation, q);
+        let q = Quat::from_xyzw(0.6, 0.0, 0.0, 0.8000002);
+        let v = validate_pose(Pose::new(Vec3::ZERO, q)).unwrap().rotation;
+        assert_eq!(v, q / q.length());
+    }
+
+    #[test]
+    fn transform_a_is_transform_point() {
+        for k in 0..200 {
+            let a = k as f32 * 0.37;
+            let pose = Pose::new(
+                Vec3::new(3.0 * cos(a), 0.5 * a, -2.0),
+                quat_yxz(a, 0.3 * cos(2.0 * a), -0.2 * a),
+            );
+            let p = Vec3::new(0.7 * a - 5.0, cos(3.0 * a), 0.01 * k as f32);
+            let (a, b) = (transform_a(&pose, Vec3A::from(p)), pose.transform_point(p));
+            assert_eq!(
+                a.to_array().map(f32::to_bits),
+                b.to_array().map(f32::to_bits)
+            );
         }
     }
 

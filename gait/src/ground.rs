@@ -51,13 +51,36 @@ pub trait Ground {
     fn cast_ray(&self, origin: Vec3, direction: Vec3, max_distance: f32) -> Option<RayHit>;
 
     /// Casts a ray straight down (world −Y) from `origin`, at most `max_distance` far: the
-    /// only query the controller makes. The default calls
-    /// [`cast_ray`](Self::cast_ray)`(origin, Vec3::NEG_Y, max_distance)`; override it when
+    /// query the controller makes, with [`cast_down_point`](Self::cast_down_point). The
+    /// default calls [`cast_ray`](Self::cast_ray)`(origin, Vec3::NEG_Y, max_distance)`;
+    /// override it when
     /// vertical rays have a cheaper answer (as [`HeightField`] does: one bilinear lookup).
     /// An override must return what `cast_ray` would.
     #[inline]
     fn cast_down(&self, origin: Vec3, max_distance: f32) -> Option<RayHit> {
         self.cast_ray(origin, Vec3::NEG_Y, max_distance)
+    }
+
+    /// The point of [`cast_down`](Self::cast_down)'s hit when the hit is
+    /// [valid](RayHit::is_valid), else `None`: what the default returns. The controller asks
+    /// only this under the legs whose ground normal it does not need (it asks `cast_down` for
+    /// the same ray when it does), and [`HeightField`] answers it with its bilinear height
+    /// alone. An override must return what the default would.
+    ///
+    /// ```
+    /// use creature_gait::{Ground, HeightField, glam::{Vec2, Vec3}};
+    ///
+    /// let field = HeightField::new(Vec2::ZERO, 1.0, 2, 2, vec![0.0, 1.0, 0.0, 1.0])?;
+    /// let origin = Vec3::new(0.5, 3.0, 0.5);
+    /// let hit = field.cast_down(origin, 10.0).unwrap();
+    /// assert_eq!(field.cast_down_point(origin, 10.0), Some(hit.point));
+    /// # Ok::<(), creature_gait::GaitError>(())
+    /// ```
+    #[inline]
+    fn cast_down_point(&self, origin: Vec3, max_distance: f32) -> Option<Vec3> {
+        self.cast_down(origin, max_distance)
+            .filter(RayHit::is_valid)
+            .map(|hit| hit.point)
     }
 }
 
@@ -70,6 +93,11 @@ impl<G: Ground + ?Sized> Ground for &G {
     #[inline]
     fn cast_down(&self, origin: Vec3, max_distance: f32) -> Option<RayHit> {
         (**self).cast_down(origin, max_distance)
+    }
+
+    #[inline]
+    fn cast_down_point(&self, origin: Vec3, max_distance: f32) -> Option<Vec3> {
+        (**self).cast_down_point(origin, max_distance)
     }
 }
 
@@ -428,6 +456,23 @@ impl HeightField {
     /// bilinear height under it and the patch's normal.
     #[inline(always)]
     fn vertical(&self, origin: Vec3, down: f32, max_distance: f32) -> Option<RayHit> {
+        let (patch, u, v, h, distance) = self.under(origin, down, max_distance)?;
+        Some(RayHit {
+            point: Vec3::new(origin.x, h, origin.z),
+            normal: self.patch_normal_of(patch, u, v),
+            distance,
+        })
+    }
+
+    /// The surface under `origin` for [`vertical`](Self::vertical): the cell's bilinear
+    /// coefficients, the local coordinates, the height and the distance, or `None` for no hit.
+    #[inline(always)]
+    fn under(
+        &self,
+        origin: Vec3,
+        down: f32,
+        max_distance: f32,
+    ) -> Option<([f32; 4], f32, f32, f32, f32)> {
         let (i, j, u, v) = self.locate(origin.x, origin.z)?;
         let patch = self.patch(i, j);
         let [a, b, c, d] = patch;
@@ -435,15 +480,13 @@ impl HeightField {
         if origin.y < h {
             return None;
         }
-        let distance = (origin.y - h) / down;
+        // Dividing by exactly 1 (every straight-down cast) changes nothing: skip it.
+        let rise = origin.y - h;
+        let distance = if down == 1.0 { rise } else { rise / down };
         if !(distance <= max_distance) {
             return None;
         }
-        Some(RayHit {
-            point: Vec3::new(origin.x, h, origin.z),
-            normal: self.patch_normal_of(patch, u, v),
-            distance,
-        })
+        Some((patch, u, v, h, distance))
     }
 
     /// The first downward crossing of the ray with cell `(i, j)`'s patch for `t` in
@@ -512,6 +555,18 @@ impl Ground for HeightField {
             return None;
         }
         self.vertical(origin, 1.0, max_distance)
+    }
+
+    /// The bilinear height alone, without the normal: a patch's normal is always valid
+    /// (finite and of unit length, or +Y where its slope overflows), so the hit is valid
+    /// exactly when its height and distance are finite.
+    #[inline(always)]
+    fn cast_down_point(&self, origin: Vec3, max_distance: f32) -> Option<Vec3> {
+        if !(origin.is_finite() && max_distance >= 0.0) {
+            return None;
+        }
+        let (_, _, _, h, distance) = self.under(origin, 1.0, max_distance)?;
+        (h.is_finite() && distance.is_finite()).then(|| Vec3::new(origin.x, h, origin.z))
     }
 
     fn cast_ray(&self, origin: Vec3, direction: Vec3, max_distance: f32) -> Option<RayHit> {
@@ -726,6 +781,26 @@ mod tests {
             }
         }
         assert!(hits > 150, "{hits}");
+    }
+
+    #[test]
+    fn cast_down_point_is_the_point_of_valid_hits_only() {
+        let f = bumpy();
+        for k in 0..50 {
+            let origin = Vec3::new(
+                -4.9 + k as f32 * 0.19,
+                5.0 - 0.2 * k as f32,
+                4.7 - k as f32 * 0.17,
+            );
+            let hit = f.cast_down(origin, 20.0);
+            assert_eq!(f.cast_down_point(origin, 20.0), hit.map(|h| h.point));
+        }
+        // A hit 6e38 below: its distance overflows to infinity, which no valid hit has.
+        let steep = HeightField::new(Vec2::ZERO, 1.0, 2, 2, vec![-3e38, 0.0, 0.0, 0.0]).unwrap();
+        let origin = Vec3::new(0.0, 3e38, 0.0);
+        let hit = steep.cast_down(origin, f32::INFINITY).unwrap();
+        assert!(!hit.is_valid());
+        assert_eq!(steep.cast_down_point(origin, f32::INFINITY), None);
     }
 
     #[test]

@@ -1,6 +1,6 @@
 //! Analytic two-bone inverse kinematics with a pole hint.
 
-use glam::{Mat3, Quat, Vec3};
+use glam::{BVec4A, Mat3, Mat3A, Mat4, Quat, Vec3, Vec4};
 
 use crate::math::sqrt;
 
@@ -84,9 +84,8 @@ pub(crate) fn solve_finite(
 
 /// A two-bone chain being solved, in three steps: [`aim`](Self::aim) (the direction to the
 /// target), [`bend`](Self::bend) (the middle joint) and [`rotate`](Self::rotate) (the bone
-/// rotations). Solving many chains step by step, each step for all of them, lets a processor
-/// overlap the square roots and divisions of neighbouring chains; the results are those of
-/// [`solve_finite`].
+/// rotations). The reference for [`solve_lanes`], which does the same operations for four
+/// chains at once.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct Shape {
     root: Vec3,
@@ -197,6 +196,421 @@ impl Shape {
     }
 }
 
+/// Four two-bone problems, one per SIMD lane, for [`solve_lanes`]: finite inputs, lengths
+/// `>= 0` (as for `solve_finite`).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Lanes {
+    pub(crate) root: V3,
+    pub(crate) target: V3,
+    pub(crate) pole: V3,
+    pub(crate) upper: Vec4,
+    pub(crate) lower: Vec4,
+}
+
+/// A chain of zero length at the origin: storage for unused lanes.
+pub(crate) const SPARE: TwoBone = TwoBone {
+    root: Vec3::ZERO,
+    middle: Vec3::ZERO,
+    end: Vec3::ZERO,
+    upper_rotation: Quat::IDENTITY,
+    lower_rotation: Quat::IDENTITY,
+    reached: true,
+};
+
+/// Solves four chains at once into `out`, bit for bit as `solve_finite` solves each: the lanes
+/// do every operation of the scalar solve in the same order, and a chain that needs one of its
+/// rare branches (target on the root, pole along the chain) is solved again on its own.
+pub(crate) fn solve_lanes(p: &Lanes, out: [&mut TwoBone; 4]) {
+    let [o0, o1, o2, o3] = out;
+    let zero = Vec4::ZERO;
+    let (root, target, pole, upper, lower) = (p.root, p.target, p.pole, p.upper, p.lower);
+    let [r0, r1, r2, r3] = root.split();
+    (o0.root, o1.root, o2.root, o3.root) = (r0, r1, r2, r3);
+
+    // `Shape::aim`.
+    let offset = target.sub(root);
+    let distance = offset.dot(offset).sqrt();
+    let common = distance.is_finite_mask() & distance.cmpgt(Vec4::splat(1e-12));
+    let dir = V3 {
+        x: offset.x / distance,
+        y: offset.y / distance,
+        z: offset.z / distance,
+    };
+
+    // `Shape::bend`.
+    let off_axis = pole.sub(dir.scale(pole.dot(dir)));
+    let rcp = Vec4::ONE / off_axis.dot(off_axis).sqrt();
+    let common = common & rcp.is_finite_mask() & rcp.cmpgt(zero);
+    let bend = off_axis.scale(rcp);
+    let reach = upper + lower;
+    let fold = (upper - lower).abs();
+    let clamped = distance.max(fold).min(reach);
+    let exact = clamped.cmpeq(distance);
+    let reached = exact
+        | (clamped - distance)
+            .abs()
+            .cmple(Vec4::splat(1e-6) * reach.max(Vec4::splat(1e-12)));
+    (o0.reached, o1.reached, o2.reached, o3.reached) = (
+        reached.test(0),
+        reached.test(1),
+        reached.test(2),
+        reached.test(3),
+    );
+    let [e0, e1, e2, e3] = V3::select(exact, target, root.add(dir.scale(clamped))).split();
+    (o0.end, o1.end, o2.end, o3.end) = (e0, e1, e2, e3);
+    let folded = clamped.cmple(zero) | upper.cmpeq(zero);
+    let along = ((upper * upper - lower * lower + clamped * clamped)
+        / (Vec4::splat(2.0) * clamped))
+        .max(-upper)
+        .min(upper);
+    let across = (upper * upper - along * along).max(zero).sqrt();
+    let along = Vec4::select(folded, zero, along);
+    let across = Vec4::select(folded, zero, across);
+    let [m0, m1, m2, m3] = root.add(dir.scale(along)).add(bend.scale(across)).split();
+    (o0.middle, o1.middle, o2.middle, o3.middle) = (m0, m1, m2, m3);
+
+    // `Shape::rotate`.
+    let frame = from_axes4(dir.cross(bend), dir, bend).normalize();
+    let [u0, u1, u2, u3] = bone_rotation4(frame, along, across).split();
+    (
+        o0.upper_rotation,
+        o1.upper_rotation,
+        o2.upper_rotation,
+        o3.upper_rotation,
+    ) = (u0, u1, u2, u3);
+    let [l0, l1, l2, l3] = bone_rotation4(frame, clamped - along, -across).split();
+    (
+        o0.lower_rotation,
+        o1.lower_rotation,
+        o2.lower_rotation,
+        o3.lower_rotation,
+    ) = (l0, l1, l2, l3);
+
+    let rare = !common.bitmask();
+    if rare & 0xf != 0 {
+        for (k, o) in [o0, o1, o2, o3].into_iter().enumerate() {
+            if rare & (1 << k) != 0 {
+                *o = solve_finite(
+                    root.lane(k),
+                    target.lane(k),
+                    upper[k],
+                    lower[k],
+                    pole.lane(k),
+                );
+            }
+        }
+    }
+}
+
+/// Four `Vec3`s, one per lane.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct V3 {
+    pub(crate) x: Vec4,
+    pub(crate) y: Vec4,
+    pub(crate) z: Vec4,
+}
+
+impl V3 {
+    /// `m * v + t` for each lane's `v`, in the order of operations of `Mat3A * Vec3`
+    /// (`(x_axis v.x + y_axis v.y) + z_axis v.z`).
+    #[inline(always)]
+    pub(crate) fn transform(self, m: &Mat3A, t: Vec3) -> Self {
+        let row = |a: f32, b: f32, c: f32, t: f32| {
+            Vec4::splat(a) * self.x
+                + Vec4::splat(b) * self.y
+                + Vec4::splat(c) * self.z
+                + Vec4::splat(t)
+        };
+        Self {
+            x: row(m.x_axis.x, m.y_axis.x, m.z_axis.x, t.x),
+            y: row(m.x_axis.y, m.y_axis.y, m.z_axis.y, t.y),
+            z: row(m.x_axis.z, m.y_axis.z, m.z_axis.z, t.z),
+        }
+    }
+
+    /// `m * v` for each lane's `v`, as [`transform`](Self::transform) without a translation.
+    #[inline(always)]
+    pub(crate) fn rotate(self, m: &Mat3A) -> Self {
+        let row = |a: f32, b: f32, c: f32| {
+            Vec4::splat(a) * self.x + Vec4::splat(b) * self.y + Vec4::splat(c) * self.z
+        };
+        Self {
+            x: row(m.x_axis.x, m.y_axis.x, m.z_axis.x),
+            y: row(m.x_axis.y, m.y_axis.y, m.z_axis.y),
+            z: row(m.x_axis.z, m.y_axis.z, m.z_axis.z),
+        }
+    }
+
+    /// The four lanes (a transpose).
+    #[inline(always)]
+    pub(crate) fn split(self) -> [Vec3; 4] {
+        let m = Mat4::from_cols(self.x, self.y, self.z, Vec4::ZERO).transpose();
+        [
+            m.x_axis.truncate(),
+            m.y_axis.truncate(),
+            m.z_axis.truncate(),
+            m.w_axis.truncate(),
+        ]
+    }
+
+    #[inline(always)]
+    pub(crate) fn gather(v: [Vec3; 4]) -> Self {
+        Self {
+            x: Vec4::new(v[0].x, v[1].x, v[2].x, v[3].x),
+            y: Vec4::new(v[0].y, v[1].y, v[2].y, v[3].y),
+            z: Vec4::new(v[0].z, v[1].z, v[2].z, v[3].z),
+        }
+    }
+
+    #[inline(always)]
+    fn lane(self, k: usize) -> Vec3 {
+        Vec3::new(self.x[k], self.y[k], self.z[k])
+    }
+
+    #[inline(always)]
+    fn add(self, o: Self) -> Self {
+        Self {
+            x: self.x + o.x,
+            y: self.y + o.y,
+            z: self.z + o.z,
+        }
+    }
+
+    #[inline(always)]
+    fn sub(self, o: Self) -> Self {
+        Self {
+            x: self.x - o.x,
+            y: self.y - o.y,
+            z: self.z - o.z,
+        }
+    }
+
+    #[inline(always)]
+    fn scale(self, s: Vec4) -> Self {
+        Self {
+            x: self.x * s,
+            y: self.y * s,
+            z: self.z * s,
+        }
+    }
+
+    /// `Vec3::dot`'s order: `(x x' + y y') + z z'`.
+    #[inline(always)]
+    fn dot(self, o: Self) -> Vec4 {
+        self.x * o.x + self.y * o.y + self.z * o.z
+    }
+
+    /// `Vec3::cross`.
+    #[inline(always)]
+    fn cross(self, o: Self) -> Self {
+        Self {
+            x: self.y * o.z - o.y * self.z,
+            y: self.z * o.x - o.z * self.x,
+            z: self.x * o.y - o.x * self.y,
+        }
+    }
+
+    #[inline(always)]
+    fn select(mask: BVec4A, a: Self, b: Self) -> Self {
+        Self {
+            x: Vec4::select(mask, a.x, b.x),
+            y: Vec4::select(mask, a.y, b.y),
+            z: Vec4::select(mask, a.z, b.z),
+        }
+    }
+}
+
+/// Four quaternions, one per lane.
+#[derive(Clone, Copy)]
+struct Q4 {
+    x: Vec4,
+    y: Vec4,
+    z: Vec4,
+    w: Vec4,
+}
+
+impl Q4 {
+    /// The four lanes (a transpose).
+    #[inline(always)]
+    fn split(self) -> [Quat; 4] {
+        let m = Mat4::from_cols(self.x, self.y, self.z, self.w).transpose();
+        [
+            Quat::from_vec4(m.x_axis),
+            Quat::from_vec4(m.y_axis),
+            Quat::from_vec4(m.z_axis),
+            Quat::from_vec4(m.w_axis),
+        ]
+    }
+
+    /// `a * b` in the order of operations of glam's SSE2 `Quat::mul_quat`.
+    #[inline(always)]
+    fn mul(a: Self, b: Self) -> Self {
+        Self {
+            x: (a.x * b.w + a.w * b.x) + (a.y * b.z - a.z * b.y),
+            y: (a.w * b.y - a.x * b.z) + (a.z * b.x + a.y * b.w),
+            z: (a.x * b.y + a.w * b.z) + (a.z * b.w - a.y * b.x),
+            w: (a.w * b.w - a.x * b.x) + (-(a.z * b.z) - a.y * b.y),
+        }
+    }
+
+    /// `Quat::normalize` (glam's SSE2 order: `(x² + z²) + (y² + w²)`, then a division).
+    #[inline(always)]
+    fn normalize(self) -> Self {
+        let length =
+            ((self.x * self.x + self.z * self.z) + (self.y * self.y + self.w * self.w)).sqrt();
+        Self {
+            x: self.x / length,
+            y: self.y / length,
+            z: self.z / length,
+            w: self.w / length,
+        }
+    }
+
+    #[inline(always)]
+    fn select(mask: BVec4A, a: Self, b: Self) -> Self {
+        Self {
+            x: Vec4::select(mask, a.x, b.x),
+            y: Vec4::select(mask, a.y, b.y),
+            z: Vec4::select(mask, a.z, b.z),
+            w: Vec4::select(mask, a.w, b.w),
+        }
+    }
+
+    #[inline(always)]
+    fn finite(self) -> BVec4A {
+        self.x.is_finite_mask()
+            & self.y.is_finite_mask()
+            & self.z.is_finite_mask()
+            & self.w.is_finite_mask()
+    }
+}
+
+/// `Quat::from_mat3(&Mat3::from_cols(x, y, z))`, lane by lane (glam's four branches, each
+/// lane taking its own).
+#[inline(always)]
+fn from_axes4(x: V3, y: V3, z: V3) -> Q4 {
+    let (m00, m01, m02) = (x.x, x.y, x.z);
+    let (m10, m11, m12) = (y.x, y.y, y.z);
+    let (m20, m21, m22) = (z.x, z.y, z.z);
+    let zero = Vec4::ZERO;
+    let low_z = m22.cmple(zero);
+    let dif10 = m11 - m00;
+    let sum10 = m11 + m00;
+    let omm22 = Vec4::ONE - m22;
+    let opm22 = Vec4::ONE + m22;
+    let case_x = low_z & dif10.cmple(zero);
+    let case_z = !low_z & sum10.cmple(zero);
+    let (low, x_case, z_case) = (low_z.bitmask(), case_x.bitmask(), case_z.bitmask());
+    // Usually every lane takes the same branch (legs are alike): then only its formulas.
+    if low == 0 && z_case == 0xf {
+        let four = opm22 - sum10;
+        let inv = Vec4::splat(0.5) / four.sqrt();
+        return Q4 {
+            x: (m02 + m20) * inv,
+            y: (m12 + m21) * inv,
+            z: four * inv,
+            w: (m01 - m10) * inv,
+        };
+    }
+    if low == 0 && z_case == 0 {
+        let four = opm22 + sum10;
+        let inv = Vec4::splat(0.5) / four.sqrt();
+        return Q4 {
+            x: (m12 - m21) * inv,
+            y: (m20 - m02) * inv,
+            z: (m01 - m10) * inv,
+            w: four * inv,
+        };
+    }
+    if low == 0xf && x_case == 0xf {
+        let four = omm22 - dif10;
+        let inv = Vec4::splat(0.5) / four.sqrt();
+        return Q4 {
+            x: four * inv,
+            y: (m01 + m10) * inv,
+            z: (m02 + m20) * inv,
+            w: (m12 - m21) * inv,
+        };
+    }
+    let four = Vec4::select(
+        low_z,
+        Vec4::select(case_x, omm22 - dif10, omm22 + dif10),
+        Vec4::select(case_z, opm22 - sum10, opm22 + sum10),
+    );
+    let inv = Vec4::splat(0.5) / four.sqrt();
+    let own = four * inv;
+    let p01 = (m01 + m10) * inv;
+    let p02 = (m02 + m20) * inv;
+    let p12 = (m12 + m21) * inv;
+    let d12 = (m12 - m21) * inv;
+    let d20 = (m20 - m02) * inv;
+    let d01 = (m01 - m10) * inv;
+    // (x, y, z, w) for the cases x, y, z and w of glam's `from_rotation_axes`.
+    let pick = |cx: Vec4, cy: Vec4, cz: Vec4, cw: Vec4| {
+        Vec4::select(
+            low_z,
+            Vec4::select(case_x, cx, cy),
+            Vec4::select(case_z, cz, cw),
+        )
+    };
+    Q4 {
+        x: pick(own, p01, p02, d12),
+        y: pick(p01, own, p12, d20),
+        z: pick(p02, p12, own, d01),
+        w: pick(d12, d20, d01, own),
+    }
+}
+
+/// `bone_rotation` for four lanes.
+#[inline(always)]
+fn bone_rotation4(frame: Q4, along: Vec4, across: Vec4) -> Q4 {
+    let zero = Vec4::ZERO;
+    let r2 = along * along + across * across;
+    let bone = r2.cmpgt(zero) & r2.is_finite_mask();
+    let r = r2.sqrt();
+    let forward = along.cmpge(zero);
+    let all_forward = forward.all();
+    let (x, w) = if all_forward {
+        (across, r + along)
+    } else {
+        (
+            Vec4::select(forward, across, r - along),
+            Vec4::select(forward, r + along, across),
+        )
+    };
+    let inv = Vec4::ONE / (x * x + w * w).sqrt();
+    let half = Q4 {
+        x: x * inv,
+        y: zero,
+        z: zero,
+        w: w * inv,
+    };
+    let q = Q4::mul(frame, half);
+    let flip = Q4 {
+        x: zero,
+        y: Vec4::ONE,
+        z: zero,
+        w: zero,
+    };
+    // The half turn and the fallback only where a lane needs them (rarely).
+    let q = if all_forward {
+        q
+    } else {
+        Q4::select(forward, q, Q4::mul(q, flip))
+    };
+    let keep = bone & q.finite();
+    if keep.all() {
+        return q;
+    }
+    let identity = Q4 {
+        x: zero,
+        y: zero,
+        z: zero,
+        w: Vec4::ONE,
+    };
+    Q4::select(keep, q, identity)
+}
+
 /// The rotation taking +Y onto `dir` and +Z onto `bend` (orthonormal).
 #[inline]
 fn chain_frame(dir: Vec3, bend: Vec3) -> Quat {
@@ -235,6 +649,8 @@ fn bone_rotation(frame: Quat, along: f32, across: f32) -> Quat {
 
 #[cfg(test)]
 mod tests {
+    use alloc::vec::Vec;
+
     use super::*;
     use crate::math::{cos, sin};
 
@@ -307,6 +723,63 @@ mod tests {
                     assert!((q * Vec3::Z).distance(expected.normalize()) < 1e-3, "{k}");
                     assert!((q.length() - 1.0).abs() < 1e-5);
                 }
+            }
+        }
+    }
+
+    #[test]
+    fn four_lanes_solve_bit_for_bit_as_one() {
+        // Reachable, unreachable, folded and straight-down targets, zero and unequal lengths,
+        // a target on the root and a pole along the chain (the lanes' rare branches), four at
+        // a time in every position.
+        let mut problems = Vec::new();
+        for k in 0..243 {
+            let a = k as f32 * 0.61;
+            let r = 0.02 + 2.2 * ((k * 7) % 23) as f32 / 23.0;
+            let root = Vec3::new(0.3 * cos(a), 1.0 + 0.1 * sin(2.0 * a), -0.2 * sin(a));
+            let mut target = root + Vec3::new(r * sin(a), -r * cos(0.5 * a), 0.4 * r * cos(a));
+            let (mut upper, lower) = (0.3 + 0.05 * (k % 9) as f32, 0.25 + 0.07 * (k % 5) as f32);
+            let mut pole = Vec3::new(0.2 * sin(3.0 * a), 0.1, 1.0);
+            match k % 17 {
+                3 => target = root,
+                5 => pole = target - root,
+                7 => target = root - Vec3::Y * (upper + lower),
+                11 => upper = 0.0,
+                13 => target = root + Vec3::Z * 1e-7,
+                _ => {}
+            }
+            problems.push((root, target, upper, lower, pole));
+        }
+        let bits = |c: &TwoBone| {
+            let v = [c.root, c.middle, c.end].map(|v| v.to_array().map(f32::to_bits));
+            let q = [c.upper_rotation, c.lower_rotation].map(|q| q.to_array().map(f32::to_bits));
+            (v, q, c.reached)
+        };
+        // Mixed neighbours, and four alike (every lane taking the same branches, the lanes'
+        // shortcuts).
+        let alike: Vec<_> = problems
+            .iter()
+            .flat_map(|&(root, target, upper, lower, pole)| {
+                (0..4).map(move |k| {
+                    let nudge = Vec3::new(1e-3, -2e-3, 1.5e-3) * k as f32;
+                    (root, target + nudge, upper, lower, pole)
+                })
+            })
+            .collect();
+        for p in problems.windows(4).chain(alike.chunks(4)) {
+            let lanes = Lanes {
+                root: V3::gather([p[0].0, p[1].0, p[2].0, p[3].0]),
+                target: V3::gather([p[0].1, p[1].1, p[2].1, p[3].1]),
+                upper: Vec4::new(p[0].2, p[1].2, p[2].2, p[3].2),
+                lower: Vec4::new(p[0].3, p[1].3, p[2].3, p[3].3),
+                pole: V3::gather([p[0].4, p[1].4, p[2].4, p[3].4]),
+            };
+            let mut out = [SPARE; 4];
+            let [a, b, c, d] = &mut out;
+            solve_lanes(&lanes, [a, b, c, d]);
+            for (chain, &(root, target, upper, lower, pole)) in out.iter().zip(p) {
+                let one = solve_finite(root, target, upper, lower, pole);
+                assert_eq!(bits(chain), bits(&one));
             }
         }
     }

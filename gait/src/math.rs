@@ -95,6 +95,9 @@ mod backend {
 pub(crate) use backend::{ceil, cos, exp, floor, sin, sqrt};
 
 use core::f32::consts::{FRAC_PI_2, PI};
+use core::ops::{Add, Mul, Sub};
+
+use glam::Vec4;
 
 /// `atan2(y, x)` for finite input, without a library call: the same on every platform and
 /// backend. Octant reduction to `a = min/max ∈ [0, 1]`, then `a · P(a²)` with a degree-8
@@ -112,17 +115,7 @@ pub(crate) fn atan2(y: f32, x: f32) -> f32 {
         0.0
     } else {
         let a = small / large;
-        let t = a * a;
-        let p = 0.002_766_283_5;
-        let p = p * t - 0.015_731_249;
-        let p = p * t + 0.042_137_624;
-        let p = p * t - 0.074_568_55;
-        let p = p * t + 0.106_183_71;
-        let p = p * t - 0.141_977_98;
-        let p = p * t + 0.199_918_72;
-        let p = p * t - 0.333_330_37;
-        let p = p * t + 0.999_999_98;
-        a * p
+        a * atan_poly(a * a)
     };
     if ay > ax {
         r = FRAC_PI_2 - r;
@@ -131,6 +124,51 @@ pub(crate) fn atan2(y: f32, x: f32) -> f32 {
         r = PI - r;
     }
     if y.is_sign_negative() { -r } else { r }
+}
+
+/// [`atan2`] of four lanes, bit for bit: the same operations, each lane taking its own
+/// branches by selection. Lanes with non-finite input (which `atan2` sends to the backend)
+/// are computed one by one.
+#[inline(always)]
+pub(crate) fn atan2_lanes(y: Vec4, x: Vec4) -> Vec4 {
+    let zero = Vec4::ZERO;
+    let (ax, ay) = (x.abs(), y.abs());
+    let swap = ay.cmpgt(ax);
+    let small = Vec4::select(swap, ax, ay);
+    let large = Vec4::select(swap, ay, ax);
+    let a = small / large;
+    let r = Vec4::select(large.cmpeq(zero), zero, a * atan_poly(a * a));
+    let r = Vec4::select(swap, Vec4::splat(FRAC_PI_2) - r, r);
+    let r = Vec4::select(Vec4::ONE.copysign(x).cmplt(zero), Vec4::splat(PI) - r, r);
+    // `r` is +0 or positive here: negating it for a negative `y` is taking `y`'s sign.
+    let r = r.copysign(y);
+    if (x.is_finite_mask() & y.is_finite_mask()).all() {
+        r
+    } else {
+        Vec4::new(
+            atan2(y.x, x.x),
+            atan2(y.y, x.y),
+            atan2(y.z, x.z),
+            atan2(y.w, x.w),
+        )
+    }
+}
+
+/// `atan(√t)/√t` on `[0, 1]`: the degree-8 Chebyshev fit of [`atan2`], for a scalar or four
+/// lanes alike.
+#[inline(always)]
+fn atan_poly<T>(t: T) -> T
+where
+    T: Copy + Mul<Output = T> + Mul<f32, Output = T> + Add<f32, Output = T> + Sub<f32, Output = T>,
+{
+    let p = t * 0.002_766_283_5 - 0.015_731_249;
+    let p = p * t + 0.042_137_624;
+    let p = p * t - 0.074_568_55;
+    let p = p * t + 0.106_183_71;
+    let p = p * t - 0.141_977_98;
+    let p = p * t + 0.199_918_72;
+    let p = p * t - 0.333_330_37;
+    p * t + 0.999_999_98
 }
 
 /// Absolute value by clearing the sign bit: identical on every platform and backend.
@@ -277,6 +315,27 @@ mod tests {
         for k in 1..100 {
             let (y, x) = (k as f32 * 0.013, 0.31 + k as f32 * 0.07);
             assert_eq!(atan2(-y, x), -atan2(y, x));
+        }
+    }
+
+    #[test]
+    fn atan2_lanes_is_atan2_bit_for_bit() {
+        // Every octant, the axes, signed zeros and non-finite lanes among finite ones.
+        let mut values: alloc::vec::Vec<f32> = (-40..=40).map(|k| k as f32 * 0.173).collect();
+        values.extend([0.0, -0.0, 1e-30, -1e-30, 3e7, f32::INFINITY, f32::NAN]);
+        for (n, &y) in values.iter().enumerate() {
+            let xs: [f32; 4] = core::array::from_fn(|k| values[(n * 7 + k * 13) % values.len()]);
+            let ys = [y, -y, xs[3], 0.5 * y];
+            let lanes = atan2_lanes(Vec4::from_array(ys), Vec4::from_array(xs));
+            for k in 0..4 {
+                assert_eq!(
+                    lanes[k].to_bits(),
+                    atan2(ys[k], xs[k]).to_bits(),
+                    "atan2({}, {})",
+                    ys[k],
+                    xs[k]
+                );
+            }
         }
     }
 

@@ -1,12 +1,13 @@
 //! Property tests of the invariants the crate promises, driven by its public strategies.
 
-use creature_gait::glam::{Quat, Vec3};
+use creature_gait::glam::{Quat, Vec2, Vec3};
 use creature_gait::strategies::{self, MotionStep};
 use creature_gait::{
-    Controller, GaitOptions, Ground, HeightField, Leg, Plane, Pose, Side, solve_two_bone,
+    Controller, GaitOptions, Ground, HeightField, Leg, Plane, Pose, RayHit, Side, solve_two_bone,
 };
 use proptest::prelude::*;
 use proptest::test_runner::FileFailurePersistence;
+use proptest::test_runner::TestCaseError;
 
 /// `cases` cases, or `PROPTEST_CASES` when set (for longer soaks).
 fn config(cases: u32) -> ProptestConfig {
@@ -263,5 +264,18 @@ proptest! {
         prop_assert_eq!(field.cast_down(origin, max), field.cast_ray(origin, Vec3::NEG_Y, max));
         let plane = Plane::horizontal(0.3);
         prop_assert_eq!(plane.cast_down(origin, max), plane.cast_ray(origin, Vec3::NEG_Y, max));
+        // `cast_down_point`: the height field's own answer (no normal) against the default.
+        for max in [max, f32::INFINITY] {
+            let full = field.cast_down(origin, max).filter(RayHit::is_valid).map(|h| h.point);
+            prop_assert_eq!(field.cast_down_point(origin, max), full);
+        }
+        // Heights whose sums overflow: an infinite distance is not a valid hit.
+        let steep = HeightField::new(Vec2::ZERO, 1.0, 2, 2, vec![-3e38, 3e38, 3e38, -3e38])
+            .map_err(|e| TestCaseError::fail(format!("{e}")))?;
+        let origin = Vec3::new(x.rem_euclid(1.0), 3e38 * y.signum(), z.rem_euclid(1.0));
+        for max in [max, f32::INFINITY] {
+            let full = steep.cast_down(origin, max).filter(RayHit::is_valid).map(|h| h.point);
+            prop_assert_eq!(steep.cast_down_point(origin, max), full);
+        }
     }
 }

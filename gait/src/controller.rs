@@ -13,7 +13,7 @@ use crate::math::{
     abs, atan2, atan2_lanes, ceil, clamp_sym, cos, floor_non_negative, quat_yxz, sin_turns,
     smoothing, sqrt,
 };
-use crate::metrics::{GaitMetrics, SupportPolygon};
+use crate::metrics::{GaitMetrics, support_margin};
 use crate::options::GaitOptions;
 
 /// Largest accepted coordinate of the body's position, metres.
@@ -201,8 +201,7 @@ pub struct Controller {
     metrics: GaitMetrics,
     wants: Vec<u8>,
     motion: Vec<Vec3>,
-    /// The planted feet's support polygon (its hull kept while they stand).
-    support: SupportPolygon,
+
     // Per-update scratch and per-leg invariants, so an update does no allocation and does not
     // recompute what the legs and options fix.
     /// Each leg's rest position in world space, this update.
@@ -373,7 +372,6 @@ impl Controller {
             metrics: GaitMetrics::default(),
             wants: alloc::vec![0; legs.len()],
             motion: alloc::vec![Vec3::ZERO; legs.len()],
-            support: SupportPolygon::with_capacity(legs.len()),
             rest_world: legs.iter().map(|l| l.rest).collect(),
             hip_width,
             has_arms: legs.iter().any(|l| l.kind == LimbKind::Arm),
@@ -509,7 +507,6 @@ impl Controller {
         self.initialized = true;
         self.solve_joints();
         self.metrics = GaitMetrics::default();
-        self.measure(&pose);
         Ok(())
     }
 
@@ -593,7 +590,6 @@ impl Controller {
             self.follow(i, dt, &pose, angular_velocity);
         }
         self.solve_joints();
-        self.measure(&pose);
         Ok(())
     }
 
@@ -1261,11 +1257,13 @@ impl Controller {
         }
     }
 
-    fn measure(&mut self, pose: &Pose) {
+    /// Skate, overstretch, legs in the air and the stability margin of the state the last
+    /// update left (see [`Controller::metrics`]).
+    fn measure(&self) -> GaitMetrics {
         let mut skate = 0.0f32;
         let mut over = 0.0f32;
         let mut in_air = 0usize;
-        self.support.points.clear();
+        let mut support: Vec<Vec2> = Vec::with_capacity(self.legs.len());
         for (leg, state) in self.legs.iter().zip(&self.states) {
             if leg.kind != LimbKind::Leg {
                 continue;
@@ -1277,9 +1275,7 @@ impl Controller {
             if state.stepping || !state.grounded {
                 in_air += 1;
             } else {
-                self.support
-                    .points
-                    .push(Vec2::new(state.foot.x, state.foot.z));
+                support.push(Vec2::new(state.foot.x, state.foot.z));
                 let reach = leg.length();
                 let d2 = state.foot.distance_squared(state.joints.root);
                 if d2 > reach * reach {
@@ -1287,12 +1283,15 @@ impl Controller {
                 }
             }
         }
-        let skate = sqrt(skate);
-        let com = transform_a(pose, self.centre_of_mass);
-        self.metrics.max_overstretch = over.max(0.0);
-        self.metrics.legs_in_air = in_air;
-        self.metrics.stability_margin = self.support.margin(Vec2::new(com.x, com.z));
-        self.metrics.max_skate = skate;
+        let com = transform_a(&self.pose, self.centre_of_mass);
+        let mut hull = Vec::with_capacity(support.len() + 1);
+        GaitMetrics {
+            max_skate: sqrt(skate),
+            max_overstretch: over.max(0.0),
+            legs_in_air: in_air,
+            stability_margin: support_margin(&mut support, &mut hull, Vec2::new(com.x, com.z)),
+            ..self.metrics
+        }
     }
 }
 
@@ -1408,10 +1407,13 @@ impl Controller {
         self.blend
     }
 
-    /// The figures measured by the last update.
+    /// The figures of the last update: the steps it started, and the skate, overstretch,
+    /// legs in the air and stability margin of the state it left, measured when asked (an
+    /// update does not pay for figures nobody reads; the result is the same whenever it is
+    /// asked before the next update).
     #[must_use]
-    pub const fn metrics(&self) -> &GaitMetrics {
-        &self.metrics
+    pub fn metrics(&self) -> GaitMetrics {
+        self.measure()
     }
 
     /// Whether every leg stands on the ground (no step under way, every ray hit).

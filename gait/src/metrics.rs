@@ -1,4 +1,5 @@
-//! Plausibility figures measured on every update, and the support-polygon margin.
+//! Plausibility figures of the last update, measured when asked, and the support-polygon
+//! margin.
 
 use alloc::vec::Vec;
 
@@ -6,8 +7,9 @@ use glam::Vec2;
 
 use crate::math::sqrt;
 
-/// Figures measured by the last [`Controller::update`](crate::Controller::update), for tests
-/// and for users tuning a creature. Arms are left out of every figure.
+/// Figures of the last [`Controller::update`](crate::Controller::update), for tests and for
+/// users tuning a creature, measured by [`Controller::metrics`](crate::Controller::metrics)
+/// when asked. Arms are left out of every figure.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 #[non_exhaustive]
 pub struct GaitMetrics {
@@ -33,7 +35,6 @@ pub struct GaitMetrics {
 
 /// Signed distance of `point` to the convex hull of `points` (positive inside). `scratch` is
 /// reused storage. `None` for no points.
-#[cfg(test)]
 pub(crate) fn support_margin(
     points: &mut Vec<Vec2>,
     scratch: &mut Vec<Vec2>,
@@ -41,48 +42,6 @@ pub(crate) fn support_margin(
 ) -> Option<f32> {
     support_hull(points, scratch);
     hull_margin(scratch, point)
-}
-
-/// The support polygon of the planted feet, kept between updates: its convex hull is only
-/// recomputed when the feet (the points, bit for bit, in order) changed, which planted feet
-/// do not do while they stand. The margin is measured against it on every update.
-#[derive(Debug, Clone, PartialEq, Default)]
-pub(crate) struct SupportPolygon {
-    /// The points of the current update (reused storage).
-    pub(crate) points: Vec<Vec2>,
-    /// The points the hull was computed from.
-    key: Vec<Vec2>,
-    hull: Vec<Vec2>,
-    valid: bool,
-}
-
-impl SupportPolygon {
-    pub(crate) fn with_capacity(n: usize) -> Self {
-        Self {
-            points: Vec::with_capacity(n),
-            key: Vec::with_capacity(n),
-            hull: Vec::with_capacity(n + 1),
-            valid: false,
-        }
-    }
-
-    /// The signed distance of `point` to the hull of [`points`](Self::points) (positive
-    /// inside), `None` for no points: the same as `support_margin` on them.
-    pub(crate) fn margin(&mut self, point: Vec2) -> Option<f32> {
-        let same = self.valid
-            && self.key.len() == self.points.len()
-            && self
-                .key
-                .iter()
-                .zip(&self.points)
-                .all(|(a, b)| a.x.to_bits() == b.x.to_bits() && a.y.to_bits() == b.y.to_bits());
-        if !same {
-            self.key.clone_from(&self.points);
-            support_hull(&mut self.points, &mut self.hull);
-            self.valid = true;
-        }
-        hull_margin(&self.hull, point)
-    }
 }
 
 /// Sorts and deduplicates `points`, then writes their convex hull into `hull`.
@@ -203,51 +162,5 @@ mod tests {
             support_margin(&mut Vec::new(), &mut scratch, Vec2::ZERO),
             None
         );
-    }
-
-    #[test]
-    fn the_kept_hull_gives_the_margin_of_a_fresh_one() {
-        // Point sets that repeat (the hull is kept), change by one point, by a signed zero,
-        // by order, or empty, against centres of mass moving inside and outside.
-        let sets: [&[Vec2]; 7] = [
-            &[
-                Vec2::new(-1.0, -1.0),
-                Vec2::new(1.0, -1.0),
-                Vec2::new(0.0, 1.0),
-            ],
-            &[
-                Vec2::new(-1.0, -1.0),
-                Vec2::new(1.0, -1.0),
-                Vec2::new(0.0, 1.0),
-            ],
-            &[
-                Vec2::new(-1.0, -1.0),
-                Vec2::new(1.0, -1.5),
-                Vec2::new(0.0, 1.0),
-            ],
-            &[
-                Vec2::new(1.0, -1.5),
-                Vec2::new(-1.0, -1.0),
-                Vec2::new(0.0, 1.0),
-            ],
-            &[Vec2::new(0.0, 0.0), Vec2::new(2.0, 0.0)],
-            &[Vec2::new(-0.0, 0.0), Vec2::new(2.0, 0.0)],
-            &[],
-        ];
-        let mut kept = SupportPolygon::with_capacity(4);
-        let mut scratch = Vec::new();
-        for round in 0..3 {
-            for (k, set) in sets.iter().enumerate() {
-                let com = Vec2::new(0.3 * k as f32 - 0.5, 0.7 * round as f32 - 0.6);
-                kept.points.clear();
-                kept.points.extend_from_slice(set);
-                let fresh = support_margin(&mut set.to_vec(), &mut scratch, com);
-                assert_eq!(
-                    kept.margin(com).map(f32::to_bits),
-                    fresh.map(f32::to_bits),
-                    "set {k}, round {round}"
-                );
-            }
-        }
     }
 }

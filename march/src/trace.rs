@@ -222,6 +222,7 @@ pub fn trace_field<F: TileField + ?Sized>(
         iso,
         options,
         nodes: Nodes::new(),
+        ring_of_edge: None,
         centres: Table::with_slots(16),
         cells: 0,
         rings: Vec::new(),
@@ -258,8 +259,8 @@ impl Traced {
     /// node on the node's column: exact, no floating point.
     fn encloses(&self, x: i32, y: i32) -> bool {
         let start = self.verticals.partition_point(|&e| e < (x, y));
-        let end = self.verticals.partition_point(|&e| e < (x, i32::MAX));
-        (end - start) % 2 == 1
+        let above = self.verticals.get(start..).unwrap_or(&[]);
+        above.iter().take_while(|e| e.0 == x).count() % 2 == 1
     }
 }
 
@@ -270,8 +271,11 @@ struct Tracer<'a, F: ?Sized> {
     step: f32,
     iso: f32,
     options: &'a MarchOptions,
-    /// Node samples and the ring crossing each vertical edge, in tiles.
+    /// Node samples, and which vertical edges rings cross, in tiles.
     nodes: Nodes,
+    /// The ring crossing each vertical grid edge crossed so far, keyed by the edge's lower
+    /// node: built on first use by [`Tracer::crossing_ring`] (most calls never need it).
+    ring_of_edge: Option<Table<u32>>,
     /// Saddle cell centre samples, keyed by cell.
     centres: Table<f32>,
     cells: usize,
@@ -292,27 +296,55 @@ impl<F: TileField + ?Sized> Tracer<'_, F> {
         Ok(())
     }
 
-    /// The sample at node `(i, j)`, taken on first use.
-    #[inline]
+    /// The sample at node `(i, j)`, taken on first use: the node alone, or (tiled) the whole
+    /// tile holding it, when its tile is first touched.
+    #[inline(always)]
     fn node(&mut self, i: i32, j: i32) -> f32 {
-        let (tile, slot) = self.nodes.locate(i, j);
-        self.cached(tile, slot, i, j)
+        self.node_at(i, j).value
     }
 
-    /// The sample at node `(i, j)`, which lies in `slot` of `tile`: the node alone on first
-    /// use, or (tiled) the whole tile on first use of any of its nodes.
-    #[inline]
-    fn cached(&mut self, tile: usize, slot: usize, i: i32, j: i32) -> f32 {
-        let field = self.field;
-        let step = self.step;
-        if self.tiled {
-            let first = [i & !TILE_MASK, j & !TILE_MASK];
-            self.nodes
-                .filled(tile, slot, |out| field.sample_tile(first, step, out))
-        } else {
-            self.nodes
-                .value_or(tile, slot, || field.value(node_point([i, j], step)))
+    /// [`Tracer::node`], with where the sample is kept.
+    #[inline(always)]
+    fn node_at(&mut self, i: i32, j: i32) -> Node {
+        let tile = self.tile(i, j);
+        let slot = Nodes::slot(i, j);
+        let value = match self.nodes.tiles.get(tile) {
+            Some(t) if t.sampled & (1 << slot) != 0 => t.values[slot],
+            _ => self.sample_node(tile, slot, i, j),
+        };
+        Node { value, tile, slot }
+    }
+
+    /// Samples node `(i, j)`, in `slot` of `tile`, alone (point by point).
+    #[inline(never)]
+    fn sample_node(&mut self, tile: usize, slot: usize, i: i32, j: i32) -> f32 {
+        let v = self.field.value(node_point([i, j], self.step));
+        self.nodes.set(tile, slot, v, cell::is_inside(v, self.iso));
+        v
+    }
+
+    /// The index of the tile holding node `(i, j)`: from the tile cache, else found or
+    /// created (and, tiled, filled) by [`Tracer::tile_miss`].
+    #[inline(always)]
+    fn tile(&mut self, i: i32, j: i32) -> usize {
+        let key = (i >> TILE_SHIFT, j >> TILE_SHIFT);
+        match self.nodes.cached(key) {
+            Some(tile) => tile,
+            None => self.tile_miss(key),
         }
+    }
+
+    /// [`Tracer::tile`] past the cache.
+    #[inline(never)]
+    fn tile_miss(&mut self, key: (i32, i32)) -> usize {
+        let (tile, created) = self.nodes.find_or_add(key);
+        if created && self.tiled {
+            let first = [key.0 << TILE_SHIFT, key.1 << TILE_SHIFT];
+            let (field, step, iso) = (self.field, self.step, self.iso);
+            self.nodes
+                .fill(tile, iso, |out| field.sample_tile(first, step, out));
+        }
+        tile
     }
 
     #[inline]
@@ -340,6 +372,25 @@ impl<F: TileField + ?Sized> Tracer<'_, F> {
             }
         }
         best.is_some_and(|(outer, _)| outer)
+    }
+
+    /// The ring crossing the vertical edge from node `(x, y)` up, if any.
+    fn crossing_ring(&mut self, x: i32, y: i32) -> Option<usize> {
+        if !self.nodes.crossed(x, y) {
+            return None;
+        }
+        let rings = &self.rings;
+        let table = self.ring_of_edge.get_or_insert_with(|| {
+            let edges = rings.iter().map(|r| r.verticals.len()).sum::<usize>();
+            let mut table = Table::with_slots((2 * edges + 16).next_power_of_two());
+            for (id, r) in rings.iter().enumerate() {
+                for &edge in &r.verticals {
+                    table.insert(edge, id as u32);
+                }
+            }
+            table
+        });
+        table.get((x, y)).map(|r| r as usize)
     }
 
     fn outline_hint(&mut self, index: usize, hint: Vec2) -> Result<(), MarchError> {
@@ -386,8 +437,8 @@ impl<F: TileField + ?Sized> Tracer<'_, F> {
             self.tick(index)?;
             let above = self.inside(x, y + 1);
             if above != below {
-                let ring = match self.nodes.vertical(x, y) {
-                    Some(r) => r as usize,
+                let ring = match self.crossing_ring(x, y) {
+                    Some(r) => r,
                     None if below => self.trace_ring((x - 1, y), 1, index, false)?,
                     None => self.trace_ring((x, y), 3, index, false)?,
                 };
@@ -427,46 +478,50 @@ impl<F: TileField + ?Sized> Tracer<'_, F> {
     }
 
     /// Scans nodes `bottom + 1 ..= top` of column `x` (enclosed by a ring), tracing every
-    /// crossing between two of them that no ring has crossed yet. Runs tile by tile, reading
-    /// the samples straight from each tile.
+    /// crossing between two of them that no ring has crossed yet. Runs tile by tile: the
+    /// segment of the column in one tile is counted against the budget at once, its inside
+    /// flags read from the tile's mask, and only the rows where the flag changes are looked at.
     fn scan_column(&mut self, x: i32, bottom: i32, top: i32) -> Result<(), MarchError> {
-        let iso = self.iso;
         let mut below = self.inside(x, bottom + 1);
         let mut y = bottom + 1;
         while y < top {
-            // Nodes y + 1 ..= last lie in one tile.
-            let (tile, _) = self.nodes.locate(x, y + 1);
+            // Nodes y + 1 ..= last lie in one tile, in rows `first ..= last_row` of it.
             let last = ((y + 1) | TILE_MASK).min(top);
-            if self.tiled {
-                // The whole tile is filled by its first use: count the segment's nodes at once
-                // (the same total, so the same budget outcome and error) and read the samples
-                // straight from the tile.
-                self.cells += (last - y) as usize;
-                if self.cells > self.options.max_cells {
-                    return Err(MarchError::BudgetExceeded {
-                        hint: usize::MAX,
-                        cells: self.options.max_cells,
-                    });
-                }
-                self.cached(tile, Nodes::slot(x, y + 1), x, y + 1);
+            self.cells += (last - y) as usize;
+            if self.cells > self.options.max_cells {
+                return Err(MarchError::BudgetExceeded {
+                    hint: usize::MAX,
+                    cells: self.options.max_cells,
+                });
             }
-            for up in y + 1..=last {
-                let v = if self.tiled {
-                    self.nodes.sampled(tile, Nodes::slot(x, up))
-                } else {
-                    self.tick(usize::MAX)?;
-                    self.cached(tile, Nodes::slot(x, up), x, up)
-                };
-                let above = cell::is_inside(v, iso);
-                if above != below && self.nodes.vertical(x, up - 1).is_none() {
-                    if below {
+            if !self.tiled {
+                for up in y + 1..=last {
+                    self.node(x, up);
+                }
+            }
+            let tile = self.tile(x, y + 1);
+            let first = (y + 1) & TILE_MASK;
+            let last_row = last & TILE_MASK;
+            let rows = (u32::MAX << first) & (u32::MAX >> (31 - last_row));
+            // Bit r: the node in row r of the segment is inside.
+            let inside = self.nodes.column_inside(tile, x & TILE_MASK) & rows;
+            // Bit r: the node below it is inside.
+            let previous = (inside << 1) | (u32::from(below) << first);
+            let mut changes = (inside ^ previous) & rows;
+            let base = (y + 1) & !TILE_MASK;
+            while changes != 0 {
+                let up = base + changes.trailing_zeros() as i32;
+                changes &= changes - 1;
+                // Rings traced from here on may cross the rows above: ask each time.
+                if !self.nodes.crossed(x, up - 1) {
+                    if inside & (1 << (up - base)) == 0 {
                         self.trace_ring((x - 1, up - 1), 1, usize::MAX, true)?;
                     } else {
                         self.trace_ring((x, up - 1), 3, usize::MAX, true)?;
                     }
                 }
-                below = above;
             }
+            below = inside & (1 << last_row) != 0;
             y = last;
         }
         Ok(())
@@ -492,6 +547,12 @@ impl<F: TileField + ?Sized> Tracer<'_, F> {
 
     /// Follows the contour entering cell `start` through its in→out edge `k` until it closes.
     /// Returns the new ring's index.
+    ///
+    /// The cell's corners are kept relative to the entry edge: `a` (corner `k`, inside) and
+    /// `b` (corner `k + 1`, outside) are carried over from the previous cell, `c` and `d`
+    /// (corners `k + 2`, `k + 3`) are read. Which of `c` and `d` are inside settles the exit
+    /// edge (see [`cell::exit_edge`]): `k + 1` when both are, `k + 2` when only `d` is, `k + 3`
+    /// when neither is, and the saddle rule when only `c` is.
     fn trace_ring(
         &mut self,
         start: (i32, i32),
@@ -499,48 +560,84 @@ impl<F: TileField + ?Sized> Tracer<'_, F> {
         hint: usize,
         nested: bool,
     ) -> Result<usize, MarchError> {
+        /// The exit edge relative to the entry edge, by `c | d << 1` (inside flags); a saddle
+        /// (`1`, only `c` inside) goes to `k + 1` only when joined.
+        const EXIT: [usize; 4] = [3, 1, 2, 1];
         let id = self.rings.len();
-        let mut points = Vec::new();
-        let mut verticals = Vec::new();
-        let start_k = k;
-        let (mut ci, mut cj, mut k) = (start.0, start.1, k);
-        // Corner samples of the current cell; after the first cell, the two on the entry edge
-        // are carried over from the previous cell.
-        let mut values = [0.0f32; 4];
-        let mut carried = false;
+        let ring = id as u32;
+        let iso = self.iso;
+        let mut points: Vec<Vec2> = Vec::with_capacity(64);
+        // The vertical edges crossed, written at `crossed` whether or not the entry edge is
+        // vertical, and kept (by advancing `crossed`) only when it is: no branch on it.
+        let mut verticals: Vec<(i32, i32)> = alloc::vec![(0, 0); 64];
+        let mut crossed = 0;
+        let (mut lo, mut hi) = (Vec2::INFINITY, Vec2::NEG_INFINITY);
+        let start_k = k & 3;
+        let (mut ci, mut cj, mut k) = (start.0, start.1, start_k);
+        let corner = |ci: i32, cj: i32, c: usize| {
+            let (di, dj) = CORNERS[c & 3];
+            (ci + di, cj + dj)
+        };
+        let (i, j) = corner(ci, cj, k);
+        let mut a = self.node_at(i, j);
+        let (i, j) = corner(ci, cj, k + 1);
+        let mut b = self.node_at(i, j);
         loop {
             self.tick(hint)?;
-            let mut mask = 0u8;
-            for (c, (di, dj)) in CORNERS.into_iter().enumerate() {
-                if !(carried && (c == k || c == (k + 1) & 3)) {
-                    values[c] = self.node(ci + di, cj + dj);
+            let (i, j) = corner(ci, cj, k + 2);
+            let c = self.node_at(i, j);
+            let (i, j) = corner(ci, cj, k + 3);
+            let d = self.node_at(i, j);
+            let (ax, ay) = corner(ci, cj, k);
+            let (bx, by) = corner(ci, cj, k + 1);
+            // The right (1) or left (3) edge is vertical, from row `cj` up; its lower node is
+            // `a` for the right edge and `b` for the left one.
+            let vertical = k & 1;
+            if crossed == verticals.len() {
+                verticals.resize(2 * crossed, (0, 0));
+            }
+            if let Some(slot) = verticals.get_mut(crossed) {
+                *slot = (ax, cj);
+            }
+            crossed += vertical;
+            let lower = if k == 1 { a } else { b };
+            self.nodes
+                .mark_crossed(lower.tile, lower.slot, vertical == 1);
+            let p = self.crossing((ax, ay), (bx, by), a.value, b.value);
+            lo = lo.min(p);
+            hi = hi.max(p);
+            points.push(p);
+            let inside = |n: Node| usize::from(cell::is_inside(n.value, iso));
+            let flags = inside(c) | inside(d) << 1;
+            let mut turn = EXIT[flags];
+            if flags == 1 {
+                let mut values = [0.0; 4];
+                for (n, node) in [a, b, c, d].into_iter().enumerate() {
+                    values[(k + n) & 3] = node.value;
                 }
-                mask |= u8::from(cell::is_inside(values[c], self.iso)) << c;
+                if !self.joined(ci, cj, values) {
+                    turn = 3;
+                }
             }
-            let (a, b) = (CORNERS[k], CORNERS[(k + 1) & 3]);
-            let (ax, ay) = (ci + a.0, cj + a.1);
-            let (bx, by) = (ci + b.0, cj + b.1);
-            if ax == bx {
-                let low = ay.min(by);
-                self.nodes.set_vertical(ax, low, id as u32);
-                verticals.push((ax, low));
-            }
-            points.push(self.crossing((ax, ay), (bx, by), values[k], values[(k + 1) & 3]));
-            let exit = cell::exit_edge(mask, k, || self.joined(ci, cj, values));
+            let exit = (k + turn) & 3;
+            // The exit edge, seen from the next cell, runs from its inside end to its outside
+            // end: `c`–`b`, `d`–`c` or `a`–`d`.
+            let cell = [a, b, c, d];
+            (a, b) = (cell[(turn + 1) & 3], cell[turn]);
             ci += ACROSS[exit].0;
             cj += ACROSS[exit].1;
             k = (exit + 2) & 3;
-            // The exit edge, seen from the next cell, runs the other way round.
-            let (v_from, v_to) = (values[exit], values[(exit + 1) & 3]);
-            values[k] = v_to;
-            values[(k + 1) & 3] = v_from;
-            carried = true;
             if (ci, cj) == start && k == start_k {
                 break;
             }
         }
+        verticals.truncate(crossed);
+        if let Some(table) = &mut self.ring_of_edge {
+            for &edge in &verticals {
+                table.insert(edge, ring);
+            }
+        }
         sort_by_column(&mut verticals);
-        let (lo, hi) = crate::ring::bounds(&points).unwrap_or((Vec2::ZERO, Vec2::ZERO));
         let outer = crate::ring::signed_area(&points) > 0.0;
         self.rings.push(Traced {
             points,
@@ -658,28 +755,66 @@ const TILE_SHIFT: i32 = 3;
 const TILE_MASK: i32 = (1 << TILE_SHIFT) - 1;
 const _: () = assert!(TILE_NODES == 1 << (2 * TILE_SHIFT));
 
-/// No ring crosses this vertical edge.
-const NO_RING: u32 = u32::MAX;
+/// Bit `s`: `values[s]` is inside `iso`.
+#[inline]
+fn inside_bits(values: &[f32; TILE_NODES], iso: f32) -> u64 {
+    let mut bits = 0u64;
+    for (row, samples) in values.chunks_exact(8).enumerate() {
+        let mut byte = 0u8;
+        for (column, &v) in samples.iter().enumerate() {
+            byte |= u8::from(cell::is_inside(v, iso)) << column;
+        }
+        bits |= u64::from(byte) << (8 * row);
+    }
+    bits
+}
 
-/// Node samples for an 8 × 8 block of grid nodes, and the ring crossing the vertical edge
-/// above each node.
+/// Bit 0 of each byte of `spread`, gathered into bit `k` for byte `k`: a multiplication
+/// whose partial products never overlap, so never carry.
+#[inline]
+fn gather_bytes(spread: u64) -> u64 {
+    (spread & 0x0101_0101_0101_0101).wrapping_mul(0x0102_0408_1020_4080) >> 56
+}
+
+/// Column `column` of a tile's bit mask (bit `8 × row + column`), as bit `row` of a byte.
+#[inline]
+fn column_bits(mask: u64, column: i32) -> u32 {
+    gather_bytes(mask >> (column & TILE_MASK)) as u32
+}
+
+/// A node's sample and where it is kept.
+#[derive(Clone, Copy)]
+struct Node {
+    value: f32,
+    tile: usize,
+    slot: usize,
+}
+
+/// Node samples for an 8 × 8 block of grid nodes.
 #[derive(Clone)]
 struct Tile {
     values: [f32; TILE_NODES],
     /// Bit `s`: `values[s]` has been sampled.
     sampled: u64,
-    /// The ring crossing the edge from node `s` up to the node above it, or [`NO_RING`].
-    verticals: [u32; TILE_NODES],
+    /// Bit `s`: the sampled node in slot `s` is inside.
+    inside: u64,
+    /// Bit `s`: a traced ring crosses the edge from the node in slot `s` up to the node above.
+    crossed: u64,
 }
 
+/// Slots of the tile cache: a tile goes to the slot of the low 2 bits of its column and the
+/// low 5 bits of its row, so any block of 4 × 32 neighbouring tiles fits at once: a contour's
+/// neighbourhood, and the tiles a hole scan runs up through, column after column.
+const CACHE_SLOTS: usize = 128;
+
 /// A sparse grid of node samples in dense tiles: the compact cache behind "each node is
-/// sampled once". Contours are local, so consecutive lookups mostly hit the same tile, which
-/// is remembered; other tiles are found through a small hash table.
+/// sampled once". Contours are local, so lookups mostly hit one of a few neighbouring tiles,
+/// which a small direct-mapped cache remembers; other tiles are found through a hash table.
 struct Nodes {
     tiles: Vec<Tile>,
     index: Table<u32>,
-    last: (i32, i32),
-    last_tile: usize,
+    /// Tile coordinates and index of a recently used tile, by [`Nodes::cache_slot`].
+    cache: [(i32, i32, u32); CACHE_SLOTS],
 }
 
 impl Nodes {
@@ -687,8 +822,8 @@ impl Nodes {
         Self {
             tiles: Vec::with_capacity(64),
             index: Table::with_slots(256),
-            last: (i32::MIN, i32::MIN),
-            last_tile: 0,
+            // No tile has coordinate `i32::MIN`: node coordinates stay within ±2^30.
+            cache: [(i32::MIN, i32::MIN, 0); CACHE_SLOTS],
         }
     }
 
@@ -697,104 +832,90 @@ impl Nodes {
         ((j & TILE_MASK) << TILE_SHIFT | (i & TILE_MASK)) as usize
     }
 
-    /// The tile holding node `(i, j)` (created when missing) and the node's slot in it.
     #[inline]
-    fn locate(&mut self, i: i32, j: i32) -> (usize, usize) {
-        let key = (i >> TILE_SHIFT, j >> TILE_SHIFT);
-        if key != self.last {
-            self.last_tile = match self.index.get(key) {
-                Some(t) => t as usize,
-                None => {
-                    let t = self.tiles.len();
-                    self.tiles.push(Tile {
-                        values: [0.0; TILE_NODES],
-                        sampled: 0,
-                        verticals: [NO_RING; TILE_NODES],
-                    });
-                    self.index.insert(key, t as u32);
-                    t
-                }
-            };
-            self.last = key;
-        }
-        (self.last_tile, Self::slot(i, j))
+    fn cache_slot((x, y): (i32, i32)) -> usize {
+        ((x & 3) | (y & 31) << 2) as usize
     }
 
-    /// The tile holding node `(i, j)`, if any node of it was touched.
+    /// The index of the tile at tile coordinates `key`, if the cache holds it.
     #[inline]
-    fn find(&self, i: i32, j: i32) -> Option<&Tile> {
-        let key = (i >> TILE_SHIFT, j >> TILE_SHIFT);
-        let t = if key == self.last {
-            self.last_tile
-        } else {
-            self.index.get(key)? as usize
-        };
-        self.tiles.get(t)
+    fn cached(&self, key: (i32, i32)) -> Option<usize> {
+        let (x, y, tile) = self.cache[Self::cache_slot(key)];
+        ((x, y) == key).then_some(tile as usize)
     }
 
-    /// The sample in `slot` of `tile`, taken with `sample` on first use.
-    #[inline]
-    fn value_or(&mut self, tile: usize, slot: usize, sample: impl FnOnce() -> f32) -> f32 {
-        let Some(t) = self.tiles.get_mut(tile) else {
-            return sample();
+    /// The index of the tile at tile coordinates `key`, created (unsampled) when missing, and
+    /// whether it was created. Caches it.
+    fn find_or_add(&mut self, key: (i32, i32)) -> (usize, bool) {
+        let (tile, created) = match self.index.get(key) {
+            Some(t) => (t as usize, false),
+            None => {
+                let t = self.tiles.len();
+                self.tiles.push(Tile {
+                    values: [0.0; TILE_NODES],
+                    sampled: 0,
+                    inside: 0,
+                    crossed: 0,
+                });
+                self.index.insert(key, t as u32);
+                (t, true)
+            }
         };
-        let bit = 1u64 << slot;
-        if t.sampled & bit != 0 {
-            return t.values.get(slot).copied().unwrap_or(f32::NAN);
-        }
-        let v = sample();
-        if let Some(value) = t.values.get_mut(slot) {
+        self.cache[Self::cache_slot(key)] = (key.0, key.1, tile as u32);
+        (tile, created)
+    }
+
+    /// The index of the tile holding node `(i, j)`, if any node of it was touched.
+    #[inline]
+    fn find(&self, i: i32, j: i32) -> Option<usize> {
+        let key = (i >> TILE_SHIFT, j >> TILE_SHIFT);
+        self.cached(key)
+            .or_else(|| self.index.get(key).map(|t| t as usize))
+    }
+
+    /// Stores the sample `v` of `slot` of `tile`, inside or not.
+    fn set(&mut self, tile: usize, slot: usize, v: f32, inside: bool) {
+        if let Some(t) = self.tiles.get_mut(tile)
+            && let Some(value) = t.values.get_mut(slot)
+        {
             *value = v;
-            t.sampled |= bit;
+            t.sampled |= 1 << slot;
+            t.inside |= u64::from(inside) << slot;
         }
-        v
     }
 
-    /// The sample in `slot` of `tile`, after filling the whole tile with `fill` if it has not
-    /// been filled yet.
-    #[inline]
-    fn filled(
-        &mut self,
-        tile: usize,
-        slot: usize,
-        fill: impl FnOnce(&mut [f32; TILE_NODES]),
-    ) -> f32 {
-        let Some(t) = self.tiles.get_mut(tile) else {
-            return f32::NAN;
-        };
-        if t.sampled != u64::MAX {
+    /// Fills every sample of `tile` with `fill`, and marks which are inside `iso`.
+    fn fill(&mut self, tile: usize, iso: f32, fill: impl FnOnce(&mut [f32; TILE_NODES])) {
+        if let Some(t) = self.tiles.get_mut(tile) {
             fill(&mut t.values);
             t.sampled = u64::MAX;
+            t.inside = inside_bits(&t.values, iso);
         }
-        t.values.get(slot).copied().unwrap_or(f32::NAN)
     }
 
-    /// The sample in `slot` of `tile`, which has been filled (NaN, outside, otherwise).
+    /// The inside flags of column `column` of `tile`: bit `r` for row `r` (sampled nodes only).
     #[inline]
-    fn sampled(&self, tile: usize, slot: usize) -> f32 {
+    fn column_inside(&self, tile: usize, column: i32) -> u32 {
         self.tiles
             .get(tile)
-            .and_then(|t| t.values.get(slot))
-            .copied()
-            .unwrap_or(f32::NAN)
+            .map_or(0, |t| column_bits(t.inside, column))
     }
 
-    /// The ring crossing the edge from node `(i, j)` up to `(i, j + 1)`.
+    /// Records, if `crossed`, that a ring crosses the edge from the node in `slot` of `tile`
+    /// up (without a branch on `crossed`).
     #[inline]
-    fn vertical(&self, i: i32, j: i32) -> Option<u32> {
-        let r = *self.find(i, j)?.verticals.get(Self::slot(i, j))?;
-        (r != NO_RING).then_some(r)
+    fn mark_crossed(&mut self, tile: usize, slot: usize, crossed: bool) {
+        if let Some(t) = self.tiles.get_mut(tile) {
+            t.crossed |= u64::from(crossed) << slot;
+        }
     }
 
-    fn set_vertical(&mut self, i: i32, j: i32, ring: u32) {
-        let (tile, slot) = self.locate(i, j);
-        if let Some(v) = self
-            .tiles
-            .get_mut(tile)
-            .and_then(|t| t.verticals.get_mut(slot))
-        {
-            *v = ring;
-        }
+    /// Whether a traced ring crosses the edge from node `(i, j)` up.
+    #[inline]
+    fn crossed(&self, i: i32, j: i32) -> bool {
+        self.find(i, j)
+            .and_then(|tile| self.tiles.get(tile))
+            .is_some_and(|t| t.crossed >> Self::slot(i, j) & 1 != 0)
     }
 }
 
@@ -1104,7 +1225,7 @@ mod tests {
     }
 
     #[test]
-    fn node_tiles_keep_samples_and_edges_apart() {
+    fn node_tiles_keep_samples_apart() {
         let mut nodes = Nodes::new();
         let coords = [
             (0, 0),
@@ -1116,17 +1237,47 @@ mod tests {
             (1000, -1000),
         ];
         for (n, &(i, j)) in coords.iter().enumerate() {
-            let (tile, slot) = nodes.locate(i, j);
-            assert_eq!(nodes.value_or(tile, slot, || n as f32), n as f32);
-            nodes.set_vertical(i, j, n as u32);
+            let (tile, _) = nodes.find_or_add((i >> TILE_SHIFT, j >> TILE_SHIFT));
+            // Even samples inside, odd ones outside.
+            nodes.set(tile, Nodes::slot(i, j), n as f32, n % 2 == 0);
         }
         for (n, &(i, j)) in coords.iter().enumerate() {
-            let (tile, slot) = nodes.locate(i, j);
-            assert_eq!(nodes.value_or(tile, slot, || f32::NAN), n as f32);
-            assert_eq!(nodes.vertical(i, j), Some(n as u32));
+            let tile = nodes.find(i, j).unwrap();
+            let slot = Nodes::slot(i, j);
+            assert_eq!(nodes.tiles[tile].values[slot], n as f32);
+            assert_ne!(nodes.tiles[tile].sampled & 1 << slot, 0);
+            let column = nodes.column_inside(tile, i & TILE_MASK);
+            assert_eq!(column >> (j & TILE_MASK) & 1, u32::from(n % 2 == 0));
         }
-        assert_eq!(nodes.vertical(1, 0), None);
-        assert_eq!(nodes.vertical(-100, 5), None);
+        assert_eq!(nodes.find(1, 8), None);
+        assert_eq!(nodes.find(-100, 5), None);
+    }
+
+    #[test]
+    fn tile_masks_give_rows_and_columns() {
+        let mut values = [0.0f32; TILE_NODES];
+        // Inside (≥ 0.5): the diagonal, all of row 5, and NaN nowhere.
+        for (slot, v) in values.iter_mut().enumerate() {
+            let (column, row) = (slot % 8, slot / 8);
+            if column == row || row == 5 {
+                *v = 1.0;
+            }
+        }
+        values[9] = f32::NAN; // (1, 1): NaN is outside
+        values[18] = 0.5; // (2, 2): exactly the iso-level is inside
+        let bits = inside_bits(&values, 0.5);
+        for (slot, &v) in values.iter().enumerate() {
+            assert_eq!(bits >> slot & 1 == 1, cell::is_inside(v, 0.5), "{slot}");
+        }
+        for column in 0..8 {
+            let expected = (0..8)
+                .filter(|&row| cell::is_inside(values[row * 8 + column as usize], 0.5))
+                .fold(0u32, |b, row| b | 1 << row);
+            assert_eq!(column_bits(bits, column), expected, "column {column}");
+        }
+        assert_eq!(column_bits(u64::MAX, 7), 0xff);
+        assert_eq!(column_bits(0x8000_0000_0000_0000, 7), 0x80);
+        assert_eq!(column_bits(0x8000_0000_0000_0000, 6), 0);
     }
 
     #[test]

@@ -86,6 +86,103 @@ fn an_annulus_is_an_outer_ring_with_one_hole() {
     assert_eq!(grid.iter().filter(|r| r.hole).count(), 1);
 }
 
+/// A disc riddled with small holes on a lattice that puts them at every offset from the
+/// tracer's 8 × 8 node tiles (straddling tile rows and columns, at negative coordinates too):
+/// the hole scan finds every one the grid finds, point by point and tile by tile.
+#[test]
+fn the_hole_scan_finds_holes_at_every_tile_offset() {
+    let centre = Vec2::new(-3.3, -2.1);
+    let holes: Vec<Vec2> = (-6..=6)
+        .flat_map(|i| (-6..=6).map(move |j| Vec2::new(i as f32 * 6.7, j as f32 * 5.9) + centre))
+        .filter(|h| h.distance(centre) < 38.0)
+        .collect();
+    let field = |p: Vec2| {
+        let hole = holes
+            .iter()
+            .map(|h| p.distance(*h))
+            .fold(f32::INFINITY, f32::min);
+        (45.0 - p.distance(centre)).min(hole - 1.6)
+    };
+    let step = 0.9;
+    let values = sample(field, (-60, -60), 120, 120, step);
+    let grid = march_grid_with(&values, 120, 120, 0.0, &MarchOptions::DEFAULT).unwrap();
+    let grid_holes = grid.iter().filter(|r| r.hole).count();
+    assert!(
+        grid_holes >= holes.len() - 2,
+        "{grid_holes} of {}",
+        holes.len()
+    );
+    // A hint in the middle of the disc, away from the holes, and one near its rim.
+    let hints = [
+        centre + Vec2::new(3.35, 2.95),
+        centre + Vec2::new(0.0, -43.0),
+    ];
+    let traced = trace(field, &hints, step, 0.0).unwrap();
+    check_rings(&traced);
+    assert_eq!(traced.len(), grid.len());
+    assert_eq!(traced.iter().filter(|r| r.hole).count(), grid_holes);
+    let tiled = creature_march::trace_field(
+        &support::PreferTiles(field),
+        &hints,
+        step,
+        0.0,
+        &MarchOptions::DEFAULT,
+    )
+    .unwrap();
+    assert_eq!(tiled, traced);
+    let h = hausdorff(&traced, &to_world(&grid, (-60, -60), step));
+    assert!(h < 0.01, "hausdorff {h}");
+
+    // Holes of whole nodes whose edges all lie on tile boundaries (rows 8m and 8m + 7), one
+    // node wide, and single nodes at the top and bottom rows of tiles: every crossing of their
+    // columns is where the scan passes from one tile to the next.
+    let blocks: [(i32, i32, i32); 7] = [
+        (-13, -16, -9),
+        (-5, 0, 7),
+        (3, -8, 7),
+        (11, 8, 15),
+        (6, -1, -1),
+        (-2, 8, 8),
+        (9, -25, -25),
+    ];
+    let field = |p: Vec2| {
+        let (x, y) = (p.x.round() as i32, p.y.round() as i32);
+        let in_hole = blocks
+            .iter()
+            .any(|&(hx, lo, hi)| x == hx && (lo..=hi).contains(&y));
+        if in_hole || p.length() > 30.0 {
+            -1.0
+        } else {
+            1.0
+        }
+    };
+    for tiles in [false, true] {
+        let hints = [Vec2::new(0.5, 0.5)];
+        let rings = if tiles {
+            creature_march::trace_field(
+                &support::PreferTiles(field),
+                &hints,
+                1.0,
+                0.0,
+                &MarchOptions::DEFAULT,
+            )
+        } else {
+            trace(field, &hints, 1.0, 0.0)
+        }
+        .unwrap();
+        check_rings(&rings);
+        assert_eq!(
+            rings.iter().filter(|r| r.hole).count(),
+            blocks.len(),
+            "tiles {tiles}"
+        );
+        for &(x, lo, hi) in &blocks {
+            let inside = Vec2::new(x as f32, (lo + hi) as f32 / 2.0);
+            assert!(rings.iter().any(|r| r.hole && r.contains(inside)));
+        }
+    }
+}
+
 #[test]
 fn grid_and_trace_agree_on_a_creature() {
     for seed in [1, 7, 42, 1234] {

@@ -245,6 +245,8 @@ struct Traced {
     points: Vec<Vec2>,
     /// The vertical grid edges it crosses, as `(column, lower row)`, sorted.
     verticals: Vec<(i32, i32)>,
+    /// Where each column's crossings lie in `verticals`.
+    columns: Option<Columns>,
     /// Counter-clockwise: an outer ring.
     outer: bool,
     /// Bounding box of `points`.
@@ -258,9 +260,21 @@ impl Traced {
     /// Whether the ring encloses grid node `(x, y)`, by the parity of its crossings above the
     /// node on the node's column: exact, no floating point.
     fn encloses(&self, x: i32, y: i32) -> bool {
-        let start = self.verticals.partition_point(|&e| e < (x, y));
-        let above = self.verticals.get(start..).unwrap_or(&[]);
-        above.iter().take_while(|e| e.0 == x).count() % 2 == 1
+        let column = match &self.columns {
+            Some(Columns { first, starts }) => {
+                let k = i64::from(x) - i64::from(*first);
+                let range = usize::try_from(k)
+                    .ok()
+                    .and_then(|k| Some(*starts.get(k)? as usize..*starts.get(k + 1)? as usize));
+                range.and_then(|r| self.verticals.get(r)).unwrap_or(&[])
+            }
+            None => {
+                let start = self.verticals.partition_point(|e| e.0 < x);
+                let end = self.verticals.partition_point(|e| e.0 <= x);
+                self.verticals.get(start..end).unwrap_or(&[])
+            }
+        };
+        column.iter().filter(|e| e.1 >= y).count() % 2 == 1
     }
 }
 
@@ -300,19 +314,12 @@ impl<F: TileField + ?Sized> Tracer<'_, F> {
     /// tile holding it, when its tile is first touched.
     #[inline(always)]
     fn node(&mut self, i: i32, j: i32) -> f32 {
-        self.node_at(i, j).value
-    }
-
-    /// [`Tracer::node`], with where the sample is kept.
-    #[inline(always)]
-    fn node_at(&mut self, i: i32, j: i32) -> Node {
         let tile = self.tile(i, j);
         let slot = Nodes::slot(i, j);
-        let value = match self.nodes.tiles.get(tile) {
+        match self.nodes.tiles.get(tile) {
             Some(t) if t.sampled & (1 << slot) != 0 => t.values[slot],
             _ => self.sample_node(tile, slot, i, j),
-        };
-        Node { value, tile, slot }
+        }
     }
 
     /// Samples node `(i, j)`, in `slot` of `tile`, alone (point by point).
@@ -478,22 +485,24 @@ impl<F: TileField + ?Sized> Tracer<'_, F> {
     }
 
     /// Scans nodes `bottom + 1 ..= top` of column `x` (enclosed by a ring), tracing every
-    /// crossing between two of them that no ring has crossed yet. Runs tile by tile: the
-    /// segment of the column in one tile is counted against the budget at once, its inside
-    /// flags read from the tile's mask, and only the rows where the flag changes are looked at.
+    /// crossing between two of them that no ring has crossed yet. The nodes above the first
+    /// are counted against the budget at once (the same total as one by one, so the same
+    /// outcome: the count only grows, and every budget error of a scan is the same). Runs tile
+    /// by tile: the inside flags of the column's segment in a tile come from the tile's mask,
+    /// and only the rows where the flag changes are looked at.
     fn scan_column(&mut self, x: i32, bottom: i32, top: i32) -> Result<(), MarchError> {
+        self.cells += (top - bottom - 1).max(0) as usize;
+        if self.cells > self.options.max_cells {
+            return Err(MarchError::BudgetExceeded {
+                hint: usize::MAX,
+                cells: self.options.max_cells,
+            });
+        }
         let mut below = self.inside(x, bottom + 1);
         let mut y = bottom + 1;
         while y < top {
             // Nodes y + 1 ..= last lie in one tile, in rows `first ..= last_row` of it.
             let last = ((y + 1) | TILE_MASK).min(top);
-            self.cells += (last - y) as usize;
-            if self.cells > self.options.max_cells {
-                return Err(MarchError::BudgetExceeded {
-                    hint: usize::MAX,
-                    cells: self.options.max_cells,
-                });
-            }
             if !self.tiled {
                 for up in y + 1..=last {
                     self.node(x, up);
@@ -560,88 +569,110 @@ impl<F: TileField + ?Sized> Tracer<'_, F> {
         hint: usize,
         nested: bool,
     ) -> Result<usize, MarchError> {
-        /// The exit edge relative to the entry edge, by `c | d << 1` (inside flags); a saddle
-        /// (`1`, only `c` inside) goes to `k + 1` only when joined.
-        const EXIT: [usize; 4] = [3, 1, 2, 1];
         let id = self.rings.len();
-        let ring = id as u32;
         let iso = self.iso;
-        let mut points: Vec<Vec2> = Vec::with_capacity(64);
-        // The vertical edges crossed, written at `crossed` whether or not the entry edge is
-        // vertical, and kept (by advancing `crossed`) only when it is: no branch on it.
-        let mut verticals: Vec<(i32, i32)> = alloc::vec![(0, 0); 64];
-        let mut crossed = 0;
-        let (mut lo, mut hi) = (Vec2::INFINITY, Vec2::NEG_INFINITY);
+        let mut path = Path::new();
         let start_k = k & 3;
-        let (mut ci, mut cj, mut k) = (start.0, start.1, start_k);
-        let corner = |ci: i32, cj: i32, c: usize| {
-            let (di, dj) = CORNERS[c & 3];
-            (ci + di, cj + dj)
+        let mut at = Step {
+            ci: start.0,
+            cj: start.1,
+            k: start_k,
+            a: 0.0,
+            b: 0.0,
         };
-        let (i, j) = corner(ci, cj, k);
-        let mut a = self.node_at(i, j);
-        let (i, j) = corner(ci, cj, k + 1);
-        let mut b = self.node_at(i, j);
-        loop {
-            self.tick(hint)?;
-            let (i, j) = corner(ci, cj, k + 2);
-            let c = self.node_at(i, j);
-            let (i, j) = corner(ci, cj, k + 3);
-            let d = self.node_at(i, j);
-            let (ax, ay) = corner(ci, cj, k);
-            let (bx, by) = corner(ci, cj, k + 1);
-            // The right (1) or left (3) edge is vertical, from row `cj` up; its lower node is
-            // `a` for the right edge and `b` for the left one.
-            let vertical = k & 1;
-            if crossed == verticals.len() {
-                verticals.resize(2 * crossed, (0, 0));
+        let (i, j) = at.corner(0);
+        at.a = self.node(i, j);
+        let (i, j) = at.corner(1);
+        at.b = self.node(i, j);
+        let closed = |at: &Step| (at.ci, at.cj) == start && at.k == start_k;
+        // The budget left for this ring, counted locally and settled when it closes.
+        let budget = self.options.max_cells.saturating_sub(self.cells);
+        let mut cells = 0;
+        'ring: loop {
+            // Any cell: its far corners through the tile cache; saddles settled.
+            cells += 1;
+            if cells > budget {
+                return Err(self.out_of_budget(hint));
             }
-            if let Some(slot) = verticals.get_mut(crossed) {
-                *slot = (ax, cj);
-            }
-            crossed += vertical;
-            let lower = if k == 1 { a } else { b };
-            self.nodes
-                .mark_crossed(lower.tile, lower.slot, vertical == 1);
-            let p = self.crossing((ax, ay), (bx, by), a.value, b.value);
-            lo = lo.min(p);
-            hi = hi.max(p);
-            points.push(p);
-            let inside = |n: Node| usize::from(cell::is_inside(n.value, iso));
-            let flags = inside(c) | inside(d) << 1;
-            let mut turn = EXIT[flags];
+            let (i, j) = at.corner(2);
+            let c = self.node(i, j);
+            let (i, j) = at.corner(3);
+            let d = self.node(i, j);
+            let p = self.crossing(at.edge(), at.a, at.b);
+            path.push(p, &at);
+            let flags =
+                usize::from(cell::is_inside(c, iso)) | usize::from(cell::is_inside(d, iso)) << 1;
+            let mut turn = Step::TURN[flags];
             if flags == 1 {
                 let mut values = [0.0; 4];
-                for (n, node) in [a, b, c, d].into_iter().enumerate() {
-                    values[(k + n) & 3] = node.value;
+                for (n, v) in [at.a, at.b, c, d].into_iter().enumerate() {
+                    values[(at.k + n) & 3] = v;
                 }
-                if !self.joined(ci, cj, values) {
+                if !self.joined(at.ci, at.cj, values) {
                     turn = 3;
                 }
             }
-            let exit = (k + turn) & 3;
-            // The exit edge, seen from the next cell, runs from its inside end to its outside
-            // end: `c`–`b`, `d`–`c` or `a`–`d`.
-            let cell = [a, b, c, d];
-            (a, b) = (cell[(turn + 1) & 3], cell[turn]);
-            ci += ACROSS[exit].0;
-            cj += ACROSS[exit].1;
-            k = (exit + 2) & 3;
-            if (ci, cj) == start && k == start_k {
+            at.advance(turn, c, d);
+            if closed(&at) {
                 break;
             }
-        }
-        verticals.truncate(crossed);
-        if let Some(table) = &mut self.ring_of_edge {
-            for &edge in &verticals {
-                table.insert(edge, ring);
+            // Cells whose corners all lie in one tile whose nodes are all sampled: the inside
+            // flags from the tile's mask, kept in a register, and the samples read only for
+            // the crossings, so that the walk does not wait on them.
+            if at.ci & TILE_MASK == TILE_MASK || at.cj & TILE_MASK == TILE_MASK {
+                continue;
+            }
+            let tile = self.tile(at.ci, at.cj);
+            let Some(inside) = self.nodes.all_inside(tile) else {
+                continue;
+            };
+            loop {
+                let (slot_c, slot_d) = (at.slot(2), at.slot(3));
+                let flags = (inside >> slot_c & 1) | (inside >> slot_d & 1) << 1;
+                if flags == 1 {
+                    // A saddle: settled above.
+                    continue 'ring;
+                }
+                cells += 1;
+                if cells > budget {
+                    return Err(self.out_of_budget(hint));
+                }
+                let c = self.nodes.sampled(tile, slot_c);
+                let d = self.nodes.sampled(tile, slot_d);
+                let p = self.crossing(at.edge(), at.a, at.b);
+                path.push(p, &at);
+                at.advance(Step::TURN[flags as usize], c, d);
+                if closed(&at) {
+                    break 'ring;
+                }
+                if at.ci & TILE_MASK == TILE_MASK || at.cj & TILE_MASK == TILE_MASK {
+                    continue 'ring;
+                }
             }
         }
-        sort_by_column(&mut verticals);
+        self.cells += cells;
+        let Path {
+            points,
+            mut verticals,
+            crossed,
+        } = path;
+        verticals.truncate(crossed);
+        for &(x, y) in &verticals {
+            let tile = self.tile(x, y);
+            self.nodes.mark_crossed(tile, Nodes::slot(x, y));
+        }
+        if let Some(table) = &mut self.ring_of_edge {
+            for &edge in &verticals {
+                table.insert(edge, id as u32);
+            }
+        }
+        let columns = sort_by_column(&mut verticals);
         let outer = crate::ring::signed_area(&points) > 0.0;
+        let (lo, hi) = bounds(&points);
         self.rings.push(Traced {
             points,
             verticals,
+            columns,
             outer,
             lo,
             hi,
@@ -650,22 +681,32 @@ impl<F: TileField + ?Sized> Tracer<'_, F> {
         Ok(id)
     }
 
-    /// The crossing between an inside node and an outside node, in world units, refined on
-    /// the field when asked.
-    fn crossing(&mut self, a: (i32, i32), b: (i32, i32), v_in: f32, v_out: f32) -> Vec2 {
+    /// The budget error, once the cells of a ring run over it.
+    fn out_of_budget(&mut self, hint: usize) -> MarchError {
+        self.cells = self.options.max_cells + 1;
+        MarchError::BudgetExceeded {
+            hint,
+            cells: self.options.max_cells,
+        }
+    }
+
+    /// The crossing between an inside node `a` and an outside node `b` (an edge of the grid),
+    /// in world units, refined on the field when asked.
+    #[inline(always)]
+    fn crossing(&mut self, (a, b): ((i32, i32), (i32, i32)), v_in: f32, v_out: f32) -> Vec2 {
         let pa = Vec2::new(a.0 as f32, a.1 as f32);
         let pb = Vec2::new(b.0 as f32, b.1 as f32);
-        let t = cell::crossing(v_in, v_out, self.iso);
-        let t = self.refine(pa, pb, t, v_in, v_out);
+        let mut t = cell::crossing(v_in, v_out, self.iso);
+        if self.options.refine_steps > 0 {
+            t = self.refine(pa, pb, t, v_in, v_out);
+        }
         (pa + (pb - pa) * t) * self.step
     }
 
     /// Illinois false-position steps on the field along the edge, bracketing the crossing.
+    #[inline(never)]
     fn refine(&mut self, pa: Vec2, pb: Vec2, t0: f32, v_in: f32, v_out: f32) -> f32 {
         let steps = self.options.refine_steps;
-        if steps == 0 {
-            return t0;
-        }
         let (mut a, mut fa) = (0.0f32, v_in - self.iso);
         let (mut b, mut fb) = (1.0f32, v_out - self.iso);
         if fa == 0.0 {
@@ -708,22 +749,132 @@ impl<F: TileField + ?Sized> Tracer<'_, F> {
     }
 }
 
+/// Where a contour walk is: cell `(ci, cj)`, entered through its edge `k` from corner `k`
+/// (inside, sample `a`) to corner `k + 1` (outside, sample `b`).
+struct Step {
+    ci: i32,
+    cj: i32,
+    k: usize,
+    a: f32,
+    b: f32,
+}
+
+impl Step {
+    /// The exit edge, counted from the entry edge, by the inside flags of corners `k + 2` and
+    /// `k + 3` (`c | d << 1`): `k + 3` when neither is inside, `k + 2` when only `d` is,
+    /// `k + 1` when both are; a saddle (only `c`) goes to `k + 1` when joined, else `k + 3`.
+    /// As [`cell::exit_edge`], with the entry edge's corners known to be inside, outside.
+    const TURN: [usize; 4] = [3, 1, 2, 1];
+
+    /// Grid node of corner `k + n`.
+    #[inline]
+    fn corner(&self, n: usize) -> (i32, i32) {
+        let (di, dj) = CORNERS[(self.k + n) & 3];
+        (self.ci + di, self.cj + dj)
+    }
+
+    /// Tile slot of corner `k + n`, for a cell whose corners lie in one tile.
+    #[inline]
+    fn slot(&self, n: usize) -> usize {
+        let (i, j) = self.corner(n);
+        Nodes::slot(i, j)
+    }
+
+    /// The entry edge: its inside node, then its outside node.
+    #[inline]
+    fn edge(&self) -> ((i32, i32), (i32, i32)) {
+        (self.corner(0), self.corner(1))
+    }
+
+    /// Leaves through edge `k + turn` into the next cell, given the samples `c`, `d` of
+    /// corners `k + 2`, `k + 3`. The exit edge, seen from the next cell, runs from its inside
+    /// end to its outside end: `c`–`b`, `d`–`c` or `a`–`d`.
+    #[inline]
+    fn advance(&mut self, turn: usize, c: f32, d: f32) {
+        let exit = (self.k + turn) & 3;
+        let cell = [self.a, self.b, c, d];
+        self.a = cell[(turn + 1) & 3];
+        self.b = cell[turn & 3];
+        self.ci += ACROSS[exit].0;
+        self.cj += ACROSS[exit].1;
+        self.k = (exit + 2) & 3;
+    }
+}
+
+/// A ring's points and the vertical edges it crosses, while it is traced.
+struct Path {
+    points: Vec<Vec2>,
+    /// The vertical edges crossed, as `(column, lower row)`: the first `crossed`. Each cell
+    /// writes its entry edge at `crossed` and keeps it (advancing `crossed`) only when the
+    /// edge is vertical: no branch on it.
+    verticals: Vec<(i32, i32)>,
+    crossed: usize,
+}
+
+impl Path {
+    fn new() -> Self {
+        Self {
+            points: Vec::with_capacity(64),
+            verticals: alloc::vec![(0, 0); 64],
+            crossed: 0,
+        }
+    }
+
+    /// Records the crossing `p` of the entry edge of the cell at `at`.
+    #[inline]
+    fn push(&mut self, p: Vec2, at: &Step) {
+        self.points.push(p);
+        if self.crossed == self.verticals.len() {
+            self.verticals.resize(2 * self.crossed, (0, 0));
+        }
+        // The right (1) or left (3) edge is vertical, from row `cj` up.
+        if let Some(slot) = self.verticals.get_mut(self.crossed) {
+            *slot = (at.corner(0).0, at.cj);
+        }
+        self.crossed += at.k & 1;
+    }
+}
+
+/// The bounding box of ring points (of which there is at least one), as
+/// [`ring::bounds`](crate::ring::bounds) gives it, with four independent minima and maxima
+/// (which the order does not change: ring points are never NaN, nor `-0.0`).
+fn bounds(points: &[Vec2]) -> (Vec2, Vec2) {
+    let first = points.first().copied().unwrap_or(Vec2::ZERO);
+    let mut lo = [first; 4];
+    let mut hi = [first; 4];
+    let mut chunks = points.chunks_exact(4);
+    for chunk in &mut chunks {
+        for ((l, h), &p) in lo.iter_mut().zip(&mut hi).zip(chunk) {
+            *l = l.min(p);
+            *h = h.max(p);
+        }
+    }
+    for &p in chunks.remainder() {
+        lo[0] = lo[0].min(p);
+        hi[0] = hi[0].max(p);
+    }
+    (
+        lo[0].min(lo[1]).min(lo[2].min(lo[3])),
+        hi[0].max(hi[1]).max(hi[2].max(hi[3])),
+    )
+}
+
 /// Sorts a ring's vertical crossings `(column, row)` into lexicographic order: a counting sort
 /// on the column, then an insertion sort within each column (a closed ring crosses each
 /// column it spans at least twice, so there are at most about half as many columns as
-/// crossings, and few crossings per column).
-fn sort_by_column(crossings: &mut Vec<(i32, i32)>) {
-    let Some(min) = crossings.iter().map(|c| c.0).min() else {
-        return;
-    };
+/// crossings, and few crossings per column). Returns the columns' index: the first column,
+/// and where each column's crossings start (and, last, where they end); `None` when there
+/// are more columns than crossings (not from a closed ring), sorted by comparisons instead.
+fn sort_by_column(crossings: &mut Vec<(i32, i32)>) -> Option<Columns> {
+    let min = crossings.iter().map(|c| c.0).min()?;
     let max = crossings.iter().map(|c| c.0).max().unwrap_or(min);
     let columns = (i64::from(max) - i64::from(min)) as usize + 1;
     if columns > crossings.len() {
-        // Not from a closed ring: fall back to a comparison sort.
         crossings.sort_unstable();
-        return;
+        return None;
     }
-    let mut starts = alloc::vec![0usize; columns + 1];
+    // Each column's end, then (filling backwards) its start.
+    let mut starts = alloc::vec![0u32; columns + 1];
     for c in crossings.iter() {
         starts[(c.0 - min) as usize + 1] += 1;
     }
@@ -731,14 +882,16 @@ fn sort_by_column(crossings: &mut Vec<(i32, i32)>) {
         starts[k + 1] += starts[k];
     }
     let mut sorted = alloc::vec![(0, 0); crossings.len()];
-    let mut fill = starts.clone();
-    for &c in crossings.iter() {
-        let k = (c.0 - min) as usize;
-        sorted[fill[k]] = c;
-        fill[k] += 1;
+    for &c in crossings.iter().rev() {
+        let end = &mut starts[(c.0 - min) as usize + 1];
+        *end -= 1;
+        sorted[*end as usize] = c;
     }
+    // `starts[k + 1]` is now column k's start: shift the index down.
+    starts.copy_within(1.., 0);
+    starts[columns] = crossings.len() as u32;
     for k in 0..columns {
-        let column = &mut sorted[starts[k]..starts[k + 1]];
+        let column = &mut sorted[starts[k] as usize..starts[k + 1] as usize];
         for n in 1..column.len() {
             let mut m = n;
             while m > 0 && column[m].1 < column[m - 1].1 {
@@ -748,6 +901,15 @@ fn sort_by_column(crossings: &mut Vec<(i32, i32)>) {
         }
     }
     *crossings = sorted;
+    Some(Columns { first: min, starts })
+}
+
+/// Where each column's crossings lie in a ring's sorted vertical crossings.
+struct Columns {
+    /// The first column.
+    first: i32,
+    /// Column `first + k`'s crossings are `starts[k]..starts[k + 1]`.
+    starts: Vec<u32>,
 }
 
 /// Side of a node tile: tiles hold `TILE × TILE` nodes.
@@ -755,18 +917,23 @@ const TILE_SHIFT: i32 = 3;
 const TILE_MASK: i32 = (1 << TILE_SHIFT) - 1;
 const _: () = assert!(TILE_NODES == 1 << (2 * TILE_SHIFT));
 
-/// Bit `s`: `values[s]` is inside `iso`.
+/// Bit `s`: `values[s]` is inside `iso`. The flags as bytes first (which vectorises), then
+/// each row's eight bytes gathered into one.
 #[inline]
 fn inside_bits(values: &[f32; TILE_NODES], iso: f32) -> u64 {
-    let mut bits = 0u64;
-    for (row, samples) in values.chunks_exact(8).enumerate() {
-        let mut byte = 0u8;
-        for (column, &v) in samples.iter().enumerate() {
-            byte |= u8::from(cell::is_inside(v, iso)) << column;
-        }
-        bits |= u64::from(byte) << (8 * row);
-    }
-    bits
+    let flags: [u8; TILE_NODES] = core::array::from_fn(|s| {
+        values
+            .get(s)
+            .map_or(0, |&v| u8::from(cell::is_inside(v, iso)))
+    });
+    flags
+        .chunks_exact(8)
+        .enumerate()
+        .fold(0, |bits, (row, bytes)| {
+            let mut word = [0u8; 8];
+            word.copy_from_slice(bytes);
+            bits | gather_bytes(u64::from_le_bytes(word)) << (8 * row)
+        })
 }
 
 /// Bit 0 of each byte of `spread`, gathered into bit `k` for byte `k`: a multiplication
@@ -780,14 +947,6 @@ fn gather_bytes(spread: u64) -> u64 {
 #[inline]
 fn column_bits(mask: u64, column: i32) -> u32 {
     gather_bytes(mask >> (column & TILE_MASK)) as u32
-}
-
-/// A node's sample and where it is kept.
-#[derive(Clone, Copy)]
-struct Node {
-    value: f32,
-    tile: usize,
-    slot: usize,
 }
 
 /// Node samples for an 8 × 8 block of grid nodes.
@@ -901,12 +1060,29 @@ impl Nodes {
             .map_or(0, |t| column_bits(t.inside, column))
     }
 
-    /// Records, if `crossed`, that a ring crosses the edge from the node in `slot` of `tile`
-    /// up (without a branch on `crossed`).
+    /// The sample in `slot` of `tile`, which has been taken (NaN, outside, otherwise).
     #[inline]
-    fn mark_crossed(&mut self, tile: usize, slot: usize, crossed: bool) {
+    fn sampled(&self, tile: usize, slot: usize) -> f32 {
+        self.tiles
+            .get(tile)
+            .and_then(|t| t.values.get(slot))
+            .copied()
+            .unwrap_or(f32::NAN)
+    }
+
+    /// The inside flags of `tile`, if all its nodes are sampled.
+    #[inline]
+    fn all_inside(&self, tile: usize) -> Option<u64> {
+        self.tiles
+            .get(tile)
+            .and_then(|t| (t.sampled == u64::MAX).then_some(t.inside))
+    }
+
+    /// Records that a ring crosses the edge from the node in `slot` of `tile` up.
+    #[inline]
+    fn mark_crossed(&mut self, tile: usize, slot: usize) {
         if let Some(t) = self.tiles.get_mut(tile) {
-            t.crossed |= u64::from(crossed) << slot;
+            t.crossed |= 1 << slot;
         }
     }
 
@@ -1281,6 +1457,52 @@ mod tests {
     }
 
     #[test]
+    fn bounds_are_the_ring_bounds() {
+        let mut s = 11u32;
+        let mut next = || {
+            s ^= s << 13;
+            s ^= s >> 17;
+            s ^= s << 5;
+            (s % 2001) as f32 * 0.37 - 370.0
+        };
+        for len in [1usize, 2, 3, 4, 5, 7, 8, 9, 100, 1001] {
+            let points: Vec<Vec2> = (0..len).map(|_| Vec2::new(next(), next())).collect();
+            assert_eq!(Some(bounds(&points)), crate::ring::bounds(&points), "{len}");
+        }
+    }
+
+    #[test]
+    fn rings_enclose_nodes_between_their_crossings() {
+        // A ring crossing columns 0..=3 between rows 1 and 2 and between rows 5 and 6, and
+        // column 4 twice more between rows 8 and 9, 10 and 11 (listed out of order).
+        let mut verticals = alloc::vec![(3, 5), (0, 1), (4, 10), (2, 5), (1, 1), (4, 8)];
+        verticals.extend([(0, 5), (3, 1), (1, 5), (2, 1)]);
+        let mut sorted = verticals.clone();
+        let columns = sort_by_column(&mut sorted);
+        assert!(columns.is_some());
+        let mut by_comparisons = verticals;
+        by_comparisons.sort_unstable();
+        for columns in [columns, None] {
+            let ring = Traced {
+                points: Vec::new(),
+                verticals: by_comparisons.clone(),
+                columns,
+                outer: true,
+                lo: Vec2::ZERO,
+                hi: Vec2::ZERO,
+                nested: false,
+            };
+            for x in -2..7 {
+                for y in -2..14 {
+                    let expected = ((0..=3).contains(&x) && (2..=5).contains(&y))
+                        || (x == 4 && (9..=10).contains(&y));
+                    assert_eq!(ring.encloses(x, y), expected, "({x}, {y})");
+                }
+            }
+        }
+    }
+
+    #[test]
     fn crossings_sort_by_column_then_row() {
         let mut s = 7u32;
         let mut next = |m: u32| {
@@ -1295,8 +1517,17 @@ mod tests {
                 let mut v: Vec<(i32, i32)> = (0..len).map(|_| (next(spread), next(1000))).collect();
                 let mut expected = v.clone();
                 expected.sort_unstable();
-                sort_by_column(&mut v);
+                let columns = sort_by_column(&mut v);
                 assert_eq!(v, expected);
+                if let Some(Columns { first, starts }) = columns {
+                    for (k, w) in starts.windows(2).enumerate() {
+                        let column = &v[w[0] as usize..w[1] as usize];
+                        assert!(column.iter().all(|c| c.0 == first + k as i32));
+                    }
+                    assert_eq!(starts.last().copied(), Some(v.len() as u32));
+                } else {
+                    assert!(spread as usize > len / 2, "{len} {spread}");
+                }
             }
         }
     }

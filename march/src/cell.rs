@@ -61,6 +61,11 @@ const fn exits() -> [[u8; 4]; 16] {
     table
 }
 
+/// The nearest a traced crossing comes to a sample node, as a fraction of the cell: never on
+/// a node, where two crossings beside an outside node a hair below the iso-level would meet
+/// and pinch the ring. (The grid keeps the same gap.)
+pub(crate) const NODE_GAP: f32 = 1e-3;
+
 /// Where along an edge from an inside sample to an outside one the contour crosses, as a
 /// fraction from the inside end: linear interpolation, or the midpoint when either sample is
 /// not finite.

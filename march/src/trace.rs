@@ -696,10 +696,14 @@ impl<F: TileField + ?Sized> Tracer<'_, F> {
     fn crossing(&mut self, (a, b): ((i32, i32), (i32, i32)), v_in: f32, v_out: f32) -> Vec2 {
         let pa = Vec2::new(a.0 as f32, a.1 as f32);
         let pb = Vec2::new(b.0 as f32, b.1 as f32);
-        let mut t = cell::crossing(v_in, v_out, self.iso);
-        if self.options.refine_steps > 0 {
-            t = self.refine(pa, pb, t, v_in, v_out);
-        }
+        let t = cell::crossing(v_in, v_out, self.iso);
+        let t = if self.options.refine_steps > 0 {
+            self.refine(pa, pb, t, v_in, v_out)
+        } else {
+            // Off the nodes, as in the grid: two crossings beside an outside node a hair below
+            // the iso-level would otherwise both sit on it and pinch the ring.
+            t.clamp(cell::NODE_GAP, 1.0 - cell::NODE_GAP)
+        };
         (pa + (pb - pa) * t) * self.step
     }
 

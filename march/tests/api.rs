@@ -354,3 +354,42 @@ fn regression_a_sample_a_hair_below_the_iso_level_does_not_pinch_the_ring() {
     assert!(rings[0].contains(Vec2::new(0.0, 13.0)) || rings[0].contains(Vec2::new(0.5, 13.0)));
     assert!(!rings[0].contains(Vec2::new(0.5, 12.0)));
 }
+
+/// Regression: the trace had the grid's pinch (see above): on the same samples, as a field
+/// read at the nodes, both crossings beside node `(0, 12)` sat on the node itself and the ring
+/// crossed itself there (`RingsCross` near `(0, 11.5)`). Traced crossings keep the same gap
+/// from the nodes.
+#[test]
+fn regression_a_node_a_hair_below_the_iso_level_does_not_pinch_a_traced_ring() {
+    let mut values = vec![0.0f32; 3 * 22];
+    values[33] = 0.807_125_9;
+    values[36] = -0.291_720_15;
+    values[37] = -0.497_680_37;
+    values[39] = 0.746_154_6;
+    let iso = -0.291_719_9;
+    let field = |p: Vec2| {
+        let (x, y) = (p.x.round() as i32, p.y.round() as i32);
+        if (0..3).contains(&x) && (0..22).contains(&y) {
+            values[(y * 3 + x) as usize]
+        } else {
+            -10.0
+        }
+    };
+    for refine_steps in [0, 3] {
+        let options = MarchOptions::DEFAULT.with_refine_steps(refine_steps);
+        let rings = trace_with(field, &[Vec2::new(1.0, 5.0)], 1.0, iso, &options).unwrap();
+        assert_eq!(validate_rings(&rings), Ok(()), "refine {refine_steps}");
+        check_rings(&rings);
+        assert_eq!(rings.len(), 1);
+        // The notch around the outside nodes stays open toward the border.
+        assert!(!rings[0].contains(Vec2::new(0.0, 12.0)));
+        assert!(!rings[0].contains(Vec2::new(0.5, 12.0)));
+    }
+    // The crossings beside the node keep the grid's gap from it, as the grid's do.
+    let traced = trace(field, &[Vec2::new(1.0, 5.0)], 1.0, iso).unwrap();
+    let grid = march_grid(&values, 3, 22, iso).unwrap();
+    for notch in [Vec2::new(0.0, 11.999), Vec2::new(0.0, 12.001)] {
+        assert!(traced[0].points.contains(&notch));
+        assert!(grid[0].points.contains(&notch));
+    }
+}

@@ -323,7 +323,7 @@ impl<F: TileField + ?Sized> Tracer<'_, F> {
     }
 
     /// Samples node `(i, j)`, in `slot` of `tile`, alone (point by point).
-    #[inline(never)]
+    #[inline]
     fn sample_node(&mut self, tile: usize, slot: usize, i: i32, j: i32) -> f32 {
         let v = self.field.value(node_point([i, j], self.step));
         self.nodes.set(tile, slot, v, cell::is_inside(v, self.iso));

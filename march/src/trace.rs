@@ -27,9 +27,9 @@ use crate::{MarchError, MarchOptions, Ring, Saddle};
 /// 3. With [`MarchOptions::holes`] (the default), scan the nodes each new outer ring encloses
 ///    and trace every hole (and island in a hole) they reveal.
 ///
-/// Samples are cached in dense 8 × 8 tiles of nodes (a hash table finds the tiles), so the
-/// field is called once per node and once per saddle centre, plus once per hint and
-/// [`MarchOptions::refine_steps`] times per ring point. For a field that can fill a whole tile
+/// Samples are cached in dense 8 × 8 tiles of nodes (a small direct-mapped cache, then a hash
+/// table, finds the tiles), so the field is called once per node and once per saddle centre,
+/// plus once per hint and [`MarchOptions::refine_steps`] times per ring point. For a field that can fill a whole tile
 /// in one cheap call, see [`trace_field`] and [`TileField`](crate::TileField).
 ///
 /// So unlike the seed, which traces only the component above its top-most ball, every
@@ -1460,15 +1460,20 @@ mod tests {
         assert_eq!(column_bits(0x8000_0000_0000_0000, 6), 0);
     }
 
-    #[test]
-    fn bounds_are_the_ring_bounds() {
-        let mut s = 11u32;
-        let mut next = || {
+    /// A deterministic xorshift32 sequence from a nonzero seed.
+    fn xorshift(mut s: u32) -> impl FnMut() -> u32 {
+        move || {
             s ^= s << 13;
             s ^= s >> 17;
             s ^= s << 5;
-            (s % 2001) as f32 * 0.37 - 370.0
-        };
+            s
+        }
+    }
+
+    #[test]
+    fn bounds_are_the_ring_bounds() {
+        let mut random = xorshift(11);
+        let mut next = || (random() % 2001) as f32 * 0.37 - 370.0;
         for len in [1usize, 2, 3, 4, 5, 7, 8, 9, 100, 1001] {
             let points: Vec<Vec2> = (0..len).map(|_| Vec2::new(next(), next())).collect();
             assert_eq!(Some(bounds(&points)), crate::ring::bounds(&points), "{len}");
@@ -1508,13 +1513,8 @@ mod tests {
 
     #[test]
     fn crossings_sort_by_column_then_row() {
-        let mut s = 7u32;
-        let mut next = |m: u32| {
-            s ^= s << 13;
-            s ^= s >> 17;
-            s ^= s << 5;
-            (s % m) as i32 - (m / 2) as i32
-        };
+        let mut random = xorshift(7);
+        let mut next = |m: u32| (random() % m) as i32 - (m / 2) as i32;
         for len in [0usize, 1, 2, 5, 40, 300] {
             // Few columns (as a ring makes) and, once, many (the fallback).
             for spread in [len as u32 / 2 + 1, 10 * len as u32 + 1] {

@@ -335,18 +335,26 @@ fn bad_input_is_a_typed_error() {
     assert_eq!(trace(f, &[], 1.0, 0.0), Ok(vec![]));
 }
 
-/// Regression (found by the grid property at 20,000 cases): a border sample a hair below the
-/// iso-level (−0.29172015 against −0.2917199) between two inside samples put both crossings
-/// beside it on the sample itself, so the ring passed twice through `(0, 12)` and crossed
-/// itself. Crossings now keep 1/1000 of a cell from the samples.
-#[test]
-fn regression_a_sample_a_hair_below_the_iso_level_does_not_pinch_the_ring() {
+/// The 3 × 22 samples and iso-level of the pinch regressions: sample `(0, 12)` a hair below
+/// the iso-level (−0.29172015 against −0.2917199) between two inside samples, next to the
+/// border.
+fn pinch_samples() -> (Vec<f32>, f32) {
     let mut values = vec![0.0f32; 3 * 22];
     values[33] = 0.807_125_9;
     values[36] = -0.291_720_15;
     values[37] = -0.497_680_37;
     values[39] = 0.746_154_6;
-    let rings = march_grid(&values, 3, 22, -0.291_719_9).unwrap();
+    (values, -0.291_719_9)
+}
+
+/// Regression (found by the grid property at 20,000 cases): a border sample a hair below the
+/// iso-level between two inside samples put both crossings beside it on the sample itself, so
+/// the ring passed twice through `(0, 12)` and crossed itself. Crossings now keep 1/1000 of a
+/// cell from the samples.
+#[test]
+fn regression_a_sample_a_hair_below_the_iso_level_does_not_pinch_the_ring() {
+    let (values, iso) = pinch_samples();
+    let rings = march_grid(&values, 3, 22, iso).unwrap();
     assert_eq!(validate_rings(&rings), Ok(()));
     check_rings(&rings);
     assert_eq!(rings.len(), 1);
@@ -361,12 +369,7 @@ fn regression_a_sample_a_hair_below_the_iso_level_does_not_pinch_the_ring() {
 /// from the nodes.
 #[test]
 fn regression_a_node_a_hair_below_the_iso_level_does_not_pinch_a_traced_ring() {
-    let mut values = vec![0.0f32; 3 * 22];
-    values[33] = 0.807_125_9;
-    values[36] = -0.291_720_15;
-    values[37] = -0.497_680_37;
-    values[39] = 0.746_154_6;
-    let iso = -0.291_719_9;
+    let (values, iso) = pinch_samples();
     let field = |p: Vec2| {
         let (x, y) = (p.x.round() as i32, p.y.round() as i32);
         if (0..3).contains(&x) && (0..22).contains(&y) {

@@ -13,8 +13,10 @@
 //!   `reference_marching_squares` of `tests/support/reference.rs` all read the pre-sampled
 //!   grid.
 //! - `trace_field` calls `Field2::value` itself, only along the outline (and the nodes a hole
-//!   scan needs); `trace_grid_lookup` reads the pre-sampled grid instead, to separate the
-//!   following from the sampling. Both trace on the grid's own nodes (same step, same origin).
+//!   scan needs); `trace_grid_lookup` reads the pre-sampled grid instead, node by node through a
+//!   lookup closure, and `trace_tiles_grid` copies the pre-sampled grid into the tracer's tiles
+//!   (eight rows of eight samples a tile), to separate the following from the sampling. All
+//!   trace on the grid's own nodes (same step, same origin).
 //! - `trace_tiles_field` (and `_no_hole_scan`) trace through `trace_field` with
 //!   `tests/support`'s `TiledField` newtype, which fills each 8×8 node tile the trace touches
 //!   with one `Field2::sample_block` call.
@@ -32,7 +34,9 @@ use core::hint::black_box;
 
 use contour::ContourBuilder;
 use creature_march::glam::Vec2;
-use creature_march::{MarchOptions, march_grid, trace, trace_field, trace_with};
+use creature_march::{
+    MarchOptions, TILE_NODES, TILE_SIZE, TileField, march_grid, trace, trace_field, trace_with,
+};
 use creature_metaball::{Ball2, Falloff, Field2};
 use criterion::{Criterion, criterion_group, criterion_main};
 
@@ -40,6 +44,53 @@ use criterion::{Criterion, criterion_group, criterion_main};
 mod support;
 
 const SIZE: usize = 256;
+
+/// The pre-sampled grid as a tile-filling field: a tile is eight row copies (NaN, outside,
+/// beyond the grid). Between nodes (hints), the nearest node.
+struct GridTiles<'a> {
+    values: &'a [f32],
+    /// The grid's first node.
+    origin: (i32, i32),
+    step: f32,
+}
+
+impl GridTiles<'_> {
+    fn at(&self, x: i32, y: i32) -> f32 {
+        let (x, y) = (x - self.origin.0, y - self.origin.1);
+        if (0..SIZE as i32).contains(&x) && (0..SIZE as i32).contains(&y) {
+            self.values[y as usize * SIZE + x as usize]
+        } else {
+            f32::NAN
+        }
+    }
+}
+
+impl TileField for GridTiles<'_> {
+    fn value(&self, p: Vec2) -> f32 {
+        let node = (p / self.step).round();
+        self.at(node.x as i32, node.y as i32)
+    }
+
+    fn prefers_tiles(&self) -> bool {
+        true
+    }
+
+    fn sample_tile(&self, [i, j]: [i32; 2], _step: f32, out: &mut [f32; TILE_NODES]) {
+        let x = i - self.origin.0;
+        let inside_columns = x >= 0 && x as usize + TILE_SIZE <= SIZE;
+        for (row, samples) in out.chunks_exact_mut(TILE_SIZE).enumerate() {
+            let y = j + row as i32 - self.origin.1;
+            if inside_columns && (0..SIZE as i32).contains(&y) {
+                let start = y as usize * SIZE + x as usize;
+                samples.copy_from_slice(&self.values[start..start + TILE_SIZE]);
+            } else {
+                for (col, sample) in samples.iter_mut().enumerate() {
+                    *sample = self.at(i + col as i32, j + row as i32);
+                }
+            }
+        }
+    }
+}
 
 /// A creature with about 50 balls, its culled field, and the grid that covers it: origin node
 /// (in steps) and step.
@@ -88,10 +139,17 @@ fn bench(c: &mut Criterion) {
         values[y as usize * SIZE + x as usize]
     };
     let builder = ContourBuilder::new(SIZE, SIZE, true);
+    let grid_tiles = GridTiles {
+        values: &values,
+        origin,
+        step,
+    };
 
     // The same outline, four ways.
     let grid = march_grid(&values, SIZE, SIZE, 1.0).expect("valid grid");
     let looked_up = trace(lookup, &hints, step, 1.0).expect("valid trace");
+    let copied =
+        trace_field(&grid_tiles, &hints, step, 1.0, &MarchOptions::DEFAULT).expect("valid trace");
     let traced = trace(culled, &hints, step, 1.0).expect("valid trace");
     let tiled = support::TiledField(&field);
     let traced_tiles =
@@ -108,6 +166,7 @@ fn bench(c: &mut Criterion) {
         })
         .sum();
     assert_eq!(grid.len(), looked_up.len(), "same rings");
+    assert_eq!(looked_up, copied, "same samples, same rings");
     assert_eq!(grid.len(), traced.len(), "same rings");
     assert_eq!(grid.len(), traced_tiles.len(), "same rings");
     assert_eq!(grid.len(), their_rings, "same rings as contour-rs");
@@ -152,6 +211,17 @@ fn bench(c: &mut Criterion) {
     });
     group.bench_function("trace_grid_lookup", |b| {
         b.iter(|| trace(lookup, black_box(&hints), step, 1.0));
+    });
+    group.bench_function("trace_tiles_grid", |b| {
+        b.iter(|| {
+            trace_field(
+                &grid_tiles,
+                black_box(&hints),
+                step,
+                1.0,
+                &MarchOptions::DEFAULT,
+            )
+        });
     });
     group.bench_function("sample_grid_then_march_grid", |b| {
         b.iter(|| {

@@ -27,16 +27,44 @@ pub(crate) fn exit_edge(mask: u8, k: usize, joined: impl FnOnce() -> bool) -> us
     if mask == 0b0101 || mask == 0b1010 {
         return if joined() { (k + 1) & 3 } else { (k + 3) & 3 };
     }
-    let inside = |c: usize| mask & (1 << (c & 3)) != 0;
-    for d in 1..4 {
-        let e = (k + d) & 3;
-        if !inside(e) && inside(e + 1) {
-            return e;
-        }
-    }
-    // Unreachable for a mask with an in→out edge: it also has an out→in edge.
-    (k + 3) & 3
+    EXITS[usize::from(mask & 15)][k & 3] as usize
 }
+
+/// [`exit_edge`] of every mask that is not a saddle, by mask and entry edge: the first edge
+/// after `k`, counter-clockwise, that runs from an outside corner to an inside one.
+const EXITS: [[u8; 4]; 16] = exits();
+
+const fn exits() -> [[u8; 4]; 16] {
+    let mut table = [[0u8; 4]; 16];
+    let mut mask = 0;
+    while mask < 16 {
+        let mut k = 0;
+        while k < 4 {
+            // Unreachable for a mask with an in→out edge (it also has an out→in edge): the
+            // fallback.
+            let mut exit = (k + 3) & 3;
+            let mut d = 1;
+            while d < 4 {
+                let e = (k + d) & 3;
+                let (from, to) = (mask & (1 << e) != 0, mask & (1 << ((e + 1) & 3)) != 0);
+                if !from && to {
+                    exit = e;
+                    break;
+                }
+                d += 1;
+            }
+            table[mask][k] = exit as u8;
+            k += 1;
+        }
+        mask += 1;
+    }
+    table
+}
+
+/// The nearest a traced crossing comes to a sample node, as a fraction of the cell: never on
+/// a node, where two crossings beside an outside node a hair below the iso-level would meet
+/// and pinch the ring. (The grid keeps the same gap.)
+pub(crate) const NODE_GAP: f32 = 1e-3;
 
 /// Where along an edge from an inside sample to an outside one the contour crosses, as a
 /// fraction from the inside end: linear interpolation, or the midpoint when either sample is
@@ -91,6 +119,28 @@ mod tests {
         assert_eq!(exit_edge(0b1101, 0, || unreachable!()), 1);
         // Bottom half inside: enter right (c1 in → c2 out), leave left (c3 out → c0 in).
         assert_eq!(exit_edge(0b0011, 1, || unreachable!()), 3);
+    }
+
+    #[test]
+    fn the_exit_table_is_the_first_out_to_in_edge() {
+        // The rule spelt out, for every mask that is not a saddle and every entry edge.
+        for mask in 0u8..16 {
+            if mask == 0b0101 || mask == 0b1010 {
+                continue;
+            }
+            let inside = |c: usize| mask & (1 << (c & 3)) != 0;
+            for k in 0..4 {
+                let expected = (1..4)
+                    .map(|d| (k + d) & 3)
+                    .find(|&e| !inside(e) && inside(e + 1))
+                    .unwrap_or((k + 3) & 3);
+                assert_eq!(
+                    exit_edge(mask, k, || unreachable!()),
+                    expected,
+                    "{mask:04b} {k}"
+                );
+            }
+        }
     }
 
     #[test]

@@ -233,22 +233,16 @@ pub(crate) fn weld(points: &mut Vec<Vec2>, distance: f32) {
         let q = a.distance_squared(b);
         q <= d2 || a == b
     };
-    let mut out: Vec<Vec2> = Vec::with_capacity(points.len());
-    for &p in points.iter() {
-        match out.last() {
-            Some(&q) if close(p, q) => {}
-            _ => out.push(p),
-        }
-    }
-    while out.len() > 1 {
-        match (out.first(), out.last()) {
+    // In place: each point is compared with the last one kept.
+    points.dedup_by(|p, q| close(*p, *q));
+    while points.len() > 1 {
+        match (points.first(), points.last()) {
             (Some(&a), Some(&b)) if close(a, b) => {
-                out.pop();
+                points.pop();
             }
             _ => break,
         }
     }
-    *points = out;
 }
 
 /// Turns raw traced point lists into finished rings: welds, drops rings left with fewer than
@@ -262,11 +256,16 @@ pub(crate) fn finish(raw: Vec<Vec<Vec2>>, weld_distance: f32) -> Vec<Ring> {
             rings.push((points, area));
         }
     }
-    // Parents: the smallest outer ring containing a hole's first point.
-    let boxes: Vec<(Vec2, Vec2)> = rings
-        .iter()
-        .map(|(p, _)| bounds(p).unwrap_or((Vec2::ZERO, Vec2::ZERO)))
-        .collect();
+    // Parents: the smallest outer ring containing a hole's first point (boxes only when
+    // there is a hole to place).
+    let boxes: Vec<(Vec2, Vec2)> = if rings.iter().any(|(_, area)| *area < 0.0) {
+        rings
+            .iter()
+            .map(|(p, _)| bounds(p).unwrap_or((Vec2::ZERO, Vec2::ZERO)))
+            .collect()
+    } else {
+        Vec::new()
+    };
     let mut parents: Vec<Option<usize>> = Vec::with_capacity(rings.len());
     for (h, (points, area)) in rings.iter().enumerate() {
         if *area > 0.0 {
@@ -279,7 +278,9 @@ pub(crate) fn finish(raw: Vec<Vec<Vec2>>, weld_distance: f32) -> Vec<Ring> {
             if o == h || *outer_area <= 0.0 {
                 continue;
             }
-            let (lo, hi) = boxes[o];
+            let Some(&(lo, hi)) = boxes.get(o) else {
+                continue;
+            };
             if probe.cmplt(lo).any() || probe.cmpgt(hi).any() {
                 continue;
             }

@@ -27,9 +27,9 @@ use crate::{MarchError, MarchOptions, Ring, Saddle};
 /// 3. With [`MarchOptions::holes`] (the default), scan the nodes each new outer ring encloses
 ///    and trace every hole (and island in a hole) they reveal.
 ///
-/// Samples are cached in dense 8 × 8 tiles of nodes (a hash table finds the tiles), so the
-/// field is called once per node and once per saddle centre, plus once per hint and
-/// [`MarchOptions::refine_steps`] times per ring point. For a field that can fill a whole tile
+/// Samples are cached in dense 8 × 8 tiles of nodes (a small direct-mapped cache, then a hash
+/// table, finds the tiles), so the field is called once per node and once per saddle centre,
+/// plus once per hint and [`MarchOptions::refine_steps`] times per ring point. For a field that can fill a whole tile
 /// in one cheap call, see [`trace_field`] and [`TileField`](crate::TileField).
 ///
 /// So unlike the seed, which traces only the component above its top-most ball, every
@@ -222,6 +222,7 @@ pub fn trace_field<F: TileField + ?Sized>(
         iso,
         options,
         nodes: Nodes::new(),
+        ring_of_edge: None,
         centres: Table::with_slots(16),
         cells: 0,
         rings: Vec::new(),
@@ -244,6 +245,8 @@ struct Traced {
     points: Vec<Vec2>,
     /// The vertical grid edges it crosses, as `(column, lower row)`, sorted.
     verticals: Vec<(i32, i32)>,
+    /// Where each column's crossings lie in `verticals`.
+    columns: Option<Columns>,
     /// Counter-clockwise: an outer ring.
     outer: bool,
     /// Bounding box of `points`.
@@ -257,9 +260,21 @@ impl Traced {
     /// Whether the ring encloses grid node `(x, y)`, by the parity of its crossings above the
     /// node on the node's column: exact, no floating point.
     fn encloses(&self, x: i32, y: i32) -> bool {
-        let start = self.verticals.partition_point(|&e| e < (x, y));
-        let end = self.verticals.partition_point(|&e| e < (x, i32::MAX));
-        (end - start) % 2 == 1
+        let column = match &self.columns {
+            Some(Columns { first, starts }) => {
+                let k = i64::from(x) - i64::from(*first);
+                let range = usize::try_from(k)
+                    .ok()
+                    .and_then(|k| Some(*starts.get(k)? as usize..*starts.get(k + 1)? as usize));
+                range.and_then(|r| self.verticals.get(r)).unwrap_or(&[])
+            }
+            None => {
+                let start = self.verticals.partition_point(|e| e.0 < x);
+                let end = self.verticals.partition_point(|e| e.0 <= x);
+                self.verticals.get(start..end).unwrap_or(&[])
+            }
+        };
+        column.iter().filter(|e| e.1 >= y).count() % 2 == 1
     }
 }
 
@@ -270,8 +285,11 @@ struct Tracer<'a, F: ?Sized> {
     step: f32,
     iso: f32,
     options: &'a MarchOptions,
-    /// Node samples and the ring crossing each vertical edge, in tiles.
+    /// Node samples, and which vertical edges rings cross, in tiles.
     nodes: Nodes,
+    /// The ring crossing each vertical grid edge crossed so far, keyed by the edge's lower
+    /// node: built on first use by [`Tracer::crossing_ring`] (most calls never need it).
+    ring_of_edge: Option<Table<u32>>,
     /// Saddle cell centre samples, keyed by cell.
     centres: Table<f32>,
     cells: usize,
@@ -292,27 +310,48 @@ impl<F: TileField + ?Sized> Tracer<'_, F> {
         Ok(())
     }
 
-    /// The sample at node `(i, j)`, taken on first use.
-    #[inline]
+    /// The sample at node `(i, j)`, taken on first use: the node alone, or (tiled) the whole
+    /// tile holding it, when its tile is first touched.
+    #[inline(always)]
     fn node(&mut self, i: i32, j: i32) -> f32 {
-        let (tile, slot) = self.nodes.locate(i, j);
-        self.cached(tile, slot, i, j)
+        let tile = self.tile(i, j);
+        let slot = Nodes::slot(i, j);
+        match self.nodes.tiles.get(tile) {
+            Some(t) if t.sampled & (1 << slot) != 0 => t.values[slot],
+            _ => self.sample_node(tile, slot, i, j),
+        }
     }
 
-    /// The sample at node `(i, j)`, which lies in `slot` of `tile`: the node alone on first
-    /// use, or (tiled) the whole tile on first use of any of its nodes.
+    /// Samples node `(i, j)`, in `slot` of `tile`, alone (point by point).
     #[inline]
-    fn cached(&mut self, tile: usize, slot: usize, i: i32, j: i32) -> f32 {
-        let field = self.field;
-        let step = self.step;
-        if self.tiled {
-            let first = [i & !TILE_MASK, j & !TILE_MASK];
-            self.nodes
-                .filled(tile, slot, |out| field.sample_tile(first, step, out))
-        } else {
-            self.nodes
-                .value_or(tile, slot, || field.value(node_point([i, j], step)))
+    fn sample_node(&mut self, tile: usize, slot: usize, i: i32, j: i32) -> f32 {
+        let v = self.field.value(node_point([i, j], self.step));
+        self.nodes.set(tile, slot, v, cell::is_inside(v, self.iso));
+        v
+    }
+
+    /// The index of the tile holding node `(i, j)`: from the tile cache, else found or
+    /// created (and, tiled, filled) by [`Tracer::tile_miss`].
+    #[inline(always)]
+    fn tile(&mut self, i: i32, j: i32) -> usize {
+        let key = (i >> TILE_SHIFT, j >> TILE_SHIFT);
+        match self.nodes.cached(key) {
+            Some(tile) => tile,
+            None => self.tile_miss(key),
         }
+    }
+
+    /// [`Tracer::tile`] past the cache.
+    #[inline(never)]
+    fn tile_miss(&mut self, key: (i32, i32)) -> usize {
+        let (tile, created) = self.nodes.find_or_add(key);
+        if created && self.tiled {
+            let first = [key.0 << TILE_SHIFT, key.1 << TILE_SHIFT];
+            let (field, step, iso) = (self.field, self.step, self.iso);
+            self.nodes
+                .fill(tile, iso, |out| field.sample_tile(first, step, out));
+        }
+        tile
     }
 
     #[inline]
@@ -340,6 +379,25 @@ impl<F: TileField + ?Sized> Tracer<'_, F> {
             }
         }
         best.is_some_and(|(outer, _)| outer)
+    }
+
+    /// The ring crossing the vertical edge from node `(x, y)` up, if any.
+    fn crossing_ring(&mut self, x: i32, y: i32) -> Option<usize> {
+        if !self.nodes.crossed(x, y) {
+            return None;
+        }
+        let rings = &self.rings;
+        let table = self.ring_of_edge.get_or_insert_with(|| {
+            let edges = rings.iter().map(|r| r.verticals.len()).sum::<usize>();
+            let mut table = Table::with_slots((2 * edges + 16).next_power_of_two());
+            for (id, r) in rings.iter().enumerate() {
+                for &edge in &r.verticals {
+                    table.insert(edge, id as u32);
+                }
+            }
+            table
+        });
+        table.get((x, y)).map(|r| r as usize)
     }
 
     fn outline_hint(&mut self, index: usize, hint: Vec2) -> Result<(), MarchError> {
@@ -386,8 +444,8 @@ impl<F: TileField + ?Sized> Tracer<'_, F> {
             self.tick(index)?;
             let above = self.inside(x, y + 1);
             if above != below {
-                let ring = match self.nodes.vertical(x, y) {
-                    Some(r) => r as usize,
+                let ring = match self.crossing_ring(x, y) {
+                    Some(r) => r,
                     None if below => self.trace_ring((x - 1, y), 1, index, false)?,
                     None => self.trace_ring((x, y), 3, index, false)?,
                 };
@@ -427,46 +485,52 @@ impl<F: TileField + ?Sized> Tracer<'_, F> {
     }
 
     /// Scans nodes `bottom + 1 ..= top` of column `x` (enclosed by a ring), tracing every
-    /// crossing between two of them that no ring has crossed yet. Runs tile by tile, reading
-    /// the samples straight from each tile.
+    /// crossing between two of them that no ring has crossed yet. The nodes above the first
+    /// are counted against the budget at once (the same total as one by one, so the same
+    /// outcome: the count only grows, and every budget error of a scan is the same). Runs tile
+    /// by tile: the inside flags of the column's segment in a tile come from the tile's mask,
+    /// and only the rows where the flag changes are looked at.
     fn scan_column(&mut self, x: i32, bottom: i32, top: i32) -> Result<(), MarchError> {
-        let iso = self.iso;
+        self.cells += (top - bottom - 1).max(0) as usize;
+        if self.cells > self.options.max_cells {
+            return Err(MarchError::BudgetExceeded {
+                hint: usize::MAX,
+                cells: self.options.max_cells,
+            });
+        }
         let mut below = self.inside(x, bottom + 1);
         let mut y = bottom + 1;
         while y < top {
-            // Nodes y + 1 ..= last lie in one tile.
-            let (tile, _) = self.nodes.locate(x, y + 1);
+            // Nodes y + 1 ..= last lie in one tile, in rows `first ..= last_row` of it.
             let last = ((y + 1) | TILE_MASK).min(top);
-            if self.tiled {
-                // The whole tile is filled by its first use: count the segment's nodes at once
-                // (the same total, so the same budget outcome and error) and read the samples
-                // straight from the tile.
-                self.cells += (last - y) as usize;
-                if self.cells > self.options.max_cells {
-                    return Err(MarchError::BudgetExceeded {
-                        hint: usize::MAX,
-                        cells: self.options.max_cells,
-                    });
+            if !self.tiled {
+                for up in y + 1..=last {
+                    self.node(x, up);
                 }
-                self.cached(tile, Nodes::slot(x, y + 1), x, y + 1);
             }
-            for up in y + 1..=last {
-                let v = if self.tiled {
-                    self.nodes.sampled(tile, Nodes::slot(x, up))
-                } else {
-                    self.tick(usize::MAX)?;
-                    self.cached(tile, Nodes::slot(x, up), x, up)
-                };
-                let above = cell::is_inside(v, iso);
-                if above != below && self.nodes.vertical(x, up - 1).is_none() {
-                    if below {
+            let tile = self.tile(x, y + 1);
+            let first = (y + 1) & TILE_MASK;
+            let last_row = last & TILE_MASK;
+            let rows = (u32::MAX << first) & (u32::MAX >> (31 - last_row));
+            // Bit r: the node in row r of the segment is inside.
+            let inside = self.nodes.column_inside(tile, x & TILE_MASK) & rows;
+            // Bit r: the node below it is inside.
+            let previous = (inside << 1) | (u32::from(below) << first);
+            let mut changes = (inside ^ previous) & rows;
+            let base = (y + 1) & !TILE_MASK;
+            while changes != 0 {
+                let up = base + changes.trailing_zeros() as i32;
+                changes &= changes - 1;
+                // Rings traced from here on may cross the rows above: ask each time.
+                if !self.nodes.crossed(x, up - 1) {
+                    if inside & (1 << (up - base)) == 0 {
                         self.trace_ring((x - 1, up - 1), 1, usize::MAX, true)?;
                     } else {
                         self.trace_ring((x, up - 1), 3, usize::MAX, true)?;
                     }
                 }
-                below = above;
             }
+            below = inside & (1 << last_row) != 0;
             y = last;
         }
         Ok(())
@@ -492,6 +556,12 @@ impl<F: TileField + ?Sized> Tracer<'_, F> {
 
     /// Follows the contour entering cell `start` through its in→out edge `k` until it closes.
     /// Returns the new ring's index.
+    ///
+    /// The cell's corners are kept relative to the entry edge: `a` (corner `k`, inside) and
+    /// `b` (corner `k + 1`, outside) are carried over from the previous cell, `c` and `d`
+    /// (corners `k + 2`, `k + 3`) are read. Which of `c` and `d` are inside settles the exit
+    /// edge (see [`cell::exit_edge`]): `k + 1` when both are, `k + 2` when only `d` is, `k + 3`
+    /// when neither is, and the saddle rule when only `c` is.
     fn trace_ring(
         &mut self,
         start: (i32, i32),
@@ -500,51 +570,109 @@ impl<F: TileField + ?Sized> Tracer<'_, F> {
         nested: bool,
     ) -> Result<usize, MarchError> {
         let id = self.rings.len();
-        let mut points = Vec::new();
-        let mut verticals = Vec::new();
-        let start_k = k;
-        let (mut ci, mut cj, mut k) = (start.0, start.1, k);
-        // Corner samples of the current cell; after the first cell, the two on the entry edge
-        // are carried over from the previous cell.
-        let mut values = [0.0f32; 4];
-        let mut carried = false;
-        loop {
-            self.tick(hint)?;
-            let mut mask = 0u8;
-            for (c, (di, dj)) in CORNERS.into_iter().enumerate() {
-                if !(carried && (c == k || c == (k + 1) & 3)) {
-                    values[c] = self.node(ci + di, cj + dj);
+        let iso = self.iso;
+        let mut path = Path::new();
+        let start_k = k & 3;
+        let mut at = Step {
+            ci: start.0,
+            cj: start.1,
+            k: start_k,
+            a: 0.0,
+            b: 0.0,
+        };
+        let (i, j) = at.corner(0);
+        at.a = self.node(i, j);
+        let (i, j) = at.corner(1);
+        at.b = self.node(i, j);
+        let closed = |at: &Step| (at.ci, at.cj) == start && at.k == start_k;
+        // The budget left for this ring, counted locally and settled when it closes.
+        let budget = self.options.max_cells.saturating_sub(self.cells);
+        let mut cells = 0;
+        'ring: loop {
+            // Any cell: its far corners through the tile cache; saddles settled.
+            cells += 1;
+            if cells > budget {
+                return Err(self.out_of_budget(hint));
+            }
+            let (i, j) = at.corner(2);
+            let c = self.node(i, j);
+            let (i, j) = at.corner(3);
+            let d = self.node(i, j);
+            let p = self.crossing(at.edge(), at.a, at.b);
+            path.push(p, &at);
+            let flags =
+                usize::from(cell::is_inside(c, iso)) | usize::from(cell::is_inside(d, iso)) << 1;
+            let mut turn = Step::TURN[flags];
+            if flags == 1 {
+                let mut values = [0.0; 4];
+                for (n, v) in [at.a, at.b, c, d].into_iter().enumerate() {
+                    values[(at.k + n) & 3] = v;
                 }
-                mask |= u8::from(cell::is_inside(values[c], self.iso)) << c;
+                if !self.joined(at.ci, at.cj, values) {
+                    turn = 3;
+                }
             }
-            let (a, b) = (CORNERS[k], CORNERS[(k + 1) & 3]);
-            let (ax, ay) = (ci + a.0, cj + a.1);
-            let (bx, by) = (ci + b.0, cj + b.1);
-            if ax == bx {
-                let low = ay.min(by);
-                self.nodes.set_vertical(ax, low, id as u32);
-                verticals.push((ax, low));
-            }
-            points.push(self.crossing((ax, ay), (bx, by), values[k], values[(k + 1) & 3]));
-            let exit = cell::exit_edge(mask, k, || self.joined(ci, cj, values));
-            ci += ACROSS[exit].0;
-            cj += ACROSS[exit].1;
-            k = (exit + 2) & 3;
-            // The exit edge, seen from the next cell, runs the other way round.
-            let (v_from, v_to) = (values[exit], values[(exit + 1) & 3]);
-            values[k] = v_to;
-            values[(k + 1) & 3] = v_from;
-            carried = true;
-            if (ci, cj) == start && k == start_k {
+            at.advance(turn, c, d);
+            if closed(&at) {
                 break;
             }
+            // Cells whose corners all lie in one tile whose nodes are all sampled: the inside
+            // flags from the tile's mask, kept in a register, and the samples read only for
+            // the crossings, so that the walk does not wait on them.
+            if at.ci & TILE_MASK == TILE_MASK || at.cj & TILE_MASK == TILE_MASK {
+                continue;
+            }
+            let tile = self.tile(at.ci, at.cj);
+            let Some(inside) = self.nodes.all_inside(tile) else {
+                continue;
+            };
+            loop {
+                let (slot_c, slot_d) = (at.slot(2), at.slot(3));
+                let flags = (inside >> slot_c & 1) | (inside >> slot_d & 1) << 1;
+                if flags == 1 {
+                    // A saddle: settled above.
+                    continue 'ring;
+                }
+                cells += 1;
+                if cells > budget {
+                    return Err(self.out_of_budget(hint));
+                }
+                let c = self.nodes.sampled(tile, slot_c);
+                let d = self.nodes.sampled(tile, slot_d);
+                let p = self.crossing(at.edge(), at.a, at.b);
+                path.push(p, &at);
+                at.advance(Step::TURN[flags as usize], c, d);
+                if closed(&at) {
+                    break 'ring;
+                }
+                if at.ci & TILE_MASK == TILE_MASK || at.cj & TILE_MASK == TILE_MASK {
+                    continue 'ring;
+                }
+            }
         }
-        sort_by_column(&mut verticals);
-        let (lo, hi) = crate::ring::bounds(&points).unwrap_or((Vec2::ZERO, Vec2::ZERO));
+        self.cells += cells;
+        let Path {
+            points,
+            mut verticals,
+            crossed,
+        } = path;
+        verticals.truncate(crossed);
+        for &(x, y) in &verticals {
+            let tile = self.tile(x, y);
+            self.nodes.mark_crossed(tile, Nodes::slot(x, y));
+        }
+        if let Some(table) = &mut self.ring_of_edge {
+            for &edge in &verticals {
+                table.insert(edge, id as u32);
+            }
+        }
+        let columns = sort_by_column(&mut verticals);
         let outer = crate::ring::signed_area(&points) > 0.0;
+        let (lo, hi) = bounds(&points);
         self.rings.push(Traced {
             points,
             verticals,
+            columns,
             outer,
             lo,
             hi,
@@ -553,22 +681,36 @@ impl<F: TileField + ?Sized> Tracer<'_, F> {
         Ok(id)
     }
 
-    /// The crossing between an inside node and an outside node, in world units, refined on
-    /// the field when asked.
-    fn crossing(&mut self, a: (i32, i32), b: (i32, i32), v_in: f32, v_out: f32) -> Vec2 {
+    /// The budget error, once the cells of a ring run over it.
+    fn out_of_budget(&mut self, hint: usize) -> MarchError {
+        self.cells = self.options.max_cells + 1;
+        MarchError::BudgetExceeded {
+            hint,
+            cells: self.options.max_cells,
+        }
+    }
+
+    /// The crossing between an inside node `a` and an outside node `b` (an edge of the grid),
+    /// in world units, refined on the field when asked.
+    #[inline(always)]
+    fn crossing(&mut self, (a, b): ((i32, i32), (i32, i32)), v_in: f32, v_out: f32) -> Vec2 {
         let pa = Vec2::new(a.0 as f32, a.1 as f32);
         let pb = Vec2::new(b.0 as f32, b.1 as f32);
         let t = cell::crossing(v_in, v_out, self.iso);
-        let t = self.refine(pa, pb, t, v_in, v_out);
+        let t = if self.options.refine_steps > 0 {
+            self.refine(pa, pb, t, v_in, v_out)
+        } else {
+            // Off the nodes, as in the grid: two crossings beside an outside node a hair below
+            // the iso-level would otherwise both sit on it and pinch the ring.
+            t.clamp(cell::NODE_GAP, 1.0 - cell::NODE_GAP)
+        };
         (pa + (pb - pa) * t) * self.step
     }
 
     /// Illinois false-position steps on the field along the edge, bracketing the crossing.
+    #[inline(never)]
     fn refine(&mut self, pa: Vec2, pb: Vec2, t0: f32, v_in: f32, v_out: f32) -> f32 {
         let steps = self.options.refine_steps;
-        if steps == 0 {
-            return t0;
-        }
         let (mut a, mut fa) = (0.0f32, v_in - self.iso);
         let (mut b, mut fb) = (1.0f32, v_out - self.iso);
         if fa == 0.0 {
@@ -611,22 +753,132 @@ impl<F: TileField + ?Sized> Tracer<'_, F> {
     }
 }
 
+/// Where a contour walk is: cell `(ci, cj)`, entered through its edge `k` from corner `k`
+/// (inside, sample `a`) to corner `k + 1` (outside, sample `b`).
+struct Step {
+    ci: i32,
+    cj: i32,
+    k: usize,
+    a: f32,
+    b: f32,
+}
+
+impl Step {
+    /// The exit edge, counted from the entry edge, by the inside flags of corners `k + 2` and
+    /// `k + 3` (`c | d << 1`): `k + 3` when neither is inside, `k + 2` when only `d` is,
+    /// `k + 1` when both are; a saddle (only `c`) goes to `k + 1` when joined, else `k + 3`.
+    /// As [`cell::exit_edge`], with the entry edge's corners known to be inside, outside.
+    const TURN: [usize; 4] = [3, 1, 2, 1];
+
+    /// Grid node of corner `k + n`.
+    #[inline]
+    fn corner(&self, n: usize) -> (i32, i32) {
+        let (di, dj) = CORNERS[(self.k + n) & 3];
+        (self.ci + di, self.cj + dj)
+    }
+
+    /// Tile slot of corner `k + n`, for a cell whose corners lie in one tile.
+    #[inline]
+    fn slot(&self, n: usize) -> usize {
+        let (i, j) = self.corner(n);
+        Nodes::slot(i, j)
+    }
+
+    /// The entry edge: its inside node, then its outside node.
+    #[inline]
+    fn edge(&self) -> ((i32, i32), (i32, i32)) {
+        (self.corner(0), self.corner(1))
+    }
+
+    /// Leaves through edge `k + turn` into the next cell, given the samples `c`, `d` of
+    /// corners `k + 2`, `k + 3`. The exit edge, seen from the next cell, runs from its inside
+    /// end to its outside end: `c`–`b`, `d`–`c` or `a`–`d`.
+    #[inline]
+    fn advance(&mut self, turn: usize, c: f32, d: f32) {
+        let exit = (self.k + turn) & 3;
+        let cell = [self.a, self.b, c, d];
+        self.a = cell[(turn + 1) & 3];
+        self.b = cell[turn & 3];
+        self.ci += ACROSS[exit].0;
+        self.cj += ACROSS[exit].1;
+        self.k = (exit + 2) & 3;
+    }
+}
+
+/// A ring's points and the vertical edges it crosses, while it is traced.
+struct Path {
+    points: Vec<Vec2>,
+    /// The vertical edges crossed, as `(column, lower row)`: the first `crossed`. Each cell
+    /// writes its entry edge at `crossed` and keeps it (advancing `crossed`) only when the
+    /// edge is vertical: no branch on it.
+    verticals: Vec<(i32, i32)>,
+    crossed: usize,
+}
+
+impl Path {
+    fn new() -> Self {
+        Self {
+            points: Vec::with_capacity(64),
+            verticals: alloc::vec![(0, 0); 64],
+            crossed: 0,
+        }
+    }
+
+    /// Records the crossing `p` of the entry edge of the cell at `at`.
+    #[inline]
+    fn push(&mut self, p: Vec2, at: &Step) {
+        self.points.push(p);
+        if self.crossed == self.verticals.len() {
+            self.verticals.resize(2 * self.crossed, (0, 0));
+        }
+        // The right (1) or left (3) edge is vertical, from row `cj` up.
+        if let Some(slot) = self.verticals.get_mut(self.crossed) {
+            *slot = (at.corner(0).0, at.cj);
+        }
+        self.crossed += at.k & 1;
+    }
+}
+
+/// The bounding box of ring points (of which there is at least one), as
+/// [`ring::bounds`](crate::ring::bounds) gives it, with four independent minima and maxima
+/// (which the order does not change: ring points are never NaN, nor `-0.0`).
+fn bounds(points: &[Vec2]) -> (Vec2, Vec2) {
+    let first = points.first().copied().unwrap_or(Vec2::ZERO);
+    let mut lo = [first; 4];
+    let mut hi = [first; 4];
+    let mut chunks = points.chunks_exact(4);
+    for chunk in &mut chunks {
+        for ((l, h), &p) in lo.iter_mut().zip(&mut hi).zip(chunk) {
+            *l = l.min(p);
+            *h = h.max(p);
+        }
+    }
+    for &p in chunks.remainder() {
+        lo[0] = lo[0].min(p);
+        hi[0] = hi[0].max(p);
+    }
+    (
+        lo[0].min(lo[1]).min(lo[2].min(lo[3])),
+        hi[0].max(hi[1]).max(hi[2].max(hi[3])),
+    )
+}
+
 /// Sorts a ring's vertical crossings `(column, row)` into lexicographic order: a counting sort
 /// on the column, then an insertion sort within each column (a closed ring crosses each
 /// column it spans at least twice, so there are at most about half as many columns as
-/// crossings, and few crossings per column).
-fn sort_by_column(crossings: &mut Vec<(i32, i32)>) {
-    let Some(min) = crossings.iter().map(|c| c.0).min() else {
-        return;
-    };
+/// crossings, and few crossings per column). Returns the columns' index: the first column,
+/// and where each column's crossings start (and, last, where they end); `None` when there
+/// are more columns than crossings (not from a closed ring), sorted by comparisons instead.
+fn sort_by_column(crossings: &mut Vec<(i32, i32)>) -> Option<Columns> {
+    let min = crossings.iter().map(|c| c.0).min()?;
     let max = crossings.iter().map(|c| c.0).max().unwrap_or(min);
     let columns = (i64::from(max) - i64::from(min)) as usize + 1;
     if columns > crossings.len() {
-        // Not from a closed ring: fall back to a comparison sort.
         crossings.sort_unstable();
-        return;
+        return None;
     }
-    let mut starts = alloc::vec![0usize; columns + 1];
+    // Each column's end, then (filling backwards) its start.
+    let mut starts = alloc::vec![0u32; columns + 1];
     for c in crossings.iter() {
         starts[(c.0 - min) as usize + 1] += 1;
     }
@@ -634,14 +886,16 @@ fn sort_by_column(crossings: &mut Vec<(i32, i32)>) {
         starts[k + 1] += starts[k];
     }
     let mut sorted = alloc::vec![(0, 0); crossings.len()];
-    let mut fill = starts.clone();
-    for &c in crossings.iter() {
-        let k = (c.0 - min) as usize;
-        sorted[fill[k]] = c;
-        fill[k] += 1;
+    for &c in crossings.iter().rev() {
+        let end = &mut starts[(c.0 - min) as usize + 1];
+        *end -= 1;
+        sorted[*end as usize] = c;
     }
+    // `starts[k + 1]` is now column k's start: shift the index down.
+    starts.copy_within(1.., 0);
+    starts[columns] = crossings.len() as u32;
     for k in 0..columns {
-        let column = &mut sorted[starts[k]..starts[k + 1]];
+        let column = &mut sorted[starts[k] as usize..starts[k + 1] as usize];
         for n in 1..column.len() {
             let mut m = n;
             while m > 0 && column[m].1 < column[m - 1].1 {
@@ -651,6 +905,15 @@ fn sort_by_column(crossings: &mut Vec<(i32, i32)>) {
         }
     }
     *crossings = sorted;
+    Some(Columns { first: min, starts })
+}
+
+/// Where each column's crossings lie in a ring's sorted vertical crossings.
+struct Columns {
+    /// The first column.
+    first: i32,
+    /// Column `first + k`'s crossings are `starts[k]..starts[k + 1]`.
+    starts: Vec<u32>,
 }
 
 /// Side of a node tile: tiles hold `TILE × TILE` nodes.
@@ -658,28 +921,63 @@ const TILE_SHIFT: i32 = 3;
 const TILE_MASK: i32 = (1 << TILE_SHIFT) - 1;
 const _: () = assert!(TILE_NODES == 1 << (2 * TILE_SHIFT));
 
-/// No ring crosses this vertical edge.
-const NO_RING: u32 = u32::MAX;
+/// Bit `s`: `values[s]` is inside `iso`. The flags as bytes first (which vectorises), then
+/// each row's eight bytes gathered into one.
+#[inline]
+fn inside_bits(values: &[f32; TILE_NODES], iso: f32) -> u64 {
+    let flags: [u8; TILE_NODES] = core::array::from_fn(|s| {
+        values
+            .get(s)
+            .map_or(0, |&v| u8::from(cell::is_inside(v, iso)))
+    });
+    flags
+        .chunks_exact(8)
+        .enumerate()
+        .fold(0, |bits, (row, bytes)| {
+            let mut word = [0u8; 8];
+            word.copy_from_slice(bytes);
+            bits | gather_bytes(u64::from_le_bytes(word)) << (8 * row)
+        })
+}
 
-/// Node samples for an 8 × 8 block of grid nodes, and the ring crossing the vertical edge
-/// above each node.
+/// Bit 0 of each byte of `spread`, gathered into bit `k` for byte `k`: a multiplication
+/// whose partial products never overlap, so never carry.
+#[inline]
+fn gather_bytes(spread: u64) -> u64 {
+    (spread & 0x0101_0101_0101_0101).wrapping_mul(0x0102_0408_1020_4080) >> 56
+}
+
+/// Column `column` of a tile's bit mask (bit `8 × row + column`), as bit `row` of a byte.
+#[inline]
+fn column_bits(mask: u64, column: i32) -> u32 {
+    gather_bytes(mask >> (column & TILE_MASK)) as u32
+}
+
+/// Node samples for an 8 × 8 block of grid nodes.
 #[derive(Clone)]
 struct Tile {
     values: [f32; TILE_NODES],
     /// Bit `s`: `values[s]` has been sampled.
     sampled: u64,
-    /// The ring crossing the edge from node `s` up to the node above it, or [`NO_RING`].
-    verticals: [u32; TILE_NODES],
+    /// Bit `s`: the sampled node in slot `s` is inside.
+    inside: u64,
+    /// Bit `s`: a traced ring crosses the edge from the node in slot `s` up to the node above.
+    crossed: u64,
 }
 
+/// Slots of the tile cache: a tile goes to the slot of the low 2 bits of its column and the
+/// low 5 bits of its row, so any block of 4 × 32 neighbouring tiles fits at once: a contour's
+/// neighbourhood, and the tiles a hole scan runs up through, column after column.
+const CACHE_SLOTS: usize = 128;
+
 /// A sparse grid of node samples in dense tiles: the compact cache behind "each node is
-/// sampled once". Contours are local, so consecutive lookups mostly hit the same tile, which
-/// is remembered; other tiles are found through a small hash table.
+/// sampled once". Contours are local, so lookups mostly hit one of a few neighbouring tiles,
+/// which a small direct-mapped cache remembers; other tiles are found through a hash table.
 struct Nodes {
     tiles: Vec<Tile>,
     index: Table<u32>,
-    last: (i32, i32),
-    last_tile: usize,
+    /// Tile coordinates and index of a recently used tile, by [`Nodes::cache_slot`].
+    cache: [(i32, i32, u32); CACHE_SLOTS],
 }
 
 impl Nodes {
@@ -687,8 +985,8 @@ impl Nodes {
         Self {
             tiles: Vec::with_capacity(64),
             index: Table::with_slots(256),
-            last: (i32::MIN, i32::MIN),
-            last_tile: 0,
+            // No tile has coordinate `i32::MIN`: node coordinates stay within ±2^30.
+            cache: [(i32::MIN, i32::MIN, 0); CACHE_SLOTS],
         }
     }
 
@@ -697,79 +995,76 @@ impl Nodes {
         ((j & TILE_MASK) << TILE_SHIFT | (i & TILE_MASK)) as usize
     }
 
-    /// The tile holding node `(i, j)` (created when missing) and the node's slot in it.
     #[inline]
-    fn locate(&mut self, i: i32, j: i32) -> (usize, usize) {
-        let key = (i >> TILE_SHIFT, j >> TILE_SHIFT);
-        if key != self.last {
-            self.last_tile = match self.index.get(key) {
-                Some(t) => t as usize,
-                None => {
-                    let t = self.tiles.len();
-                    self.tiles.push(Tile {
-                        values: [0.0; TILE_NODES],
-                        sampled: 0,
-                        verticals: [NO_RING; TILE_NODES],
-                    });
-                    self.index.insert(key, t as u32);
-                    t
-                }
-            };
-            self.last = key;
-        }
-        (self.last_tile, Self::slot(i, j))
+    fn cache_slot((x, y): (i32, i32)) -> usize {
+        ((x & 3) | (y & 31) << 2) as usize
     }
 
-    /// The tile holding node `(i, j)`, if any node of it was touched.
+    /// The index of the tile at tile coordinates `key`, if the cache holds it.
     #[inline]
-    fn find(&self, i: i32, j: i32) -> Option<&Tile> {
-        let key = (i >> TILE_SHIFT, j >> TILE_SHIFT);
-        let t = if key == self.last {
-            self.last_tile
-        } else {
-            self.index.get(key)? as usize
-        };
-        self.tiles.get(t)
+    fn cached(&self, key: (i32, i32)) -> Option<usize> {
+        let (x, y, tile) = self.cache[Self::cache_slot(key)];
+        ((x, y) == key).then_some(tile as usize)
     }
 
-    /// The sample in `slot` of `tile`, taken with `sample` on first use.
-    #[inline]
-    fn value_or(&mut self, tile: usize, slot: usize, sample: impl FnOnce() -> f32) -> f32 {
-        let Some(t) = self.tiles.get_mut(tile) else {
-            return sample();
+    /// The index of the tile at tile coordinates `key`, created (unsampled) when missing, and
+    /// whether it was created. Caches it.
+    fn find_or_add(&mut self, key: (i32, i32)) -> (usize, bool) {
+        let (tile, created) = match self.index.get(key) {
+            Some(t) => (t as usize, false),
+            None => {
+                let t = self.tiles.len();
+                self.tiles.push(Tile {
+                    values: [0.0; TILE_NODES],
+                    sampled: 0,
+                    inside: 0,
+                    crossed: 0,
+                });
+                self.index.insert(key, t as u32);
+                (t, true)
+            }
         };
-        let bit = 1u64 << slot;
-        if t.sampled & bit != 0 {
-            return t.values.get(slot).copied().unwrap_or(f32::NAN);
-        }
-        let v = sample();
-        if let Some(value) = t.values.get_mut(slot) {
+        self.cache[Self::cache_slot(key)] = (key.0, key.1, tile as u32);
+        (tile, created)
+    }
+
+    /// The index of the tile holding node `(i, j)`, if any node of it was touched.
+    #[inline]
+    fn find(&self, i: i32, j: i32) -> Option<usize> {
+        let key = (i >> TILE_SHIFT, j >> TILE_SHIFT);
+        self.cached(key)
+            .or_else(|| self.index.get(key).map(|t| t as usize))
+    }
+
+    /// Stores the sample `v` of `slot` of `tile`, inside or not.
+    fn set(&mut self, tile: usize, slot: usize, v: f32, inside: bool) {
+        if let Some(t) = self.tiles.get_mut(tile)
+            && let Some(value) = t.values.get_mut(slot)
+        {
             *value = v;
-            t.sampled |= bit;
+            t.sampled |= 1 << slot;
+            t.inside |= u64::from(inside) << slot;
         }
-        v
     }
 
-    /// The sample in `slot` of `tile`, after filling the whole tile with `fill` if it has not
-    /// been filled yet.
-    #[inline]
-    fn filled(
-        &mut self,
-        tile: usize,
-        slot: usize,
-        fill: impl FnOnce(&mut [f32; TILE_NODES]),
-    ) -> f32 {
-        let Some(t) = self.tiles.get_mut(tile) else {
-            return f32::NAN;
-        };
-        if t.sampled != u64::MAX {
+    /// Fills every sample of `tile` with `fill`, and marks which are inside `iso`.
+    fn fill(&mut self, tile: usize, iso: f32, fill: impl FnOnce(&mut [f32; TILE_NODES])) {
+        if let Some(t) = self.tiles.get_mut(tile) {
             fill(&mut t.values);
             t.sampled = u64::MAX;
+            t.inside = inside_bits(&t.values, iso);
         }
-        t.values.get(slot).copied().unwrap_or(f32::NAN)
     }
 
-    /// The sample in `slot` of `tile`, which has been filled (NaN, outside, otherwise).
+    /// The inside flags of column `column` of `tile`: bit `r` for row `r` (sampled nodes only).
+    #[inline]
+    fn column_inside(&self, tile: usize, column: i32) -> u32 {
+        self.tiles
+            .get(tile)
+            .map_or(0, |t| column_bits(t.inside, column))
+    }
+
+    /// The sample in `slot` of `tile`, which has been taken (NaN, outside, otherwise).
     #[inline]
     fn sampled(&self, tile: usize, slot: usize) -> f32 {
         self.tiles
@@ -779,22 +1074,28 @@ impl Nodes {
             .unwrap_or(f32::NAN)
     }
 
-    /// The ring crossing the edge from node `(i, j)` up to `(i, j + 1)`.
+    /// The inside flags of `tile`, if all its nodes are sampled.
     #[inline]
-    fn vertical(&self, i: i32, j: i32) -> Option<u32> {
-        let r = *self.find(i, j)?.verticals.get(Self::slot(i, j))?;
-        (r != NO_RING).then_some(r)
+    fn all_inside(&self, tile: usize) -> Option<u64> {
+        self.tiles
+            .get(tile)
+            .and_then(|t| (t.sampled == u64::MAX).then_some(t.inside))
     }
 
-    fn set_vertical(&mut self, i: i32, j: i32, ring: u32) {
-        let (tile, slot) = self.locate(i, j);
-        if let Some(v) = self
-            .tiles
-            .get_mut(tile)
-            .and_then(|t| t.verticals.get_mut(slot))
-        {
-            *v = ring;
+    /// Records that a ring crosses the edge from the node in `slot` of `tile` up.
+    #[inline]
+    fn mark_crossed(&mut self, tile: usize, slot: usize) {
+        if let Some(t) = self.tiles.get_mut(tile) {
+            t.crossed |= 1 << slot;
         }
+    }
+
+    /// Whether a traced ring crosses the edge from node `(i, j)` up.
+    #[inline]
+    fn crossed(&self, i: i32, j: i32) -> bool {
+        self.find(i, j)
+            .and_then(|tile| self.tiles.get(tile))
+            .is_some_and(|t| t.crossed >> Self::slot(i, j) & 1 != 0)
     }
 }
 
@@ -1104,7 +1405,7 @@ mod tests {
     }
 
     #[test]
-    fn node_tiles_keep_samples_and_edges_apart() {
+    fn node_tiles_keep_samples_apart() {
         let mut nodes = Nodes::new();
         let coords = [
             (0, 0),
@@ -1116,36 +1417,121 @@ mod tests {
             (1000, -1000),
         ];
         for (n, &(i, j)) in coords.iter().enumerate() {
-            let (tile, slot) = nodes.locate(i, j);
-            assert_eq!(nodes.value_or(tile, slot, || n as f32), n as f32);
-            nodes.set_vertical(i, j, n as u32);
+            let (tile, _) = nodes.find_or_add((i >> TILE_SHIFT, j >> TILE_SHIFT));
+            // Even samples inside, odd ones outside.
+            nodes.set(tile, Nodes::slot(i, j), n as f32, n % 2 == 0);
         }
         for (n, &(i, j)) in coords.iter().enumerate() {
-            let (tile, slot) = nodes.locate(i, j);
-            assert_eq!(nodes.value_or(tile, slot, || f32::NAN), n as f32);
-            assert_eq!(nodes.vertical(i, j), Some(n as u32));
+            let tile = nodes.find(i, j).unwrap();
+            let slot = Nodes::slot(i, j);
+            assert_eq!(nodes.tiles[tile].values[slot], n as f32);
+            assert_ne!(nodes.tiles[tile].sampled & 1 << slot, 0);
+            let column = nodes.column_inside(tile, i & TILE_MASK);
+            assert_eq!(column >> (j & TILE_MASK) & 1, u32::from(n % 2 == 0));
         }
-        assert_eq!(nodes.vertical(1, 0), None);
-        assert_eq!(nodes.vertical(-100, 5), None);
+        assert_eq!(nodes.find(1, 8), None);
+        assert_eq!(nodes.find(-100, 5), None);
+    }
+
+    #[test]
+    fn tile_masks_give_rows_and_columns() {
+        let mut values = [0.0f32; TILE_NODES];
+        // Inside (≥ 0.5): the diagonal, all of row 5, and NaN nowhere.
+        for (slot, v) in values.iter_mut().enumerate() {
+            let (column, row) = (slot % 8, slot / 8);
+            if column == row || row == 5 {
+                *v = 1.0;
+            }
+        }
+        values[9] = f32::NAN; // (1, 1): NaN is outside
+        values[18] = 0.5; // (2, 2): exactly the iso-level is inside
+        let bits = inside_bits(&values, 0.5);
+        for (slot, &v) in values.iter().enumerate() {
+            assert_eq!(bits >> slot & 1 == 1, cell::is_inside(v, 0.5), "{slot}");
+        }
+        for column in 0..8 {
+            let expected = (0..8)
+                .filter(|&row| cell::is_inside(values[row * 8 + column as usize], 0.5))
+                .fold(0u32, |b, row| b | 1 << row);
+            assert_eq!(column_bits(bits, column), expected, "column {column}");
+        }
+        assert_eq!(column_bits(u64::MAX, 7), 0xff);
+        assert_eq!(column_bits(0x8000_0000_0000_0000, 7), 0x80);
+        assert_eq!(column_bits(0x8000_0000_0000_0000, 6), 0);
+    }
+
+    /// A deterministic xorshift32 sequence from a nonzero seed.
+    fn xorshift(mut s: u32) -> impl FnMut() -> u32 {
+        move || {
+            s ^= s << 13;
+            s ^= s >> 17;
+            s ^= s << 5;
+            s
+        }
+    }
+
+    #[test]
+    fn bounds_are_the_ring_bounds() {
+        let mut random = xorshift(11);
+        let mut next = || (random() % 2001) as f32 * 0.37 - 370.0;
+        for len in [1usize, 2, 3, 4, 5, 7, 8, 9, 100, 1001] {
+            let points: Vec<Vec2> = (0..len).map(|_| Vec2::new(next(), next())).collect();
+            assert_eq!(Some(bounds(&points)), crate::ring::bounds(&points), "{len}");
+        }
+    }
+
+    #[test]
+    fn rings_enclose_nodes_between_their_crossings() {
+        // A ring crossing columns 0..=3 between rows 1 and 2 and between rows 5 and 6, and
+        // column 4 twice more between rows 8 and 9, 10 and 11 (listed out of order).
+        let mut verticals = alloc::vec![(3, 5), (0, 1), (4, 10), (2, 5), (1, 1), (4, 8)];
+        verticals.extend([(0, 5), (3, 1), (1, 5), (2, 1)]);
+        let mut sorted = verticals.clone();
+        let columns = sort_by_column(&mut sorted);
+        assert!(columns.is_some());
+        let mut by_comparisons = verticals;
+        by_comparisons.sort_unstable();
+        for columns in [columns, None] {
+            let ring = Traced {
+                points: Vec::new(),
+                verticals: by_comparisons.clone(),
+                columns,
+                outer: true,
+                lo: Vec2::ZERO,
+                hi: Vec2::ZERO,
+                nested: false,
+            };
+            for x in -2..7 {
+                for y in -2..14 {
+                    let expected = ((0..=3).contains(&x) && (2..=5).contains(&y))
+                        || (x == 4 && (9..=10).contains(&y));
+                    assert_eq!(ring.encloses(x, y), expected, "({x}, {y})");
+                }
+            }
+        }
     }
 
     #[test]
     fn crossings_sort_by_column_then_row() {
-        let mut s = 7u32;
-        let mut next = |m: u32| {
-            s ^= s << 13;
-            s ^= s >> 17;
-            s ^= s << 5;
-            (s % m) as i32 - (m / 2) as i32
-        };
+        let mut random = xorshift(7);
+        let mut next = |m: u32| (random() % m) as i32 - (m / 2) as i32;
         for len in [0usize, 1, 2, 5, 40, 300] {
             // Few columns (as a ring makes) and, once, many (the fallback).
             for spread in [len as u32 / 2 + 1, 10 * len as u32 + 1] {
                 let mut v: Vec<(i32, i32)> = (0..len).map(|_| (next(spread), next(1000))).collect();
                 let mut expected = v.clone();
                 expected.sort_unstable();
-                sort_by_column(&mut v);
+                let columns = sort_by_column(&mut v);
                 assert_eq!(v, expected);
+                if let Some(Columns { first, starts }) = columns {
+                    for (k, w) in starts.windows(2).enumerate() {
+                        let column = &v[w[0] as usize..w[1] as usize];
+                        assert!(column.iter().all(|c| c.0 == first + k as i32));
+                    }
+                    assert_eq!(starts.last().copied(), Some(v.len() as u32));
+                } else {
+                    assert!(spread as usize > len / 2, "{len} {spread}");
+                }
             }
         }
     }

@@ -86,6 +86,103 @@ fn an_annulus_is_an_outer_ring_with_one_hole() {
     assert_eq!(grid.iter().filter(|r| r.hole).count(), 1);
 }
 
+/// A disc riddled with small holes on a lattice that puts them at every offset from the
+/// tracer's 8 × 8 node tiles (straddling tile rows and columns, at negative coordinates too):
+/// the hole scan finds every one the grid finds, point by point and tile by tile.
+#[test]
+fn the_hole_scan_finds_holes_at_every_tile_offset() {
+    let centre = Vec2::new(-3.3, -2.1);
+    let holes: Vec<Vec2> = (-6..=6)
+        .flat_map(|i| (-6..=6).map(move |j| Vec2::new(i as f32 * 6.7, j as f32 * 5.9) + centre))
+        .filter(|h| h.distance(centre) < 38.0)
+        .collect();
+    let field = |p: Vec2| {
+        let hole = holes
+            .iter()
+            .map(|h| p.distance(*h))
+            .fold(f32::INFINITY, f32::min);
+        (45.0 - p.distance(centre)).min(hole - 1.6)
+    };
+    let step = 0.9;
+    let values = sample(field, (-60, -60), 120, 120, step);
+    let grid = march_grid_with(&values, 120, 120, 0.0, &MarchOptions::DEFAULT).unwrap();
+    let grid_holes = grid.iter().filter(|r| r.hole).count();
+    assert!(
+        grid_holes >= holes.len() - 2,
+        "{grid_holes} of {}",
+        holes.len()
+    );
+    // A hint in the middle of the disc, away from the holes, and one near its rim.
+    let hints = [
+        centre + Vec2::new(3.35, 2.95),
+        centre + Vec2::new(0.0, -43.0),
+    ];
+    let traced = trace(field, &hints, step, 0.0).unwrap();
+    check_rings(&traced);
+    assert_eq!(traced.len(), grid.len());
+    assert_eq!(traced.iter().filter(|r| r.hole).count(), grid_holes);
+    let tiled = creature_march::trace_field(
+        &support::PreferTiles(field),
+        &hints,
+        step,
+        0.0,
+        &MarchOptions::DEFAULT,
+    )
+    .unwrap();
+    assert_eq!(tiled, traced);
+    let h = hausdorff(&traced, &to_world(&grid, (-60, -60), step));
+    assert!(h < 0.01, "hausdorff {h}");
+
+    // Holes of whole nodes whose edges all lie on tile boundaries (rows 8m and 8m + 7), one
+    // node wide, and single nodes at the top and bottom rows of tiles: every crossing of their
+    // columns is where the scan passes from one tile to the next.
+    let blocks: [(i32, i32, i32); 7] = [
+        (-13, -16, -9),
+        (-5, 0, 7),
+        (3, -8, 7),
+        (11, 8, 15),
+        (6, -1, -1),
+        (-2, 8, 8),
+        (9, -25, -25),
+    ];
+    let field = |p: Vec2| {
+        let (x, y) = (p.x.round() as i32, p.y.round() as i32);
+        let in_hole = blocks
+            .iter()
+            .any(|&(hx, lo, hi)| x == hx && (lo..=hi).contains(&y));
+        if in_hole || p.length() > 30.0 {
+            -1.0
+        } else {
+            1.0
+        }
+    };
+    for tiles in [false, true] {
+        let hints = [Vec2::new(0.5, 0.5)];
+        let rings = if tiles {
+            creature_march::trace_field(
+                &support::PreferTiles(field),
+                &hints,
+                1.0,
+                0.0,
+                &MarchOptions::DEFAULT,
+            )
+        } else {
+            trace(field, &hints, 1.0, 0.0)
+        }
+        .unwrap();
+        check_rings(&rings);
+        assert_eq!(
+            rings.iter().filter(|r| r.hole).count(),
+            blocks.len(),
+            "tiles {tiles}"
+        );
+        for &(x, lo, hi) in &blocks {
+            let inside = Vec2::new(x as f32, (lo + hi) as f32 / 2.0);
+            assert!(rings.iter().any(|r| r.hole && r.contains(inside)));
+        }
+    }
+}
+
 #[test]
 fn grid_and_trace_agree_on_a_creature() {
     for seed in [1, 7, 42, 1234] {
@@ -238,22 +335,64 @@ fn bad_input_is_a_typed_error() {
     assert_eq!(trace(f, &[], 1.0, 0.0), Ok(vec![]));
 }
 
-/// Regression (found by the grid property at 20,000 cases): a border sample a hair below the
-/// iso-level (−0.29172015 against −0.2917199) between two inside samples put both crossings
-/// beside it on the sample itself, so the ring passed twice through `(0, 12)` and crossed
-/// itself. Crossings now keep 1/1000 of a cell from the samples.
-#[test]
-fn regression_a_sample_a_hair_below_the_iso_level_does_not_pinch_the_ring() {
+/// The 3 × 22 samples and iso-level of the pinch regressions: sample `(0, 12)` a hair below
+/// the iso-level (−0.29172015 against −0.2917199) between two inside samples, next to the
+/// border.
+fn pinch_samples() -> (Vec<f32>, f32) {
     let mut values = vec![0.0f32; 3 * 22];
     values[33] = 0.807_125_9;
     values[36] = -0.291_720_15;
     values[37] = -0.497_680_37;
     values[39] = 0.746_154_6;
-    let rings = march_grid(&values, 3, 22, -0.291_719_9).unwrap();
+    (values, -0.291_719_9)
+}
+
+/// Regression (found by the grid property at 20,000 cases): a border sample a hair below the
+/// iso-level between two inside samples put both crossings beside it on the sample itself, so
+/// the ring passed twice through `(0, 12)` and crossed itself. Crossings now keep 1/1000 of a
+/// cell from the samples.
+#[test]
+fn regression_a_sample_a_hair_below_the_iso_level_does_not_pinch_the_ring() {
+    let (values, iso) = pinch_samples();
+    let rings = march_grid(&values, 3, 22, iso).unwrap();
     assert_eq!(validate_rings(&rings), Ok(()));
     check_rings(&rings);
     assert_eq!(rings.len(), 1);
     // The notch around the outside samples stays open toward the border.
     assert!(rings[0].contains(Vec2::new(0.0, 13.0)) || rings[0].contains(Vec2::new(0.5, 13.0)));
     assert!(!rings[0].contains(Vec2::new(0.5, 12.0)));
+}
+
+/// Regression: the trace had the grid's pinch (see above): on the same samples, as a field
+/// read at the nodes, both crossings beside node `(0, 12)` sat on the node itself and the ring
+/// crossed itself there (`RingsCross` near `(0, 11.5)`). Traced crossings keep the same gap
+/// from the nodes.
+#[test]
+fn regression_a_node_a_hair_below_the_iso_level_does_not_pinch_a_traced_ring() {
+    let (values, iso) = pinch_samples();
+    let field = |p: Vec2| {
+        let (x, y) = (p.x.round() as i32, p.y.round() as i32);
+        if (0..3).contains(&x) && (0..22).contains(&y) {
+            values[(y * 3 + x) as usize]
+        } else {
+            -10.0
+        }
+    };
+    for refine_steps in [0, 3] {
+        let options = MarchOptions::DEFAULT.with_refine_steps(refine_steps);
+        let rings = trace_with(field, &[Vec2::new(1.0, 5.0)], 1.0, iso, &options).unwrap();
+        assert_eq!(validate_rings(&rings), Ok(()), "refine {refine_steps}");
+        check_rings(&rings);
+        assert_eq!(rings.len(), 1);
+        // The notch around the outside nodes stays open toward the border.
+        assert!(!rings[0].contains(Vec2::new(0.0, 12.0)));
+        assert!(!rings[0].contains(Vec2::new(0.5, 12.0)));
+    }
+    // The crossings beside the node keep the grid's gap from it, as the grid's do.
+    let traced = trace(field, &[Vec2::new(1.0, 5.0)], 1.0, iso).unwrap();
+    let grid = march_grid(&values, 3, 22, iso).unwrap();
+    for notch in [Vec2::new(0.0, 11.999), Vec2::new(0.0, 12.001)] {
+        assert!(traced[0].points.contains(&notch));
+        assert!(grid[0].points.contains(&notch));
+    }
 }

@@ -209,3 +209,17 @@ impl creature_march::TileField for TiledField<'_> {
         }
     }
 }
+
+/// A point-by-point field that asks to be read tile by tile (with the default `sample_tile`,
+/// 64 `value` calls): the same samples as the closure, so the same rings, bit for bit.
+pub struct PreferTiles<F>(pub F);
+
+impl<F: Fn(Vec2) -> f32> creature_march::TileField for PreferTiles<F> {
+    fn value(&self, p: Vec2) -> f32 {
+        (self.0)(p)
+    }
+
+    fn prefers_tiles(&self) -> bool {
+        true
+    }
+}

@@ -177,6 +177,21 @@ pub fn contains_each(rings: &[Ring], points: &[Vec2]) -> Vec<bool> {
         .map(|(k, p)| (p.y, k as u32))
         .collect();
     order.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+    let (Some(&(bottom, _)), Some(&(top, _))) = (order.first(), order.last()) else {
+        return inside;
+    };
+    // Height buckets over the points' range: `first[b]` is the first point (in `order`) of
+    // bucket `b` or above, so an edge finds the points level with it in a bucket or two.
+    let buckets = order.len().clamp(1, 1024);
+    let scale = buckets as f32 / (top - bottom).max(f32::MIN_POSITIVE);
+    let bucket = |y: f32| (((y - bottom) * scale).max(0.0) as usize).min(buckets - 1);
+    let mut first = alloc::vec![0u32; buckets + 1];
+    for &(y, _) in &order {
+        first[bucket(y) + 1] += 1;
+    }
+    for b in 0..buckets {
+        first[b + 1] += first[b];
+    }
     for ring in rings {
         let n = ring.points.len();
         if n < 3 {
@@ -186,10 +201,18 @@ pub fn contains_each(rings: &[Ring], points: &[Vec2]) -> Vec<bool> {
             let (a, b) = (ring.points[i], ring.points[(i + n - 1) % n]);
             // The points with `(a.y > y) != (b.y > y)`: heights in [low, high).
             let (low, high) = (a.y.min(b.y), a.y.max(b.y));
-            let from = order.partition_point(|q| q.0 < low);
-            let to = order.partition_point(|q| q.0 < high);
+            if !(high > bottom && low <= top) {
+                continue;
+            }
+            let from = first[bucket(low)] as usize;
             let (a, b) = (a.into_d2(), b.into_d2());
-            for &(_, k) in order.get(from..to).unwrap_or(&[]) {
+            for &(y, k) in order.get(from..).unwrap_or(&[]) {
+                if y >= high {
+                    break;
+                }
+                if y < low {
+                    continue;
+                }
                 let p = points[k as usize].into_d2();
                 // As in `contains`, so the answers agree bit for bit.
                 let x = a.x + (p.y - a.y) * (b.x - a.x) / (b.y - a.y);

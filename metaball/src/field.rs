@@ -373,7 +373,12 @@ impl Field2 {
     }
 
     /// The culled field value at `p`: the sum over the balls whose cutoff reaches `p`, in ball
-    /// order. Within [`error_bound`](Self::error_bound) of [`value_exact`](Self::value_exact).
+    /// order. Within [`error_bound`](Self::error_bound) of [`value_exact`](Self::value_exact),
+    /// up to `f32` rounding: for the Gaussian falloffs (seed, Blinn) each term's `exp` is the
+    /// crate's own (within `1.5e-7` of the true `exp`, the same bits on every platform, and
+    /// what [`sample_block`](Self::sample_block) uses), where `value_exact` uses the
+    /// platform's. [`value_and_gradient`](Self::value_and_gradient), [`shares`](Self::shares)
+    /// and [`blend`](Self::blend) sum the same terms.
     #[must_use]
     #[inline]
     pub fn value(&self, p: Vec2) -> f32 {
@@ -597,8 +602,9 @@ impl Field2 {
     /// It uses the separable evaluation of [`sample_grid`](Self::sample_grid) (one `exp` per
     /// ball per row and per column for the Gaussian falloffs), with the row and column
     /// factors of a ball computed together by a branch-free `exp` the compiler vectorises
-    /// (within `1.5e-7` relative of the true `exp`; the same bits on every platform). Against
-    /// [`value`](Self::value) at the same point it sums the same balls in the same order (so
+    /// (within `1.5e-7` relative of the true `exp`; the same bits on every platform, and the
+    /// `exp` of [`value`](Self::value)). Against `value` at the same point it sums the same
+    /// balls in the same order (so
     /// a sample is 0 exactly where `value` is) and differs only by rounding: within
     /// `1e-6 × max(value, 1)` (tested), and it obeys the same
     /// [`error_bound`](Self::error_bound) against the exact sum. It is **not** bit-identical

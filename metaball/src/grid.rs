@@ -478,6 +478,16 @@ fn separable(kernel: Kernel, q_cut: f32) -> Option<(f32, f32)> {
         .filter(|&(_, sharpness)| -sharpness * q_cut >= SEPARABLE_FLOOR)
 }
 
+/// One ball's contribution `scale · exp(−a q)` at a point within its cutoff, for a field
+/// whose kernel is [`separable`]: `exp` from [`math::exp_nonpositive`] (within `1.5e-7` of
+/// the true `exp`, the same bits on every platform), whose argument, at least `−a q_c`, stays
+/// above its floor. What the culled point queries (`value`, `value_and_gradient`, `shares`,
+/// `blend`) sum, through [`split_terms`]; the exact ones use the platform's `exp`.
+#[cfg(test)]
+fn split_value(scale: f32, a: f32, q: f32) -> f32 {
+    scale * math::exp_nonpositive(-a * q)
+}
+
 /// Blocks of at most `TILE × TILE` samples take the fixed-width path.
 const TILE: usize = 8;
 
@@ -757,12 +767,13 @@ impl<const D: usize> Core<D> {
     /// The cell coordinate of `x` along axis `k`, clamped into the grid.
     fn clamp_axis(&self, k: usize, x: f32) -> usize {
         // For t > 0 the truncating cast is `floor` (which is a library call on targets
-        // without SSE4.1); t ≤ 0 and NaN give cell 0.
+        // without SSE4.1), saturating at `u32::MAX` (cheaper than `as usize`, and far beyond
+        // any grid's size); t ≤ 0 and NaN give cell 0.
         let t = (x - self.origin[k]) * self.inv_cell;
         if !(t > 0.0) {
             0
         } else {
-            (t as usize).min(self.dims[k].saturating_sub(1))
+            (t as u32 as usize).min(self.dims[k].saturating_sub(1))
         }
     }
 
@@ -777,7 +788,8 @@ impl<const D: usize> Core<D> {
             if !(t >= 0.0 && t < dim as f32) {
                 return &[];
             }
-            cell += (t as usize).min(dim - 1) * stride;
+            // `as u32` is exact here and cheaper than `as usize`.
+            cell += (t as u32 as usize).min(dim - 1) * stride;
             stride *= dim;
         }
         match (self.starts.get(cell), self.starts.get(cell + 1)) {
@@ -817,23 +829,30 @@ impl<const D: usize> Core<D> {
     /// The culled sum.
     pub(crate) fn value(&self, p: [f32; D]) -> f32 {
         let entries = self.nearby(&p);
-        match self.kernel {
-            Kernel::Exponential { b } => {
-                culled_sum(entries, &p, |q| Kernel::Exponential { b }.value(q))
+        match self.separable {
+            Some((scale, a)) => {
+                let mut sum = 0.0;
+                split_terms(entries, &p, scale, a, |_, f| sum += f);
+                saturate(sum)
             }
-            Kernel::Gauss {
-                strength,
-                sharpness,
-            } => culled_sum(entries, &p, |q| {
+            None => match self.kernel {
+                Kernel::Exponential { b } => {
+                    culled_sum(entries, &p, |q| Kernel::Exponential { b }.value(q))
+                }
                 Kernel::Gauss {
                     strength,
                     sharpness,
+                } => culled_sum(entries, &p, |q| {
+                    Kernel::Gauss {
+                        strength,
+                        sharpness,
+                    }
+                    .value(q)
+                }),
+                Kernel::Wyvill { peak } => {
+                    culled_sum(entries, &p, |q| Kernel::Wyvill { peak }.value(q))
                 }
-                .value(q)
-            }),
-            Kernel::Wyvill { peak } => {
-                culled_sum(entries, &p, |q| Kernel::Wyvill { peak }.value(q))
-            }
+            },
         }
     }
 
@@ -851,7 +870,19 @@ impl<const D: usize> Core<D> {
 
     /// The culled value and gradient.
     pub(crate) fn value_and_gradient(&self, p: [f32; D]) -> (f32, [f32; D]) {
-        gradient_sum(self.kernel, self.nearby(&p), &p, true)
+        let entries = self.nearby(&p);
+        match self.separable {
+            Some((scale, a)) => {
+                let mut value = 0.0f32;
+                let mut gradient = [0.0f64; D];
+                split_terms(entries, &p, scale, a, |e, f| {
+                    value += f;
+                    add_gradient(&mut gradient, e, &p, -2.0 * a * f);
+                });
+                (saturate(value), gradient.map(saturate_f64))
+            }
+            None => gradient_sum(entries, &p, true, |q| self.kernel.value_and_slope(q)),
+        }
     }
 
     /// The exact value and gradient over every ball.
@@ -859,17 +890,34 @@ impl<const D: usize> Core<D> {
         if !p.iter().all(|x| x.is_finite()) {
             return (0.0, [0.0; D]);
         }
-        gradient_sum(self.kernel, &self.balls, &p, false)
+        gradient_sum(&self.balls, &p, false, |q| self.kernel.value_and_slope(q))
     }
 
     /// Calls `visit(ball index, contribution)` for every ball within its cutoff of `p` that
     /// contributes a positive amount, in ball order. Each contribution is finite: a valid
     /// kernel's value is at most its peak (`e^80` at worst).
-    fn for_each_contribution(&self, p: &[f32; D], mut visit: impl FnMut(u32, f32)) {
+    fn for_each_contribution(&self, p: &[f32; D], visit: impl FnMut(u32, f32)) {
+        match self.separable {
+            Some((scale, a)) => {
+                let mut visit = visit;
+                split_terms(self.nearby(p), p, scale, a, |e, f| visit(e.index, f));
+            }
+            None => self.contributions(p, |q| self.kernel.value(q), visit),
+        }
+    }
+
+    /// [`for_each_contribution`](Core::for_each_contribution) with the kernel `f(q)`.
+    #[inline(always)]
+    fn contributions(
+        &self,
+        p: &[f32; D],
+        kernel: impl Fn(f32) -> f32,
+        mut visit: impl FnMut(u32, f32),
+    ) {
         for e in self.nearby(p) {
             let d2 = distance2(p, &e.center);
             if d2 < e.cutoff_d2 {
-                let f = self.kernel.value(d2 * e.inv_r2);
+                let f = kernel(d2 * e.inv_r2);
                 if f > 0.0 && f.is_finite() {
                     visit(e.index, f);
                 }
@@ -886,10 +934,16 @@ impl<const D: usize> Core<D> {
         let mut per_id: SmallVec<[(u32, f64); 16]> = SmallVec::new();
         self.for_each_contribution(&p, |index, f| {
             let id = self.ids.get(index as usize).copied().unwrap_or(0);
-            if let Some(s) = per_id.iter_mut().find(|s| s.0 == id) {
-                s.1 += f64::from(f);
-            } else {
-                per_id.push((id, f64::from(f)));
+            // A bone's balls are usually consecutive: the last id first.
+            match per_id.last_mut() {
+                Some(last) if last.0 == id => last.1 += f64::from(f),
+                _ => {
+                    if let Some(s) = per_id.iter_mut().find(|s| s.0 == id) {
+                        s.1 += f64::from(f);
+                    } else {
+                        per_id.push((id, f64::from(f)));
+                    }
+                }
             }
         });
         // Largest first, ties by id: ids are distinct, so this is a strict order and the
@@ -1047,15 +1101,16 @@ fn culled_sum<const D: usize>(
     saturate(sum)
 }
 
-/// The value (an `f32` sum in ball order, the same bits as [`culled_sum`] / the exact sum) and
-/// the gradient, whose terms `2 f'(q) (p − c) / R²` are formed and summed in `f64`: one tiny
+/// The value (an `f32` sum in ball order, the same bits as [`culled_sum`] / the exact sum with
+/// the same `value_and_slope`) and the gradient, whose terms `2 f'(q) (p − c) / R²` are formed and summed in `f64`: one tiny
 /// steep ball can exceed `f32` on its own (`e^80 · 160 / R` for `R = 1e-6`), and terms of both
 /// signs could then meet as `∞ − ∞`. Each component saturates to `±f32::MAX`.
+#[inline(always)]
 fn gradient_sum<const D: usize>(
-    kernel: Kernel,
     entries: &[Entry<D>],
     p: &[f32; D],
     culled: bool,
+    value_and_slope: impl Fn(f32) -> (f32, f32),
 ) -> (f32, [f32; D]) {
     let mut value = 0.0f32;
     let mut gradient = [0.0f64; D];
@@ -1069,17 +1124,69 @@ fn gradient_sum<const D: usize>(
         if culled && !(d2 < e.cutoff_d2) {
             continue;
         }
-        let (f, slope2) = kernel.value_and_slope(d2 * e.inv_r2);
+        let (f, slope2) = value_and_slope(d2 * e.inv_r2);
         value += f;
-        if slope2 != 0.0 {
-            let scale = f64::from(slope2) * f64::from(e.inv_r2);
-            for k in 0..D {
-                gradient[k] += scale * f64::from(delta[k]);
-            }
-        }
+        add_gradient(&mut gradient, e, p, slope2);
     }
     (saturate(value), gradient.map(saturate_f64))
 }
+
+/// Adds one ball's gradient term `slope2 (p − c) / R²` (`slope2 = 2 f'(q)`), in `f64`.
+#[inline(always)]
+fn add_gradient<const D: usize>(gradient: &mut [f64; D], e: &Entry<D>, p: &[f32; D], slope2: f32) {
+    if slope2 != 0.0 {
+        let scale = f64::from(slope2) * f64::from(e.inv_r2);
+        for k in 0..D {
+            gradient[k] += scale * f64::from(p[k] - e.center[k]);
+        }
+    }
+}
+
+/// Calls `visit(entry, scale · exp(−a q))` for each of `entries` within its cutoff of `p`, in
+/// order, with [`split_value`]'s bits: up to [`POINT_BATCH`] entries at a time, their `exp`s
+/// computed together as vectors whose long dependency chains overlap.
+#[inline(always)]
+fn split_terms<'a, const D: usize>(
+    entries: &'a [Entry<D>],
+    p: &[f32; D],
+    scale: f32,
+    a: f32,
+    mut visit: impl FnMut(&'a Entry<D>, f32),
+) {
+    for block in entries.chunks(POINT_BATCH) {
+        let mut inside = [false; POINT_BATCH];
+        let mut f = [0.0f32; POINT_BATCH];
+        for ((e, inside), f) in block.iter().zip(&mut inside).zip(&mut f) {
+            let d2 = distance2(p, &e.center);
+            *inside = d2 < e.cutoff_d2;
+            *f = -a * (d2 * e.inv_r2);
+        }
+        // Lanes beyond their cutoff (or past the block) are never read, so their `exp` need
+        // not flush to 0; within it the argument is above −87, where the floored `exp` has
+        // the same bits.
+        for f in &mut f {
+            *f = scale * math::exp_nonpositive_floored(*f);
+        }
+        // The lanes within their cutoff, gathered without a branch per lane (whether a ball
+        // reaches is as good as random), then visited in order.
+        let mut kept = [0u8; POINT_BATCH];
+        let mut n = 0;
+        for (lane, &inside) in inside.iter().enumerate() {
+            if let Some(slot) = kept.get_mut(n) {
+                *slot = lane as u8;
+            }
+            n += usize::from(inside);
+        }
+        for &lane in kept.iter().take(n) {
+            if let (Some(e), Some(&f)) = (block.get(usize::from(lane)), f.get(usize::from(lane))) {
+                visit(e, f);
+            }
+        }
+    }
+}
+
+/// How many culling-cell entries a point query evaluates at once.
+const POINT_BATCH: usize = 16;
 
 /// Sorts a short slice by `order` (a strict order, so any sort gives the same result).
 fn insertion_sort<T: Copy>(xs: &mut [T], order: impl Fn(&T, &T) -> core::cmp::Ordering) {
@@ -1163,23 +1270,42 @@ mod tests {
     #[test]
     fn culled_sum_skips_exactly_the_balls_beyond_their_cutoff() {
         let balls = scattered(60, 300.0);
-        let kernel = Falloff::SEED.kernel();
-        let core = Core::<2>::build(&balls, kernel, 1e-4, None);
-        for i in 0..2000 {
-            let a = i as f32;
-            let p = [
-                ((a * 0.377).fract() - 0.5) * 400.0,
-                ((a * 0.291).fract() - 0.5) * 400.0,
-            ];
-            // Brute force over the balls within their cutoff, in ball order.
-            let mut expected = 0.0;
-            for ball in &core.balls {
-                let d2 = distance2(&p, &ball.center);
-                if d2 < ball.cutoff_d2 {
-                    expected += kernel.value(d2 * ball.inv_r2);
+        for falloff in [Falloff::SEED, Falloff::BLINN, Falloff::WYVILL, STEEP] {
+            let kernel = falloff.kernel();
+            let core = Core::<2>::build(&balls, kernel, 1e-4, None);
+            // The separable kernels' terms, with the inline `exp`; the others' from the kernel.
+            let term = |q: f32| match core.separable {
+                Some((scale, a)) => split_value(scale, a, q),
+                None => kernel.value(q),
+            };
+            for i in 0..2000 {
+                let a = i as f32;
+                let p = [
+                    ((a * 0.377).fract() - 0.5) * 400.0,
+                    ((a * 0.291).fract() - 0.5) * 400.0,
+                ];
+                // Brute force over the balls within their cutoff, in ball order.
+                let mut expected = 0.0;
+                let mut exact = 0.0;
+                for ball in &core.balls {
+                    let d2 = distance2(&p, &ball.center);
+                    if d2 < ball.cutoff_d2 {
+                        expected += term(d2 * ball.inv_r2);
+                        exact += kernel.value(d2 * ball.inv_r2);
+                    }
                 }
+                let expected = saturate(expected);
+                let at = (falloff, p);
+                assert_eq!(core.value(p).to_bits(), expected.to_bits(), "{at:?}");
+                let (v, _) = core.value_and_gradient(p);
+                assert_eq!(v.to_bits(), expected.to_bits(), "{at:?}");
+                // The inline `exp` is within 1.5e-7 of the platform's.
+                assert!((expected - exact).abs() <= 2e-7 * exact, "{at:?}");
+                assert_eq!(
+                    core.separable.is_some(),
+                    falloff != Falloff::WYVILL && falloff != STEEP
+                );
             }
-            assert_eq!(core.value(p).to_bits(), expected.to_bits(), "at {p:?}");
         }
     }
 

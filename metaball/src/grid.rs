@@ -1143,8 +1143,9 @@ fn add_gradient<const D: usize>(gradient: &mut [f64; D], e: &Entry<D>, p: &[f32;
 }
 
 /// Calls `visit(entry, scale · exp(−a q))` for each of `entries` within its cutoff of `p`, in
-/// order, with [`split_value`]'s bits: up to [`POINT_BATCH`] entries at a time, their `exp`s
-/// computed together as vectors whose long dependency chains overlap.
+/// order, with [`split_value`]'s bits: up to [`POINT_BATCH`] entries at a time, the `exp`s of
+/// those within their cutoff computed together as vectors whose long dependency chains
+/// overlap.
 #[inline(always)]
 fn split_terms<'a, const D: usize>(
     entries: &'a [Entry<D>],
@@ -1154,31 +1155,36 @@ fn split_terms<'a, const D: usize>(
     mut visit: impl FnMut(&'a Entry<D>, f32),
 ) {
     for block in entries.chunks(POINT_BATCH) {
-        let mut inside = [false; POINT_BATCH];
-        let mut f = [0.0f32; POINT_BATCH];
-        for ((e, inside), f) in block.iter().zip(&mut inside).zip(&mut f) {
-            let d2 = distance2(p, &e.center);
-            *inside = d2 < e.cutoff_d2;
-            *f = -a * (d2 * e.inv_r2);
-        }
-        // Lanes beyond their cutoff (or past the block) are never read, so their `exp` need
-        // not flush to 0; within it the argument is above −87, where the floored `exp` has
-        // the same bits.
-        for f in &mut f {
-            *f = scale * math::exp_nonpositive_floored(*f);
-        }
-        // The lanes within their cutoff, gathered without a branch per lane (whether a ball
-        // reaches is as good as random), then visited in order.
+        // The exponents of the entries within their cutoff, gathered without a branch per
+        // entry (whether a ball reaches is as good as random), then their `exp`s four at a
+        // time, then the visits in order.
         let mut kept = [0u8; POINT_BATCH];
+        let mut f = [0.0f32; POINT_BATCH];
         let mut n = 0;
-        for (lane, &inside) in inside.iter().enumerate() {
-            if let Some(slot) = kept.get_mut(n) {
+        for (lane, e) in block.iter().enumerate() {
+            let d2 = distance2(p, &e.center);
+            if let (Some(slot), Some(f)) = (kept.get_mut(n), f.get_mut(n)) {
                 *slot = lane as u8;
+                *f = -a * (d2 * e.inv_r2);
             }
-            n += usize::from(inside);
+            n += usize::from(d2 < e.cutoff_d2);
         }
-        for &lane in kept.iter().take(n) {
-            if let (Some(e), Some(&f)) = (block.get(usize::from(lane)), f.get(usize::from(lane))) {
+        // Within its cutoff an exponent is above −87, where the floored `exp` has the same
+        // bits; the lanes past `n` are never read.
+        if n <= 2 {
+            // Too few for a vector: one lane at a time (the same bits), shorter chains.
+            for f in f.iter_mut().take(n) {
+                *f = scale * math::exp_nonpositive_floored(*f);
+            }
+        } else {
+            for lanes in f.chunks_exact_mut(4).take(n.div_ceil(4)) {
+                for f in lanes {
+                    *f = scale * math::exp_nonpositive_floored(*f);
+                }
+            }
+        }
+        for (&lane, &f) in kept.iter().zip(&f).take(n) {
+            if let Some(e) = block.get(usize::from(lane)) {
                 visit(e, f);
             }
         }

@@ -1,8 +1,10 @@
 //! Sampling a 256×256 grid over a 50-ball creature-like field (the seed's median creature has
 //! 49 balls): the culled field against the plain all-balls reference in
 //! `tests/support/reference.rs` (every ball at every sample, as the seed does) and against the
-//! crate's own exact sum; and the same grid filled block by block with `Field2::sample_block`
-//! (8 × 8 blocks, as `creature-march`'s tile cache asks for them).
+//! crate's own exact sum; the same grid filled block by block with `Field2::sample_block`
+//! (8 × 8 blocks, as `creature-march`'s tile cache asks for them); and `value_and_gradient`
+//! and top-4 `shares` at every sample (what the `creature` facade asks at each outline and
+//! mesh vertex).
 //!
 //! Run: `cargo bench -p creature-metaball --bench field`
 
@@ -32,6 +34,22 @@ fn inputs() -> (Vec<Ball2>, Vec2, f32) {
     }
     let step = (max - min).max_element() / (SIDE - 1) as f32;
     (balls, min, step)
+}
+
+/// The sum over every sample of a per-point query (each point through `black_box`), written
+/// out at each use: through a shared generic helper, `value`'s loop ran 50% slower (code
+/// placement), which would measure the harness rather than the field.
+macro_rules! per_point {
+    ($origin:expr, $step:expr, |$p:ident| $query:expr) => {{
+        let mut sum = 0.0f32;
+        for row in 0..SIDE {
+            for column in 0..SIDE {
+                let $p = black_box($origin + $step * Vec2::new(column as f32, row as f32));
+                sum += $query;
+            }
+        }
+        sum
+    }};
 }
 
 fn bench(c: &mut Criterion) {
@@ -68,28 +86,25 @@ fn bench(c: &mut Criterion) {
         });
     });
     group.bench_function("culled_value_per_point", |b| {
+        b.iter(|| per_point!(origin, step, |p| field.value(p)));
+    });
+    group.bench_function("culled_value_and_gradient_per_point", |b| {
         b.iter(|| {
-            let mut sum = 0.0f32;
-            for row in 0..SIDE {
-                for column in 0..SIDE {
-                    let p = origin + step * Vec2::new(column as f32, row as f32);
-                    sum += field.value(black_box(p));
-                }
-            }
-            sum
+            per_point!(origin, step, |p| {
+                let (v, g) = field.value_and_gradient(p);
+                v + g.x + g.y
+            })
+        });
+    });
+    group.bench_function("culled_shares_4_per_point", |b| {
+        b.iter(|| {
+            per_point!(origin, step, |p| {
+                field.shares(p, 4).first().map_or(0.0, |s| s.weight)
+            })
         });
     });
     group.bench_function("exact_all_balls", |b| {
-        b.iter(|| {
-            let mut sum = 0.0f32;
-            for row in 0..SIDE {
-                for column in 0..SIDE {
-                    let p = origin + step * Vec2::new(column as f32, row as f32);
-                    sum += field.value_exact(black_box(p));
-                }
-            }
-            sum
-        });
+        b.iter(|| per_point!(origin, step, |p| field.value_exact(p)));
     });
     group.bench_function("reference_all_balls", |b| {
         b.iter(|| {

@@ -335,6 +335,19 @@ impl Kernel {
         }
     }
 
+    /// `(s, a)` of a Gaussian kernel written `s exp(−a q)` (`Exponential { b }` is
+    /// `e^(−b) exp(b q)`); `None` for Wyvill's.
+    pub(crate) fn gaussian(self) -> Option<(f32, f32)> {
+        match self {
+            Self::Exponential { b } => Some((math::exp(-b), -b)),
+            Self::Gauss {
+                strength,
+                sharpness,
+            } => Some((strength, sharpness)),
+            Self::Wyvill { .. } => None,
+        }
+    }
+
     /// `q_c = r_c²/R²` beyond which `f(q) < epsilon` (`0 < epsilon < 1`).
     pub(crate) fn cutoff_q(self, epsilon: f32) -> f32 {
         match self {
@@ -365,23 +378,25 @@ impl Kernel {
         }
     }
 
-    /// The largest gradient magnitude one ball of radius `radius` can contribute beyond its
-    /// cutoff: the gradient error bound per ball.
+    /// [`gradient_error_scale`](Self::gradient_error_scale) for one radius.
+    #[cfg(test)]
+    pub(crate) fn gradient_error(self, epsilon: f32, radius: f32) -> f32 {
+        self.gradient_error_scale(epsilon) / radius
+    }
+
+    /// The largest gradient magnitude one ball of radius `R` can contribute beyond its cutoff
+    /// (the gradient error bound per ball), times `R`: the bound is this divided by `R`,
+    /// so a field computes it once.
     ///
     /// For a Gaussian `s exp(−a q)` the magnitude is `s exp(−a r²/R²) 2 a r / R²`, which grows
     /// up to `r* = R / √(2a)` and falls after, so its supremum over `r ≥ r_c` is its value at
-    /// `max(r_c, r*)`.
-    pub(crate) fn gradient_error(self, epsilon: f32, radius: f32) -> f32 {
-        let (strength, sharpness) = match self {
-            Self::Exponential { b } => (math::exp(-b), -b),
-            Self::Gauss {
-                strength,
-                sharpness,
-            } => (strength, sharpness),
-            Self::Wyvill { .. } => return 0.0,
+    /// `max(r_c, r*)`: `s exp(−a q) 2 a √q / R` with `q = max(q_c, 1/(2a))`.
+    pub(crate) fn gradient_error_scale(self, epsilon: f32) -> f32 {
+        let Some((strength, sharpness)) = self.gaussian() else {
+            return 0.0;
         };
         let q = self.cutoff_q(epsilon).max(0.5 / sharpness);
-        strength * math::exp(-sharpness * q) * 2.0 * sharpness * math::sqrt(q) / radius
+        strength * math::exp(-sharpness * q) * 2.0 * sharpness * math::sqrt(q)
     }
 }
 

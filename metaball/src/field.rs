@@ -373,7 +373,12 @@ impl Field2 {
     }
 
     /// The culled field value at `p`: the sum over the balls whose cutoff reaches `p`, in ball
-    /// order. Within [`error_bound`](Self::error_bound) of [`value_exact`](Self::value_exact).
+    /// order. Within [`error_bound`](Self::error_bound) of [`value_exact`](Self::value_exact),
+    /// up to `f32` rounding: for the Gaussian falloffs (seed, Blinn) each term's `exp` is the
+    /// crate's own (within `1.5e-7` of the true `exp`, the same bits on every platform, and
+    /// what [`sample_block`](Self::sample_block) uses), where `value_exact` uses the
+    /// platform's. [`value_and_gradient`](Self::value_and_gradient), [`shares`](Self::shares)
+    /// and [`blend`](Self::blend) sum the same terms.
     #[must_use]
     #[inline]
     pub fn value(&self, p: Vec2) -> f32 {
@@ -553,7 +558,10 @@ impl Field2 {
     /// factor, so a ball costs one `exp` per row and column it reaches rather than one per
     /// sample. Each sample sums exactly the balls `value` would, in the same order, so it is
     /// within `f32` rounding (about `1e-6` relative) of `value` and obeys the same
-    /// [`error_bound`](Self::error_bound); it is not bit-identical to `value`.
+    /// [`error_bound`](Self::error_bound); it is not bit-identical to `value`. An exponential
+    /// falloff so steep that a factor could underflow (`blobbiness + ln(epsilon) < −80`, i.e.
+    /// `blobbiness` below about −70.8 at the default epsilon) and [`Falloff::Wyvill`] are not
+    /// split: each sample is then `value` itself.
     ///
     /// ```
     /// use creature_metaball::{Ball2, Falloff, Field2, glam::Vec2};
@@ -594,13 +602,21 @@ impl Field2 {
     /// It uses the separable evaluation of [`sample_grid`](Self::sample_grid) (one `exp` per
     /// ball per row and per column for the Gaussian falloffs), with the row and column
     /// factors of a ball computed together by a branch-free `exp` the compiler vectorises
-    /// (within `1.5e-7` relative of the true `exp`; the same bits on every platform). Against
-    /// [`value`](Self::value) at the same point it sums the same balls in the same order (so
+    /// (within `1.5e-7` relative of the true `exp`; the same bits on every platform, and the
+    /// `exp` of [`value`](Self::value)). Against `value` at the same point it sums the same
+    /// balls in the same order (so
     /// a sample is 0 exactly where `value` is) and differs only by rounding: within
     /// `1e-6 × max(value, 1)` (tested), and it obeys the same
     /// [`error_bound`](Self::error_bound) against the exact sum. It is **not** bit-identical
     /// to `value`, nor to `sample_grid` (which uses the platform's `exp`). For
-    /// [`Falloff::Wyvill`] (no separable form) each sample is `value` itself.
+    /// [`Falloff::Wyvill`] (no separable form) and the steepest exponential falloffs (as in
+    /// [`sample_grid`](Self::sample_grid)) each sample is `value` itself.
+    ///
+    /// Blocks of at most 8 × 8 take a fixed-width path: the candidate balls are the union of
+    /// per-cell bit sets (fields of up to 256 balls), each ball's 16 row and column factors
+    /// come from a batched, vectorised `exp`, and a ball whose cutoff provably covers the
+    /// whole block is added without per-sample tests; the terms are the same, in the same
+    /// order, as a test at every sample.
     ///
     /// ```
     /// use creature_metaball::{Ball2, Falloff, Field2, glam::Vec2};

@@ -3,6 +3,7 @@
 
 use alloc::vec;
 use alloc::vec::Vec;
+use glam::Vec4;
 use smallvec::SmallVec;
 
 use crate::falloff::Kernel;
@@ -16,6 +17,9 @@ struct Entry<const D: usize> {
     inv_r2: f32,
     /// `r_c²`: the ball is skipped at squared distances from here on.
     cutoff_d2: f32,
+    /// The padded cutoff radius `pad(r_c)`, for quick rejections that rounding cannot make
+    /// wrong.
+    reach: f32,
     index: u32,
 }
 
@@ -23,6 +27,10 @@ struct Entry<const D: usize> {
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) struct Core<const D: usize> {
     kernel: Kernel,
+    /// `(scale, a)` of a Gaussian kernel `scale · exp(−a q)` whose row and column factors
+    /// stay normal floats wherever a ball reaches ([`separable`]); `None` for the others,
+    /// which the grid and block samplers evaluate point by point.
+    separable: Option<(f32, f32)>,
     /// Every ball, in input order (the exact sum runs over these).
     balls: Vec<Entry<D>>,
     ids: Vec<u32>,
@@ -33,6 +41,11 @@ pub(crate) struct Core<const D: usize> {
     /// `starts[c]..starts[c + 1]` indexes `entries` for cell `c` (cells x-fastest).
     starts: Vec<u32>,
     entries: Vec<Entry<D>>,
+    /// For 2D fields of at most `64 ×` [`BIT_WORDS`] balls (empty otherwise): per cell,
+    /// `words` `u64`s with bit `i` set when ball `i` is in the cell's list. A block's
+    /// candidate balls are the bitwise or of the few cells under it, in ball order.
+    bits: Vec<u64>,
+    words: usize,
     bounds: ([f32; D], [f32; D]),
     value_error: f32,
     gradient_error: f32,
@@ -77,22 +90,39 @@ impl Core<2> {
         rows: usize,
         out: &mut [f32],
     ) {
-        out.fill(0.0);
         if cols == 0 || rows == 0 {
             return;
         }
+        let far = [
+            origin[0] + step * (cols - 1) as f32,
+            origin[1] + step * (rows - 1) as f32,
+        ];
+        let size = [cols, rows];
+        let tile = cols <= TILE && rows <= TILE;
+        if tile {
+            // `sample_tile` writes every sample.
+            if let Some(seen) = self.bit_candidates(origin, far) {
+                let balls = BitBalls {
+                    words: seen.get(..self.words).unwrap_or(&[]),
+                    base: 0,
+                    bits: 0,
+                    balls: &self.balls,
+                };
+                return self.sample_tile(origin, step, size, balls, out);
+            }
+        } else {
+            out.fill(0.0);
+        }
         let mut inline = [0.0f32; 3 * BLOCK_INLINE_SIDE];
         let mut heap = Vec::new();
-        let scratch: &mut [f32] = if cols <= BLOCK_INLINE_SIDE && rows <= BLOCK_INLINE_SIDE {
+        let scratch: &mut [f32] = if tile {
+            &mut []
+        } else if cols <= BLOCK_INLINE_SIDE && rows <= BLOCK_INLINE_SIDE {
             &mut inline
         } else {
             heap.resize(2 * cols.max(rows) + rows, 0.0);
             &mut heap
         };
-        let far = [
-            origin[0] + step * (cols - 1) as f32,
-            origin[1] + step * (rows - 1) as f32,
-        ];
         let (x0, x1) = (self.clamp_axis(0, origin[0]), self.clamp_axis(0, far[0]));
         let (y0, y1) = (self.clamp_axis(1, origin[1]), self.clamp_axis(1, far[1]));
         let spanned = (x1 - x0 + 1) * (y1 - y0 + 1);
@@ -100,22 +130,25 @@ impl Core<2> {
             (Some(&a), Some(&b)) => self.entries.get(a as usize..b as usize).unwrap_or(&[]),
             _ => &[],
         };
-        let size = [cols, rows];
-        let mut sample = |balls: &mut dyn Iterator<Item = &Entry<2>>, out: &mut [f32]| {
-            if cols <= TILE && rows <= TILE {
-                self.sample_tile(origin, step, size, balls, out);
-            } else {
-                self.sample_into::<true>(origin, step, size, balls, scratch, out);
-            }
-        };
         if spanned == 1 {
             // One cell: its list is already the balls in ball order, each once.
             let list = cell_entries(y0 * self.dims[0] + x0);
-            sample(&mut list.iter(), out);
+            if tile {
+                self.sample_tile(origin, step, size, list.iter(), out);
+            } else {
+                self.sample_into::<true>(origin, step, size, list.iter(), scratch, out);
+            }
         } else if spanned <= MAX_BLOCK_CELLS {
             // The union of the cells' lists, in ball order, each ball once: a bit per ball.
-            let mut seen: SmallVec<[u64; 8]> = SmallVec::new();
-            seen.resize(self.balls.len().div_ceil(64), 0);
+            let words = self.balls.len().div_ceil(64);
+            let mut inline_seen = [0u64; SEEN_INLINE_WORDS];
+            let mut heap_seen = Vec::new();
+            let seen: &mut [u64] = if words <= SEEN_INLINE_WORDS {
+                inline_seen.get_mut(..words).unwrap_or(&mut [])
+            } else {
+                heap_seen.resize(words, 0);
+                &mut heap_seen
+            };
             for y in y0..=y1 {
                 for x in x0..=x1 {
                     for e in cell_entries(y * self.dims[0] + x) {
@@ -126,116 +159,190 @@ impl Core<2> {
                     }
                 }
             }
-            let mut balls = seen.iter().enumerate().flat_map(|(w, &bits)| {
-                let mut bits = bits;
-                core::iter::from_fn(move || {
-                    if bits == 0 {
-                        return None;
-                    }
-                    let bit = bits.trailing_zeros() as usize;
-                    bits &= bits - 1;
-                    Some(w * 64 + bit)
-                })
-                .filter_map(|i| self.balls.get(i))
-            });
-            sample(&mut balls, out);
+            let balls = BitBalls {
+                words: seen,
+                base: 0,
+                bits: 0,
+                balls: &self.balls,
+            };
+            if tile {
+                self.sample_tile(origin, step, size, balls, out);
+            } else {
+                self.sample_into::<true>(origin, step, size, balls, scratch, out);
+            }
+        } else if tile {
+            self.sample_tile(origin, step, size, self.balls.iter(), out);
         } else {
-            sample(&mut self.balls.iter(), out);
+            self.sample_into::<true>(origin, step, size, self.balls.iter(), scratch, out);
         }
     }
 
+    /// The candidate balls of the block from `origin` to `far`: the or of the `bits` of the
+    /// cells under it (every ball whose padded cutoff box meets the block), or `None` when
+    /// the grid keeps no bits or the block covers more than [`MAX_BLOCK_CELLS`] cells.
+    #[inline]
+    fn bit_candidates(&self, origin: [f32; 2], far: [f32; 2]) -> Option<[u64; BIT_WORDS]> {
+        let words = self.words;
+        if words == 0 {
+            return None;
+        }
+        let width = self.dims[0];
+        let (x0, x1) = (self.clamp_axis(0, origin[0]), self.clamp_axis(0, far[0]));
+        let (y0, y1) = (self.clamp_axis(1, origin[1]), self.clamp_axis(1, far[1]));
+        if (x1 - x0 + 1) * (y1 - y0 + 1) > MAX_BLOCK_CELLS {
+            return None;
+        }
+        let mut seen = [0u64; BIT_WORDS];
+        for y in y0..=y1 {
+            let row = y * width;
+            for x in x0..=x1 {
+                let at = (row + x) * words;
+                for (w, word) in seen.iter_mut().enumerate().take(words) {
+                    *word |= self.bits.get(at + w).copied().unwrap_or(0);
+                }
+            }
+        }
+        Some(seen)
+    }
+
     /// [`sample_into`](Core::sample_into) with `BATCH` for blocks of at most
-    /// [`TILE`] × [`TILE`] samples, on fixed-size arrays so that every step runs
-    /// [`TILE`] lanes wide: each ball's column and row exponents in one batch each, and each
-    /// row's cutoff test and accumulation over all [`TILE`] columns (columns past `width` get
-    /// an infinite distance, so they fail the test). Each sample gets the terms of exactly the
-    /// balls whose `dx² + dy² < r_c²`, in ball order, as in `sample_into`.
-    fn sample_tile(
+    /// [`TILE`] × [`TILE`] samples, four lanes at a time ([`Vec4`]): per ball, the squared
+    /// column and row distances, from whose extremes the ball is classed as reaching no sample
+    /// (skipped), every sample (no per-sample cutoff test) or some (tested per sample); then,
+    /// a batch of up to [`TILE_BATCH`] reaching balls at a time, their column and row factors
+    /// (16 lanes of [`math::exp_nonpositive`] each, the batch's `exp`s overlapping), and
+    /// `(scale · row factor) · column factor` added to each sample, ball by ball.
+    ///
+    /// Rounded addition is monotonic, so `fl(min dx² + min dy²) ≥ r_c²` proves every sample's
+    /// `fl(dx² + dy²) ≥ r_c²`, and `fl(max dx² + max dy²) < r_c²` the opposite: each sample gets
+    /// the terms of exactly the balls whose `dx² + dy² < r_c²`, in ball order, as in
+    /// `sample_into`, with the same bits as a test at every sample.
+    fn sample_tile<'a>(
         &self,
         origin: [f32; 2],
         step: f32,
         [width, height]: [usize; 2],
-        balls: &mut dyn Iterator<Item = &Entry<2>>,
+        balls: impl Iterator<Item = &'a Entry<2>>,
         out: &mut [f32],
     ) {
-        let (scale, sharpness) = match self.kernel {
-            Kernel::Exponential { b } => (math::exp(-b), -b),
-            Kernel::Gauss {
-                strength,
-                sharpness,
-            } => (strength, sharpness),
-            Kernel::Wyvill { .. } => {
-                let mut scratch = [0.0f32; 0];
-                return self.sample_into::<true>(
-                    origin,
-                    step,
-                    [width, height],
-                    balls,
-                    &mut scratch,
-                    out,
-                );
-            }
+        let Some((scale, sharpness)) = self.separable else {
+            let mut scratch = [0.0f32; 0];
+            return self.sample_into::<true>(
+                origin,
+                step,
+                [width, height],
+                balls,
+                &mut scratch,
+                out,
+            );
         };
         if width == 0 || height == 0 {
             return;
         }
-        let mut xs = [0.0f32; TILE];
-        let mut ys = [0.0f32; TILE];
+        // Sample coordinates, four lanes a vector: the columns' x, then the rows' y. Lanes past
+        // the block repeat its last column or row: they leave the extremes alone, and their
+        // sums are never read.
+        let mut at = [0.0f32; 2 * TILE];
         for k in 0..TILE {
-            xs[k] = origin[0] + step * k as f32;
-            ys[k] = origin[1] + step * k as f32;
+            at[k] = origin[0] + step * k.min(width - 1) as f32;
+            at[TILE + k] = origin[1] + step * k.min(height - 1) as f32;
         }
-        let far = [
-            xs[(width - 1).min(TILE - 1)],
-            ys[(height - 1).min(TILE - 1)],
-        ];
-        let mut acc = [[0.0f32; TILE]; TILE];
-        for ball in balls {
-            if !(ball.cutoff_d2 > 0.0) {
-                continue;
+        let first = [at[0], at[TILE]];
+        let last = [at[TILE - 1], at[2 * TILE - 1]];
+        let xs = [Vec4::from_slice(&at[..4]), Vec4::from_slice(&at[4..8])];
+        let ys = [Vec4::from_slice(&at[8..12]), Vec4::from_slice(&at[12..])];
+        let minus_sharpness = Vec4::splat(-sharpness);
+        let mut acc = [[Vec4::ZERO; 2]; TILE];
+        // Reaching balls wait in a batch for their factors, so that the `exp`s of several
+        // balls (independent, each a long chain of dependent steps) overlap.
+        let mut batch = [[0.0f32; 2 * TILE]; TILE_BATCH];
+        let mut waiting: [Option<(&Entry<2>, bool)>; TILE_BATCH] = [None; TILE_BATCH];
+        let mut balls = balls.peekable();
+        while balls.peek().is_some() {
+            let mut len = 0;
+            for ball in balls.by_ref() {
+                // Squared distances: dx² per column, dy² per row. Finite coordinates and
+                // centres, so no NaN (at worst +∞).
+                let (dx2, dy2) = squares(xs, ys, ball.center);
+                let (lo_x, hi_x) = extremes(first[0], last[0], ball.center[0], dx2[0].x, dx2[1].w);
+                let (lo_y, hi_y) = extremes(first[1], last[1], ball.center[1], dy2[0].x, dy2[1].w);
+                // Also skips balls with no cutoff (r_c² = 0) and a NaN sum.
+                if !(lo_x + lo_y < ball.cutoff_d2) {
+                    continue;
+                }
+                let partial = !(hi_x + hi_y < ball.cutoff_d2);
+                let (Some(exponents), Some(slot)) = (batch.get_mut(len), waiting.get_mut(len))
+                else {
+                    break;
+                };
+                // Column exponents, then row exponents: `−a d²/R²`.
+                let inv_r2 = Vec4::splat(ball.inv_r2);
+                let d2s = [dx2[0], dx2[1], dy2[0], dy2[1]];
+                for (lanes, d2) in exponents.chunks_exact_mut(4).zip(d2s) {
+                    lanes.copy_from_slice(&(minus_sharpness * (d2 * inv_r2)).to_array());
+                }
+                *slot = Some((ball, partial));
+                len += 1;
+                if len == TILE_BATCH {
+                    break;
+                }
             }
-            let center = ball.center;
-            // A ball whose padded cutoff disc misses the block's rectangle reaches none of its
-            // samples (the padding dwarfs the rounding of these differences).
-            let gap_x = (origin[0] - center[0]).max(center[0] - far[0]).max(0.0);
-            let gap_y = (origin[1] - center[1]).max(center[1] - far[1]).max(0.0);
-            let reach = pad(math::sqrt(ball.cutoff_d2));
-            if !(gap_x * gap_x + gap_y * gap_y <= reach * reach) {
-                continue;
+            let batch = batch.get_mut(..len).unwrap_or(&mut []);
+            // Exponents below −87 (beyond [`SEPARABLE_FLOOR`]) belong to samples beyond the
+            // cutoff, whose terms are masked to +0, or to lanes past the block: their factors
+            // are never read, so they need not be flushed to 0.
+            for factors in batch.iter_mut() {
+                for f in factors.iter_mut() {
+                    *f = math::exp_nonpositive_floored(*f);
+                }
             }
-            let mut dx2 = [0.0f32; TILE];
-            let mut dy2 = [0.0f32; TILE];
-            // Column exponents, then row exponents.
-            let mut factors = [0.0f32; 2 * TILE];
-            for k in 0..TILE {
-                let dx = xs[k] - center[0];
-                let d = dx * dx;
-                dx2[k] = if k < width { d } else { f32::INFINITY };
-                factors[k] = -sharpness * (d * ball.inv_r2);
-                let dy = ys[k] - center[1];
-                let d = dy * dy;
-                dy2[k] = d;
-                factors[TILE + k] = -sharpness * (d * ball.inv_r2);
-            }
-            math::exp_nonpositive_lanes(&mut factors);
-            let (fx, fy) = factors.split_at(TILE);
-            for ((row, &dy2), &fy) in acc.iter_mut().zip(&dy2).zip(fy).take(height) {
-                let row_factor = scale * fy;
-                for ((sample, &dx2), &fx) in row.iter_mut().zip(&dx2).zip(fx) {
-                    // Same expression as `distance2`: (0 + dx²) + dy²; +0 for the others
-                    // keeps the bits (a sample starts at +0 and only grows).
-                    let term = if dx2 + dy2 < ball.cutoff_d2 {
-                        row_factor * fx
-                    } else {
-                        0.0
-                    };
-                    *sample += term;
+            for (factors, &slot) in batch.iter().zip(&waiting) {
+                let Some((ball, partial)) = slot else {
+                    continue;
+                };
+                let columns = [
+                    Vec4::from_slice(&factors[..4]),
+                    Vec4::from_slice(&factors[4..8]),
+                ];
+                let rows = &factors[TILE..];
+                if partial {
+                    let (dx2, dy2) = squares(xs, ys, ball.center);
+                    let cutoff_d2 = Vec4::splat(ball.cutoff_d2);
+                    let dy2 = [dy2[0].to_array(), dy2[1].to_array()];
+                    let dy2 = dy2.as_flattened();
+                    for ((sums, &fy), &dy2) in acc.iter_mut().zip(rows).zip(dy2) {
+                        let row_factor = Vec4::splat(scale * fy);
+                        let dy2 = Vec4::splat(dy2);
+                        for ((sum, &dx2), &fx) in sums.iter_mut().zip(&dx2).zip(&columns) {
+                            // Same expression as `distance2`: (0 + dx²) + dy². Outside, +0,
+                            // which keeps the bits: a sample starts at +0 and only grows.
+                            let inside = (dx2 + dy2).cmplt(cutoff_d2);
+                            *sum += Vec4::select(inside, row_factor * fx, Vec4::ZERO);
+                        }
+                    }
+                } else {
+                    for (sums, &fy) in acc.iter_mut().zip(rows) {
+                        let row_factor = Vec4::splat(scale * fy);
+                        for (sum, &fx) in sums.iter_mut().zip(&columns) {
+                            *sum += row_factor * fx;
+                        }
+                    }
                 }
             }
         }
         for (samples, row) in out.chunks_exact_mut(width).zip(&acc).take(height) {
-            for (sample, &a) in samples.iter_mut().zip(row) {
-                *sample = saturate(a);
+            let row = row.map(|sums| saturate4(sums).to_array());
+            let row = row.as_flattened();
+            if let (Ok(samples), Ok(row)) = (
+                <&mut [f32; TILE]>::try_from(&mut *samples),
+                <&[f32; TILE]>::try_from(row),
+            ) {
+                // A whole row: a fixed-size copy (a variable-length one is a `memcpy` call).
+                *samples = *row;
+            } else {
+                for (sample, &a) in samples.iter_mut().zip(row) {
+                    *sample = a;
+                }
             }
         }
     }
@@ -256,18 +363,11 @@ impl Core<2> {
     ) {
         let x_of = |j: usize| origin[0] + step * j as f32;
         let y_of = |i: usize| origin[1] + step * i as f32;
-        let (scale, sharpness) = match self.kernel {
-            Kernel::Exponential { b } => (math::exp(-b), -b),
-            Kernel::Gauss {
-                strength,
-                sharpness,
-            } => (strength, sharpness),
-            Kernel::Wyvill { .. } => {
-                for (n, sample) in out.iter_mut().enumerate().take(width * height) {
-                    *sample = self.value([x_of(n % width), y_of(n / width)]);
-                }
-                return;
+        let Some((scale, sharpness)) = self.separable else {
+            for (n, sample) in out.iter_mut().enumerate().take(width * height) {
+                *sample = self.value([x_of(n % width), y_of(n / width)]);
             }
+            return;
         };
         if width == 0 || height == 0 {
             return;
@@ -280,7 +380,7 @@ impl Core<2> {
                 continue;
             }
             let center = ball.center;
-            let reach = pad(math::sqrt(ball.cutoff_d2));
+            let reach = ball.reach;
             // A ball whose padded cutoff box misses the samples' box reaches none of them.
             if !(center[0] + reach >= origin[0]
                 && center[0] - reach <= far[0]
@@ -359,8 +459,108 @@ impl Core<2> {
     }
 }
 
+/// The smallest exponent a row or column factor of a reaching ball may have for the separable
+/// samplers: far enough above [`math::exp_nonpositive`]'s floor (−87, where it flushes to 0)
+/// and the normal range of `f32` that rounding in `dx² / R²` cannot cross it.
+const SEPARABLE_FLOOR: f32 = -80.0;
+
+/// `(scale, a)` for a Gaussian kernel `scale · exp(−a q)` that the grid and block samplers may
+/// split into a row factor `exp(−a dy²/R²)` times a column factor `exp(−a dx²/R²)`: each
+/// factor is at least the product, whose exponent is at least `−a q_c` wherever a ball
+/// reaches, so the factors of reaching balls stay normal floats when `−a q_c` is at least
+/// [`SEPARABLE_FLOOR`]. Otherwise (regression: the steepest exponential falloff,
+/// `blobbiness = −80`, at the default epsilon has `−a q_c ≈ −89`) a factor could flush to 0
+/// and a sample read 0 where [`Core::value`] reads up to `1e-3`; such kernels, and Wyvill's,
+/// are sampled point by point.
+fn separable(kernel: Kernel, q_cut: f32) -> Option<(f32, f32)> {
+    kernel
+        .gaussian()
+        .filter(|&(_, sharpness)| -sharpness * q_cut >= SEPARABLE_FLOOR)
+}
+
+/// One ball's contribution `scale · exp(−a q)` at a point within its cutoff, for a field
+/// whose kernel is [`separable`]: `exp` from [`math::exp_nonpositive`] (within `1.5e-7` of
+/// the true `exp`, the same bits on every platform), whose argument, at least `−a q_c`, stays
+/// above its floor. What the culled point queries (`value`, `value_and_gradient`, `shares`,
+/// `blend`) sum, through [`split_terms`]; the exact ones use the platform's `exp`.
+#[cfg(test)]
+fn split_value(scale: f32, a: f32, q: f32) -> f32 {
+    scale * math::exp_nonpositive(-a * q)
+}
+
 /// Blocks of at most `TILE × TILE` samples take the fixed-width path.
 const TILE: usize = 8;
+
+/// The squared distances from `center` of the columns' `xs` and the rows' `ys`.
+#[inline(always)]
+fn squares(xs: [Vec4; 2], ys: [Vec4; 2], center: [f32; 2]) -> ([Vec4; 2], [Vec4; 2]) {
+    let cx = Vec4::splat(center[0]);
+    let cy = Vec4::splat(center[1]);
+    let dx = [xs[0] - cx, xs[1] - cx];
+    let dy = [ys[0] - cy, ys[1] - cy];
+    (
+        [dx[0] * dx[0], dx[1] * dx[1]],
+        [dy[0] * dy[0], dy[1] * dy[1]],
+    )
+}
+
+/// How many reaching balls [`Core::sample_tile`] gathers before their `exp`s.
+const TILE_BATCH: usize = 8;
+
+/// A lower bound on the squared distances `a = d²(first)`, …, `b = d²(last)` from `center` of
+/// a monotonic row of coordinates (exact unless `center` lies within `[first, last]`, where it
+/// is 0), and their largest value. `|coordinate − center|` falls then rises along the row, and
+/// so does its rounded square: the largest is at an end, and so is the smallest when the centre
+/// lies beyond one.
+#[inline(always)]
+fn extremes(first: f32, last: f32, center: f32, a: f32, b: f32) -> (f32, f32) {
+    let lo = if center < first {
+        a
+    } else if center > last {
+        b
+    } else {
+        0.0
+    };
+    (lo, a.max(b))
+}
+
+/// 2D fields of up to `64 ×` this many balls keep a bit set of balls per culling cell.
+const BIT_WORDS: usize = 4;
+
+/// The balls whose bits are set in `words` (bit `i % 64` of word `i / 64` for ball `i`), in
+/// ball order.
+struct BitBalls<'a, const D: usize> {
+    words: &'a [u64],
+    /// The index of the first ball of the word in `bits`.
+    base: usize,
+    /// What is left of the current word.
+    bits: u64,
+    balls: &'a [Entry<D>],
+}
+
+impl<'a, const D: usize> Iterator for BitBalls<'a, D> {
+    type Item = &'a Entry<D>;
+
+    #[inline]
+    fn next(&mut self) -> Option<Self::Item> {
+        loop {
+            while self.bits == 0 {
+                let (&first, rest) = self.words.split_first()?;
+                self.bits = first;
+                self.words = rest;
+                self.base += 64;
+            }
+            let i = self.base - 64 + self.bits.trailing_zeros() as usize;
+            self.bits &= self.bits - 1;
+            if let Some(ball) = self.balls.get(i) {
+                return Some(ball);
+            }
+        }
+    }
+}
+
+/// Fields of up to `64 ×` this many balls merge the culling cells' lists on the stack.
+const SEEN_INLINE_WORDS: usize = 8;
 
 /// Blocks up to this many columns wide and rows high keep their factors on the stack.
 const BLOCK_INLINE_SIDE: usize = 16;
@@ -385,6 +585,7 @@ impl<const D: usize> Core<D> {
     ) -> Self {
         let q_cut = kernel.cutoff_q(epsilon);
         let per_ball_value_error = kernel.value_error(epsilon);
+        let gradient_scale = kernel.gradient_error_scale(epsilon);
         let mut value_error = 0.0f32;
         let mut gradient_error = 0.0f32;
         let mut compiled = Vec::with_capacity(balls.len());
@@ -395,15 +596,17 @@ impl<const D: usize> Core<D> {
         for (index, &(center, radius, id)) in balls.iter().enumerate() {
             let r2 = radius * radius;
             let cutoff = radius * math::sqrt(q_cut);
+            let cutoff_d2 = r2 * q_cut;
             compiled.push(Entry {
                 center,
                 inv_r2: 1.0 / r2,
-                cutoff_d2: r2 * q_cut,
+                cutoff_d2,
+                reach: pad(math::sqrt(cutoff_d2)),
                 index: u32::try_from(index).unwrap_or(u32::MAX),
             });
             ids.push(id);
             value_error += per_ball_value_error;
-            gradient_error += kernel.gradient_error(epsilon, radius);
+            gradient_error += gradient_scale / radius;
             for k in 0..D {
                 lo[k] = lo[k].min(center[k] - cutoff);
                 hi[k] = hi[k].max(center[k] + cutoff);
@@ -414,6 +617,7 @@ impl<const D: usize> Core<D> {
         }
         let mut core = Self {
             kernel,
+            separable: separable(kernel, q_cut),
             balls: compiled,
             ids,
             origin: lo,
@@ -422,6 +626,8 @@ impl<const D: usize> Core<D> {
             dims: [0; D],
             starts: vec![0],
             entries: Vec::new(),
+            bits: Vec::new(),
+            words: 0,
             bounds: (lo, hi),
             value_error,
             gradient_error,
@@ -430,13 +636,10 @@ impl<const D: usize> Core<D> {
             // No ball reaches epsilon anywhere: the culled field is zero everywhere.
             return core;
         }
-        cutoffs.sort_by(f32::total_cmp);
-        let median = cutoffs[cutoffs.len() / 2];
-        let padded: Vec<f32> = core
-            .balls
-            .iter()
-            .map(|b| pad(math::sqrt(b.cutoff_d2)))
-            .collect();
+        // The median: the same value a full sort puts in the middle.
+        let middle = cutoffs.len() / 2;
+        let (_, &mut median, _) = cutoffs.select_nth_unstable_by(middle, f32::total_cmp);
+        let padded: Vec<f32> = core.balls.iter().map(|b| b.reach).collect();
         let mut extent = [0.0f32; D];
         let mut origin = lo;
         for k in 0..D {
@@ -467,7 +670,7 @@ impl<const D: usize> Core<D> {
                     if ball.cutoff_d2 > 0.0 {
                         let mut covered = 1.0f64;
                         for _ in 0..D {
-                            covered *= f64::from(math::floor(2.0 * r / cell)) + 2.0;
+                            covered *= f64::from(floor_nonnegative(2.0 * r / cell)) + 2.0;
                         }
                         total += covered;
                     }
@@ -506,7 +709,11 @@ impl<const D: usize> Core<D> {
                 from[k] = self.clamp_axis(k, ball.center[k] - r);
                 to[k] = self.clamp_axis(k, ball.center[k] + r);
             }
-            for_each_cell(from, to, self.dims, |c| counts[c] += 1);
+            for_each_run(from, to, self.dims, |run| {
+                for count in counts.get_mut(run).unwrap_or(&mut []) {
+                    *count += 1;
+                }
+            });
             ranges.push(Some((from, to)));
         }
         let mut starts = Vec::with_capacity(cells + 1);
@@ -521,34 +728,52 @@ impl<const D: usize> Core<D> {
             center: [0.0; D],
             inv_r2: 0.0,
             cutoff_d2: 0.0,
+            reach: 0.0,
             index: 0,
         };
         let mut entries = vec![empty; running as usize];
-        for (ball, range) in self.balls.iter().zip(&ranges) {
+        let words = self.balls.len().div_ceil(64);
+        let keep_bits = D == 2 && words <= BIT_WORDS;
+        let mut bits = vec![0u64; if keep_bits { cells * words } else { 0 }];
+        for (i, (ball, range)) in self.balls.iter().zip(&ranges).enumerate() {
             if let Some((from, to)) = *range {
-                for_each_cell(from, to, self.dims, |c| {
-                    if let Some(slot) = cursor.get_mut(c) {
+                for_each_run(from, to, self.dims, |run| {
+                    let (first, len) = (run.start, run.len());
+                    for slot in cursor.get_mut(run).unwrap_or(&mut []) {
                         if let Some(entry) = entries.get_mut(*slot as usize) {
                             *entry = *ball;
                         }
                         *slot += 1;
+                    }
+                    if keep_bits {
+                        let (at, bit) = (first * words + i / 64, 1u64 << (i % 64));
+                        let span = (len - 1) * words + 1;
+                        let run = bits.get_mut(at..at + span).unwrap_or(&mut []);
+                        for word in run.iter_mut().step_by(words) {
+                            *word |= bit;
+                        }
                     }
                 });
             }
         }
         self.starts = starts;
         self.entries = entries;
+        if keep_bits {
+            self.bits = bits;
+            self.words = words;
+        }
     }
 
     /// The cell coordinate of `x` along axis `k`, clamped into the grid.
     fn clamp_axis(&self, k: usize, x: f32) -> usize {
         // For t > 0 the truncating cast is `floor` (which is a library call on targets
-        // without SSE4.1); t ≤ 0 and NaN give cell 0.
+        // without SSE4.1), saturating at `u32::MAX` (cheaper than `as usize`, and far beyond
+        // any grid's size); t ≤ 0 and NaN give cell 0.
         let t = (x - self.origin[k]) * self.inv_cell;
         if !(t > 0.0) {
             0
         } else {
-            (t as usize).min(self.dims[k].saturating_sub(1))
+            (t as u32 as usize).min(self.dims[k].saturating_sub(1))
         }
     }
 
@@ -563,7 +788,8 @@ impl<const D: usize> Core<D> {
             if !(t >= 0.0 && t < dim as f32) {
                 return &[];
             }
-            cell += (t as usize).min(dim - 1) * stride;
+            // `as u32` is exact here and cheaper than `as usize`.
+            cell += (t as u32 as usize).min(dim - 1) * stride;
             stride *= dim;
         }
         match (self.starts.get(cell), self.starts.get(cell + 1)) {
@@ -603,23 +829,30 @@ impl<const D: usize> Core<D> {
     /// The culled sum.
     pub(crate) fn value(&self, p: [f32; D]) -> f32 {
         let entries = self.nearby(&p);
-        match self.kernel {
-            Kernel::Exponential { b } => {
-                culled_sum(entries, &p, |q| Kernel::Exponential { b }.value(q))
+        match self.separable {
+            Some((scale, a)) => {
+                let mut sum = 0.0;
+                split_terms(entries, &p, scale, a, |_, f| sum += f);
+                saturate(sum)
             }
-            Kernel::Gauss {
-                strength,
-                sharpness,
-            } => culled_sum(entries, &p, |q| {
+            None => match self.kernel {
+                Kernel::Exponential { b } => {
+                    culled_sum(entries, &p, |q| Kernel::Exponential { b }.value(q))
+                }
                 Kernel::Gauss {
                     strength,
                     sharpness,
+                } => culled_sum(entries, &p, |q| {
+                    Kernel::Gauss {
+                        strength,
+                        sharpness,
+                    }
+                    .value(q)
+                }),
+                Kernel::Wyvill { peak } => {
+                    culled_sum(entries, &p, |q| Kernel::Wyvill { peak }.value(q))
                 }
-                .value(q)
-            }),
-            Kernel::Wyvill { peak } => {
-                culled_sum(entries, &p, |q| Kernel::Wyvill { peak }.value(q))
-            }
+            },
         }
     }
 
@@ -637,7 +870,19 @@ impl<const D: usize> Core<D> {
 
     /// The culled value and gradient.
     pub(crate) fn value_and_gradient(&self, p: [f32; D]) -> (f32, [f32; D]) {
-        gradient_sum(self.kernel, self.nearby(&p), &p, true)
+        let entries = self.nearby(&p);
+        match self.separable {
+            Some((scale, a)) => {
+                let mut value = 0.0f32;
+                let mut gradient = [0.0f64; D];
+                split_terms(entries, &p, scale, a, |e, f| {
+                    value += f;
+                    add_gradient(&mut gradient, e, &p, -2.0 * a * f);
+                });
+                (saturate(value), gradient.map(saturate_f64))
+            }
+            None => gradient_sum(entries, &p, true, |q| self.kernel.value_and_slope(q)),
+        }
     }
 
     /// The exact value and gradient over every ball.
@@ -645,17 +890,34 @@ impl<const D: usize> Core<D> {
         if !p.iter().all(|x| x.is_finite()) {
             return (0.0, [0.0; D]);
         }
-        gradient_sum(self.kernel, &self.balls, &p, false)
+        gradient_sum(&self.balls, &p, false, |q| self.kernel.value_and_slope(q))
     }
 
     /// Calls `visit(ball index, contribution)` for every ball within its cutoff of `p` that
     /// contributes a positive amount, in ball order. Each contribution is finite: a valid
     /// kernel's value is at most its peak (`e^80` at worst).
-    fn for_each_contribution(&self, p: &[f32; D], mut visit: impl FnMut(u32, f32)) {
+    fn for_each_contribution(&self, p: &[f32; D], visit: impl FnMut(u32, f32)) {
+        match self.separable {
+            Some((scale, a)) => {
+                let mut visit = visit;
+                split_terms(self.nearby(p), p, scale, a, |e, f| visit(e.index, f));
+            }
+            None => self.contributions(p, |q| self.kernel.value(q), visit),
+        }
+    }
+
+    /// [`for_each_contribution`](Core::for_each_contribution) with the kernel `f(q)`.
+    #[inline(always)]
+    fn contributions(
+        &self,
+        p: &[f32; D],
+        kernel: impl Fn(f32) -> f32,
+        mut visit: impl FnMut(u32, f32),
+    ) {
         for e in self.nearby(p) {
             let d2 = distance2(p, &e.center);
             if d2 < e.cutoff_d2 {
-                let f = self.kernel.value(d2 * e.inv_r2);
+                let f = kernel(d2 * e.inv_r2);
                 if f > 0.0 && f.is_finite() {
                     visit(e.index, f);
                 }
@@ -666,27 +928,41 @@ impl<const D: usize> Core<D> {
     /// Per-id sums in `f64`: at most 2^32 terms of at most `e^80 ≈ 5.5e34` each, so they never
     /// overflow even where the `f32` value saturates.
     pub(crate) fn shares(&self, p: [f32; D], k: usize) -> Shares {
-        let mut per_id: SmallVec<[(u32, f64); 16]> = SmallVec::new();
         if k == 0 {
             return Shares::new();
         }
+        let mut per_id: SmallVec<[(u32, f64); 16]> = SmallVec::new();
         self.for_each_contribution(&p, |index, f| {
             let id = self.ids.get(index as usize).copied().unwrap_or(0);
-            if let Some(s) = per_id.iter_mut().find(|s| s.0 == id) {
-                s.1 += f64::from(f);
-            } else {
-                per_id.push((id, f64::from(f)));
+            // A bone's balls are usually consecutive: the last id first.
+            match per_id.last_mut() {
+                Some(last) if last.0 == id => last.1 += f64::from(f),
+                _ => {
+                    if let Some(s) = per_id.iter_mut().find(|s| s.0 == id) {
+                        s.1 += f64::from(f);
+                    } else {
+                        per_id.push((id, f64::from(f)));
+                    }
+                }
             }
         });
-        per_id.sort_by(|a, b| b.1.total_cmp(&a.1).then(a.0.cmp(&b.0)));
-        per_id.truncate(k);
-        let total: f64 = per_id.iter().map(|s| s.1).sum();
+        // Largest first, ties by id: ids are distinct, so this is a strict order and the
+        // first `k` after a partial selection and a sort are those of a full sort.
+        let order = |a: &(u32, f64), b: &(u32, f64)| b.1.total_cmp(&a.1).then(a.0.cmp(&b.0));
+        let kept = k.min(per_id.len());
+        let top = if kept < per_id.len() {
+            let (top, _, _) = per_id.select_nth_unstable_by(kept, order);
+            top
+        } else {
+            &mut per_id[..]
+        };
+        insertion_sort(top, order);
+        let total: f64 = top.iter().map(|s| s.1).sum();
         if !(total > 0.0 && total.is_finite()) {
             return Shares::new();
         }
-        per_id
-            .into_iter()
-            .map(|(id, weight)| Share {
+        top.iter()
+            .map(|&(id, weight)| Share {
                 id,
                 // In (0, 1]: the cast cannot overflow.
                 weight: (weight / total) as f32,
@@ -761,6 +1037,16 @@ fn index_range(lo: f32, hi: f32, origin: f32, step: f32, count: usize) -> Option
     Some((first, last))
 }
 
+/// `floor(x)` for `x ≥ 0` (NaN and +∞ unchanged) without a library call: below 2²³ a truncating cast,
+/// from there on `x` is already an integer.
+fn floor_nonnegative(x: f32) -> f32 {
+    if x < 8_388_608.0 {
+        (x as u32) as f32
+    } else {
+        x
+    }
+}
+
 fn pad(r: f32) -> f32 {
     r * (1.0 + BOX_PAD) + f32::MIN_POSITIVE
 }
@@ -780,6 +1066,13 @@ fn distance2<const D: usize>(p: &[f32; D], c: &[f32; D]) -> f32 {
 /// it used to read 0, outside). A NaN cannot arise from such a sum; it would read 0.
 fn saturate(x: f32) -> f32 {
     if x.is_nan() { 0.0 } else { x.min(f32::MAX) }
+}
+
+/// [`saturate`] on four lanes.
+#[inline(always)]
+fn saturate4(x: Vec4) -> Vec4 {
+    // `min` gives the bound for a NaN lane, which the select then zeroes.
+    Vec4::select(x.cmpeq(x), x.min(Vec4::splat(f32::MAX)), Vec4::ZERO)
 }
 
 /// An `f64` gradient component as `f32`, saturated to `±f32::MAX`.
@@ -808,15 +1101,16 @@ fn culled_sum<const D: usize>(
     saturate(sum)
 }
 
-/// The value (an `f32` sum in ball order, the same bits as [`culled_sum`] / the exact sum) and
-/// the gradient, whose terms `2 f'(q) (p − c) / R²` are formed and summed in `f64`: one tiny
+/// The value (an `f32` sum in ball order, the same bits as [`culled_sum`] / the exact sum with
+/// the same `value_and_slope`) and the gradient, whose terms `2 f'(q) (p − c) / R²` are formed and summed in `f64`: one tiny
 /// steep ball can exceed `f32` on its own (`e^80 · 160 / R` for `R = 1e-6`), and terms of both
 /// signs could then meet as `∞ − ∞`. Each component saturates to `±f32::MAX`.
+#[inline(always)]
 fn gradient_sum<const D: usize>(
-    kernel: Kernel,
     entries: &[Entry<D>],
     p: &[f32; D],
     culled: bool,
+    value_and_slope: impl Fn(f32) -> (f32, f32),
 ) -> (f32, [f32; D]) {
     let mut value = 0.0f32;
     let mut gradient = [0.0f64; D];
@@ -830,16 +1124,101 @@ fn gradient_sum<const D: usize>(
         if culled && !(d2 < e.cutoff_d2) {
             continue;
         }
-        let (f, slope2) = kernel.value_and_slope(d2 * e.inv_r2);
+        let (f, slope2) = value_and_slope(d2 * e.inv_r2);
         value += f;
-        if slope2 != 0.0 {
-            let scale = f64::from(slope2) * f64::from(e.inv_r2);
-            for k in 0..D {
-                gradient[k] += scale * f64::from(delta[k]);
+        add_gradient(&mut gradient, e, p, slope2);
+    }
+    (saturate(value), gradient.map(saturate_f64))
+}
+
+/// Adds one ball's gradient term `slope2 (p − c) / R²` (`slope2 = 2 f'(q)`), in `f64`.
+#[inline(always)]
+fn add_gradient<const D: usize>(gradient: &mut [f64; D], e: &Entry<D>, p: &[f32; D], slope2: f32) {
+    if slope2 != 0.0 {
+        let scale = f64::from(slope2) * f64::from(e.inv_r2);
+        for k in 0..D {
+            gradient[k] += scale * f64::from(p[k] - e.center[k]);
+        }
+    }
+}
+
+/// Calls `visit(entry, scale · exp(−a q))` for each of `entries` within its cutoff of `p`, in
+/// order, with [`split_value`]'s bits: up to [`POINT_BATCH`] entries at a time, the `exp`s of
+/// those within their cutoff computed together as vectors whose long dependency chains
+/// overlap.
+#[inline(always)]
+fn split_terms<'a, const D: usize>(
+    entries: &'a [Entry<D>],
+    p: &[f32; D],
+    scale: f32,
+    a: f32,
+    mut visit: impl FnMut(&'a Entry<D>, f32),
+) {
+    for block in entries.chunks(POINT_BATCH) {
+        // The exponents of the entries within their cutoff, gathered without a branch per
+        // entry (whether a ball reaches is as good as random), then their `exp`s four at a
+        // time, then the visits in order.
+        let mut kept = [0u8; POINT_BATCH];
+        let mut f = [0.0f32; POINT_BATCH];
+        let mut n = 0;
+        for (lane, e) in block.iter().enumerate() {
+            let d2 = distance2(p, &e.center);
+            if let (Some(slot), Some(f)) = (kept.get_mut(n), f.get_mut(n)) {
+                *slot = lane as u8;
+                *f = -a * (d2 * e.inv_r2);
+            }
+            n += usize::from(d2 < e.cutoff_d2);
+        }
+        // Within its cutoff an exponent is above −87, where the floored `exp` has the same
+        // bits; the lanes past `n` are never read.
+        if n <= 2 {
+            // Too few for a vector: one lane at a time (the same bits), shorter chains.
+            for f in f.iter_mut().take(n) {
+                *f = scale * math::exp_nonpositive_floored(*f);
+            }
+        } else {
+            for lanes in f.chunks_exact_mut(4).take(n.div_ceil(4)) {
+                for f in lanes {
+                    *f = scale * math::exp_nonpositive_floored(*f);
+                }
+            }
+        }
+        for (&lane, &f) in kept.iter().zip(&f).take(n) {
+            if let Some(e) = block.get(usize::from(lane)) {
+                visit(e, f);
             }
         }
     }
-    (saturate(value), gradient.map(saturate_f64))
+}
+
+/// How many culling-cell entries a point query evaluates at once.
+const POINT_BATCH: usize = 16;
+
+/// Sorts a short slice by `order` (a strict order, so any sort gives the same result).
+fn insertion_sort<T: Copy>(xs: &mut [T], order: impl Fn(&T, &T) -> core::cmp::Ordering) {
+    for i in 1..xs.len() {
+        let mut j = i;
+        while j > 0 && order(&xs[j - 1], &xs[j]) == core::cmp::Ordering::Greater {
+            xs.swap(j - 1, j);
+            j -= 1;
+        }
+    }
+}
+
+/// Calls `f` with the flat indices of each run of cells along axis 0 (contiguous) in the
+/// inclusive box `from..=to`.
+fn for_each_run<const D: usize>(
+    from: [usize; D],
+    to: [usize; D],
+    dims: [usize; D],
+    mut f: impl FnMut(core::ops::Range<usize>),
+) {
+    let len = to[0] + 1 - from[0];
+    let mut outer_from = from;
+    let mut outer_to = to;
+    outer_to[0] = from[0];
+    outer_from[0] = from[0];
+    for_each_cell(outer_from, outer_to, dims, |c| f(c..c + len));
 }
 
 /// Calls `f` with the flat index of every cell in the inclusive box `from..=to`.
@@ -897,23 +1276,42 @@ mod tests {
     #[test]
     fn culled_sum_skips_exactly_the_balls_beyond_their_cutoff() {
         let balls = scattered(60, 300.0);
-        let kernel = Falloff::SEED.kernel();
-        let core = Core::<2>::build(&balls, kernel, 1e-4, None);
-        for i in 0..2000 {
-            let a = i as f32;
-            let p = [
-                ((a * 0.377).fract() - 0.5) * 400.0,
-                ((a * 0.291).fract() - 0.5) * 400.0,
-            ];
-            // Brute force over the balls within their cutoff, in ball order.
-            let mut expected = 0.0;
-            for ball in &core.balls {
-                let d2 = distance2(&p, &ball.center);
-                if d2 < ball.cutoff_d2 {
-                    expected += kernel.value(d2 * ball.inv_r2);
+        for falloff in [Falloff::SEED, Falloff::BLINN, Falloff::WYVILL, STEEP] {
+            let kernel = falloff.kernel();
+            let core = Core::<2>::build(&balls, kernel, 1e-4, None);
+            // The separable kernels' terms, with the inline `exp`; the others' from the kernel.
+            let term = |q: f32| match core.separable {
+                Some((scale, a)) => split_value(scale, a, q),
+                None => kernel.value(q),
+            };
+            for i in 0..2000 {
+                let a = i as f32;
+                let p = [
+                    ((a * 0.377).fract() - 0.5) * 400.0,
+                    ((a * 0.291).fract() - 0.5) * 400.0,
+                ];
+                // Brute force over the balls within their cutoff, in ball order.
+                let mut expected = 0.0;
+                let mut exact = 0.0;
+                for ball in &core.balls {
+                    let d2 = distance2(&p, &ball.center);
+                    if d2 < ball.cutoff_d2 {
+                        expected += term(d2 * ball.inv_r2);
+                        exact += kernel.value(d2 * ball.inv_r2);
+                    }
                 }
+                let expected = saturate(expected);
+                let at = (falloff, p);
+                assert_eq!(core.value(p).to_bits(), expected.to_bits(), "{at:?}");
+                let (v, _) = core.value_and_gradient(p);
+                assert_eq!(v.to_bits(), expected.to_bits(), "{at:?}");
+                // The inline `exp` is within 1.5e-7 of the platform's.
+                assert!((expected - exact).abs() <= 2e-7 * exact, "{at:?}");
+                assert_eq!(
+                    core.separable.is_some(),
+                    falloff != Falloff::WYVILL && falloff != STEEP
+                );
             }
-            assert_eq!(core.value(p).to_bits(), expected.to_bits(), "at {p:?}");
         }
     }
 
@@ -1056,6 +1454,145 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// The 8 × 8 tile path's definition, over every ball in ball order: the terms
+    /// `(scale · exp(−a dy²/R²)) · exp(−a dx²/R²)` of the balls with `(0 + dx²) + dy² < r_c²`,
+    /// each factor from [`math::exp_nonpositive`], then saturated.
+    fn tile_by_definition(
+        core: &Core<2>,
+        origin: [f32; 2],
+        step: f32,
+        size: [usize; 2],
+    ) -> Vec<f32> {
+        let (scale, sharpness) = core.separable.unwrap();
+        let mut out = vec![0.0f32; size[0] * size[1]];
+        for (n, sample) in out.iter_mut().enumerate() {
+            let x = origin[0] + step * (n % size[0]) as f32;
+            let y = origin[1] + step * (n / size[0]) as f32;
+            let mut sum = 0.0f32;
+            for ball in &core.balls {
+                let (dx, dy) = (x - ball.center[0], y - ball.center[1]);
+                let (dx2, dy2) = (dx * dx, dy * dy);
+                if dx2 + dy2 < ball.cutoff_d2 {
+                    let fx = math::exp_nonpositive(-sharpness * (dx2 * ball.inv_r2));
+                    let fy = math::exp_nonpositive(-sharpness * (dy2 * ball.inv_r2));
+                    sum += (scale * fy) * fx;
+                }
+            }
+            *sample = saturate(sum);
+        }
+        out
+    }
+
+    /// Every way a tile finds its candidate balls (one culling cell, the cells' bit sets for up
+    /// to 256 balls, merged lists beyond, every ball for a tile over many cells), every class
+    /// of ball (reaching no sample, every sample, some) and partial tiles: the same bits as the
+    /// definition, so exactly the balls `value` sums reach each sample, in ball order.
+    #[test]
+    fn tiles_are_their_definition_bit_for_bit() {
+        let mut checked = 0;
+        for (count, spread) in [(12, 60.0), (60, 200.0), (150, 300.0), (300, 400.0)] {
+            let balls = scattered(count, spread);
+            for falloff in [
+                Falloff::SEED,
+                Falloff::BLINN,
+                Falloff::Exponential { blobbiness: -3.0 },
+            ] {
+                for cell_size in [None, Some(4.0), Some(1e3)] {
+                    let core = Core::<2>::build(&balls, falloff.kernel(), 1e-4, cell_size);
+                    assert_eq!(core.words > 0, count <= 64 * BIT_WORDS);
+                    for i in 0..40 {
+                        let a = i as f32;
+                        let origin = [
+                            ((a * 0.377).fract() - 0.5) * spread * 1.2,
+                            ((a * 0.291).fract() - 0.5) * spread * 1.2,
+                        ];
+                        let step = [0.3, 1.0, 2.39, 7.0, 40.0][i % 5];
+                        let size = [[8, 8], [8, 8], [5, 8], [8, 3], [1, 1]][i / 5 % 5];
+                        let mut block = vec![f32::NAN; size[0] * size[1]];
+                        core.sample_block(origin, step, size[0], size[1], &mut block);
+                        let expected = tile_by_definition(&core, origin, step, size);
+                        for (n, (b, e)) in block.iter().zip(&expected).enumerate() {
+                            let at = (count, falloff, cell_size, origin, step, size, n);
+                            assert_eq!(b.to_bits(), e.to_bits(), "{at:?}: {b} vs {e}");
+                            let p = [
+                                origin[0] + step * (n % size[0]) as f32,
+                                origin[1] + step * (n / size[0]) as f32,
+                            ];
+                            let v = core.value(p);
+                            assert!((b - v).abs() <= 1e-6 * v.max(1.0), "{at:?}: {b} vs {v}");
+                            assert_eq!(*b == 0.0, v == 0.0, "{at:?}");
+                            checked += usize::from(v > 0.0);
+                        }
+                    }
+                }
+            }
+        }
+        assert!(checked > 10_000, "{checked}");
+        // Tiles whose nearest sample sits just inside or outside a lone ball's cutoff, on
+        // either side and corner-wise: the classification's edge cases.
+        for falloff in [Falloff::SEED, Falloff::BLINN] {
+            let core = Core::<2>::build(&[([3.0, -2.0], 2.5, 0)], falloff.kernel(), 1e-4, None);
+            let rc = math::sqrt(core.balls[0].cutoff_d2);
+            for i in 0..400 {
+                let t = 1.0 + (i as f32 - 200.0) * 2e-7;
+                let step = [0.5, 3.0][i % 2];
+                let far = 7.0 * step;
+                let (x, y, step) = match i % 5 {
+                    0 => (3.0 + rc * t, -2.0, step),
+                    1 => (3.0 - rc * t - far, -2.0 - far / 2.0, step),
+                    2 => (3.0, -2.0 + rc * t, step),
+                    3 => (3.0 + rc * t * 0.6, -2.0 + rc * t * 0.8, step),
+                    // From the centre: only the far corner can be beyond the cutoff.
+                    _ => (3.0, -2.0, rc * t / (7.0 * core::f32::consts::SQRT_2)),
+                };
+                let mut block = [f32::NAN; 64];
+                core.sample_block([x, y], step, 8, 8, &mut block);
+                let expected = tile_by_definition(&core, [x, y], step, [8, 8]);
+                for (b, e) in block.iter().zip(&expected) {
+                    assert_eq!(
+                        b.to_bits(),
+                        e.to_bits(),
+                        "{falloff:?} at {x}, {y}: {b} vs {e}"
+                    );
+                }
+            }
+        }
+    }
+
+    /// Regression: the separable samplers split `scale · exp(−a q)` into a row and a column
+    /// factor; for the steepest exponential falloff (`blobbiness = −80`, peak `e^80`) a factor
+    /// of a reaching ball can be below `e^−87`, where the tile's `exp` flushed it to 0, so
+    /// `sample_block` read 0 where `value` read up to `8.6e-4` (and `sample_grid`, with the
+    /// platform's `exp`, did the same at small epsilons). Such kernels are now sampled point by
+    /// point.
+    #[test]
+    fn steep_falloffs_sample_what_value_reads() {
+        for epsilon in [1e-4, 1e-12] {
+            let core = Core::<2>::build(&[([0.0, 0.0], 1.0, 0)], STEEP.kernel(), epsilon, None);
+            assert!(core.separable.is_none());
+            for i in 0..200 {
+                let x = 1.0 + i as f32 * 6e-4;
+                let v = core.value([x, 0.0]);
+                let mut block = [f32::NAN; 1];
+                core.sample_block([x, 0.0], 1.0, 1, 1, &mut block);
+                let mut tile = [f32::NAN; 64];
+                core.sample_block([x, 0.0], 0.25, 8, 8, &mut tile);
+                let grid = core.sample_grid([x, 0.0], 1.0, 1, 1);
+                for s in [block[0], tile[0], grid[0]] {
+                    assert_eq!(s.to_bits(), v.to_bits(), "eps {epsilon} at {x}: {s} vs {v}");
+                }
+            }
+            assert!(core.value([1.04, 0.0]) > 1e-4);
+        }
+        // A gentler steep falloff still splits.
+        let gentler = Falloff::Exponential { blobbiness: -60.0 };
+        assert!(
+            Core::<2>::build(&[([0.0, 0.0], 1.0, 0)], gentler.kernel(), 1e-4, None)
+                .separable
+                .is_some()
+        );
     }
 
     #[test]

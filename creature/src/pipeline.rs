@@ -179,10 +179,22 @@ fn build(skeleton: &Skeleton2d, params: &Params2d, seed: u64) -> Result<Creature
         .map(|p| Vec2::new((p.x - min.x) / extent.x, (max.y - p.y) / extent.y))
         .collect();
 
-    // Skin weights: the top-4 bone shares of the field.
+    // Skin weights: the top-4 bone shares of the field. Quality of the outline: the
+    // first-order distance of its vertices from the iso line, from the same pass over the
+    // balls at each of them.
     let mut influences: Vec<Influences> = Vec::with_capacity(mesh.positions.len());
-    for &p in &mesh.positions {
-        let shares = field.shares(p, 4);
+    let mut outline_error = 0.0f32;
+    for (k, &p) in mesh.positions.iter().enumerate() {
+        let shares = if k < mesh.outline_len {
+            let (v, g, shares) = field.value_gradient_and_shares(p, 4);
+            let slope = g.length();
+            if slope > 0.0 {
+                outline_error = outline_error.max((v - ISO_LEVEL).abs() / slope);
+            }
+            shares
+        } else {
+            field.shares(p, 4)
+        };
         let inf = if shares.is_empty() {
             Influences::single(nearest_bone(&plain, p))
         } else {
@@ -191,16 +203,6 @@ fn build(skeleton: &Skeleton2d, params: &Params2d, seed: u64) -> Result<Creature
         influences.push(inf);
     }
     let skin = report(&influences);
-
-    // Quality of the outline: first-order distance of its vertices from the iso line.
-    let mut outline_error = 0.0f32;
-    for &p in mesh.positions.iter().take(mesh.outline_len) {
-        let (v, g) = field.value_and_gradient(p);
-        let slope = g.length();
-        if slope > 0.0 {
-            outline_error = outline_error.max((v - ISO_LEVEL).abs() / slope);
-        }
-    }
 
     let (texture, normal_map) = if params.texture {
         let options = TextureOptions::DEFAULT

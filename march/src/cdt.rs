@@ -720,9 +720,14 @@ impl Cdt {
         let tan_half = crate::math::tan_f64(tan_half);
         let mut queues = Queues::default();
         for t in 0..self.tris.len() as u32 {
+            let tri = &self.tris[t as usize];
+            if !tri.inside || tri.fixed == 0 {
+                continue;
+            }
+            let fixed = tri.fixed;
             for i in 0..3 {
                 let e = edge(t, i);
-                if self.is_inside(t) && self.is_fixed(e) && self.encroached(e) {
+                if fixed & (1 << i) != 0 && self.encroached(e) {
                     queues.segments.push_back(e);
                 }
             }

@@ -251,18 +251,35 @@ fn mesh_rings(outline: &[&[Vec2]], options: &MeshOptions) -> Result<Mesh2, March
     // The curve keeps the walks short; the rounds keep the flips few (rings inserted along
     // the curve alone cost about twice the flips: points on a convex arc in order are the
     // incremental algorithm's worst case). Then the ring edges, most of them already there.
-    let mut order: Vec<(u64, u32)> = points
+    // One integer key per point, sorted as integers: the round (5 bits), the curve position
+    // (2 × 15 bits) and the point's index (29 bits; more points than that sort by pairs).
+    let mut order: Vec<u64> = Vec::with_capacity(count);
+    let mut pairs: Vec<(u64, u32)> = Vec::new();
+    let key = |k: usize, p: Vec2| {
+        let round = 31 - mix(k as u32).leading_zeros().min(31);
+        (u64::from(round) << 30) | u64::from(morton_key(p, lo, hi) >> 2)
+    };
+    if count < 1 << 29 {
+        order.extend(
+            points
+                .iter()
+                .enumerate()
+                .map(|(k, &p)| (key(k, p) << 29) | k as u64),
+        );
+        order.sort_unstable();
+    } else {
+        pairs.extend(
+            points
+                .iter()
+                .enumerate()
+                .map(|(k, &p)| (key(k, p), k as u32)),
+        );
+        pairs.sort_unstable();
+    }
+    let sorted = order
         .iter()
-        .enumerate()
-        .map(|(k, &p)| {
-            let round = 31 - mix(k as u32).leading_zeros().min(31);
-            (
-                (u64::from(round) << 32) | u64::from(morton_key(p, lo, hi)),
-                k as u32,
-            )
-        })
-        .collect();
-    order.sort_unstable();
+        .map(|&key| (key & ((1 << 29) - 1)) as u32)
+        .chain(pairs.iter().map(|&(_, k)| k));
     // The vertex of each point, and the point of each vertex (for error reports).
     let mut vertex = alloc::vec![NONE; count];
     let mut point_of = alloc::vec![NONE; count + FIRST_VERTEX];
@@ -278,7 +295,7 @@ fn mesh_rings(outline: &[&[Vec2]], options: &MeshOptions) -> Result<Mesh2, March
             near: points[k],
         }
     };
-    for &(_, k) in &order {
+    for k in sorted {
         let k = k as usize;
         match cdt.insert(points[k].as_dvec2()) {
             Ok(v) => {
@@ -527,17 +544,6 @@ fn distance_squared_to_segment(p: Vec2, a: Vec2, b: Vec2) -> f32 {
     p.distance_squared(a + ab * t)
 }
 
-fn distance_to_segment(p: Vec2, a: Vec2, b: Vec2) -> f32 {
-    let ab = b - a;
-    let len2 = ab.length_squared();
-    let t = if len2 > 0.0 {
-        ((p - a).dot(ab) / len2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    p.distance(a + ab * t)
-}
-
 /// Drops points within `tolerance` of the segment joining the last kept point and the next
 /// point, checking every point dropped since the last kept one (at most 32 in a row).
 fn simplify(points: &[Vec2], tolerance: f32) -> Vec<Vec2> {
@@ -548,15 +554,17 @@ fn simplify(points: &[Vec2], tolerance: f32) -> Vec<Vec2> {
     let mut out = Vec::with_capacity(n);
     let mut dropped: Vec<Vec2> = Vec::new();
     out.push(points[0]);
+    // Squared distances against the squared tolerance: no square roots.
+    let limit = tolerance * tolerance;
     for i in 1..n {
         let p = points[i];
         let next = points[(i + 1) % n];
         let last = out.last().copied().unwrap_or(p);
         let droppable = dropped.len() < 32
-            && distance_to_segment(p, last, next) <= tolerance
+            && distance_squared_to_segment(p, last, next) <= limit
             && dropped
                 .iter()
-                .all(|&q| distance_to_segment(q, last, next) <= tolerance);
+                .all(|&q| distance_squared_to_segment(q, last, next) <= limit);
         if droppable {
             dropped.push(p);
         } else {

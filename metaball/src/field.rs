@@ -447,6 +447,28 @@ impl Field2 {
         self.core.shares(p.to_array(), k)
     }
 
+    /// [`value_and_gradient`](Self::value_and_gradient) and [`shares`](Self::shares) at `p` in
+    /// one pass over the balls that reach it (two for Wyvill's falloff): the same results, bit
+    /// for bit, for about the price of one — for a mesh vertex that needs its skin weights and
+    /// its distance from the iso line (`|value − 1| / |gradient|`) alike.
+    ///
+    /// ```
+    /// use creature_metaball::{Ball2, Falloff, Field2, glam::Vec2};
+    ///
+    /// let balls = [Ball2::new(Vec2::ZERO, 5.0, 3), Ball2::new(Vec2::new(6.0, 0.0), 5.0, 5)];
+    /// let field = Field2::new(&balls, Falloff::SEED)?;
+    /// let p = Vec2::new(2.0, 1.0);
+    /// let (value, gradient, shares) = field.value_gradient_and_shares(p, 4);
+    /// assert_eq!((value, gradient), field.value_and_gradient(p));
+    /// assert_eq!(shares, field.shares(p, 4));
+    /// # Ok::<(), creature_metaball::MetaballError>(())
+    /// ```
+    #[must_use]
+    pub fn value_gradient_and_shares(&self, p: Vec2, k: usize) -> (f32, Vec2, Shares) {
+        let (v, g, s) = self.core.value_gradient_and_shares(p.to_array(), k);
+        (v, Vec2::from_array(g), s)
+    }
+
     /// Blends one attribute per ball (colour, texture weights, anything linear) with the
     /// per-ball shares `f_i(p) / D(p)` of the culled field: `Σ (f_i / Σ f_j) a_i`. The weights
     /// are normalised before they multiply the attributes (in `f64`), so the blend of finite

@@ -931,43 +931,56 @@ impl<const D: usize> Core<D> {
         if k == 0 {
             return Shares::new();
         }
-        let mut per_id: SmallVec<[(u32, f64); 16]> = SmallVec::new();
-        self.for_each_contribution(&p, |index, f| {
-            let id = self.ids.get(index as usize).copied().unwrap_or(0);
-            // A bone's balls are usually consecutive: the last id first.
-            match per_id.last_mut() {
-                Some(last) if last.0 == id => last.1 += f64::from(f),
-                _ => {
-                    if let Some(s) = per_id.iter_mut().find(|s| s.0 == id) {
-                        s.1 += f64::from(f);
-                    } else {
-                        per_id.push((id, f64::from(f)));
-                    }
-                }
+        let mut per_id = PerId::new();
+        self.for_each_contribution(&p, |index, f| self.add_share(&mut per_id, index, f));
+        top_shares(per_id, k)
+    }
+
+    /// [`value_and_gradient`](Core::value_and_gradient) and [`shares`](Core::shares) at `p`
+    /// from one pass over the balls (for the separable falloffs; two passes for Wyvill's):
+    /// the same results, bit for bit, as the two calls.
+    pub(crate) fn value_gradient_and_shares(
+        &self,
+        p: [f32; D],
+        k: usize,
+    ) -> (f32, [f32; D], Shares) {
+        let Some((scale, a)) = self.separable else {
+            let (value, gradient) = self.value_and_gradient(p);
+            return (value, gradient, self.shares(p, k));
+        };
+        let mut value = 0.0f32;
+        let mut gradient = [0.0f64; D];
+        let mut per_id = PerId::new();
+        split_terms(self.nearby(&p), &p, scale, a, |e, f| {
+            value += f;
+            add_gradient(&mut gradient, e, &p, -2.0 * a * f);
+            if k > 0 {
+                self.add_share(&mut per_id, e.index, f);
             }
         });
-        // Largest first, ties by id: ids are distinct, so this is a strict order and the
-        // first `k` after a partial selection and a sort are those of a full sort.
-        let order = |a: &(u32, f64), b: &(u32, f64)| b.1.total_cmp(&a.1).then(a.0.cmp(&b.0));
-        let kept = k.min(per_id.len());
-        let top = if kept < per_id.len() {
-            let (top, _, _) = per_id.select_nth_unstable_by(kept, order);
-            top
+        let shares = if k == 0 {
+            Shares::new()
         } else {
-            &mut per_id[..]
+            top_shares(per_id, k)
         };
-        insertion_sort(top, order);
-        let total: f64 = top.iter().map(|s| s.1).sum();
-        if !(total > 0.0 && total.is_finite()) {
-            return Shares::new();
+        (saturate(value), gradient.map(saturate_f64), shares)
+    }
+
+    /// Adds ball `index`'s contribution `f` to its id's sum.
+    #[inline(always)]
+    fn add_share(&self, per_id: &mut PerId, index: u32, f: f32) {
+        let id = self.ids.get(index as usize).copied().unwrap_or(0);
+        // A bone's balls are usually consecutive: the last id first.
+        match per_id.last_mut() {
+            Some(last) if last.0 == id => last.1 += f64::from(f),
+            _ => {
+                if let Some(s) = per_id.iter_mut().find(|s| s.0 == id) {
+                    s.1 += f64::from(f);
+                } else {
+                    per_id.push((id, f64::from(f)));
+                }
+            }
         }
-        top.iter()
-            .map(|&(id, weight)| Share {
-                id,
-                // In (0, 1]: the cast cannot overflow.
-                weight: (weight / total) as f32,
-            })
-            .collect()
     }
 
     /// `Σ (f_i / Σ f_j) a_i` over the balls reaching `p`, the weights normalised in `f64`
@@ -1251,6 +1264,36 @@ fn for_each_cell<const D: usize>(
             k += 1;
         }
     }
+}
+
+/// Per-id contribution sums at a point (inline for the usual few ids).
+type PerId = SmallVec<[(u32, f64); 16]>;
+
+/// The `k` largest per-id sums (`k > 0`), largest first, renormalised to sum to 1; empty where
+/// they sum to 0.
+fn top_shares(mut per_id: PerId, k: usize) -> Shares {
+    // Largest first, ties by id: ids are distinct, so this is a strict order and the
+    // first `k` after a partial selection and a sort are those of a full sort.
+    let order = |a: &(u32, f64), b: &(u32, f64)| b.1.total_cmp(&a.1).then(a.0.cmp(&b.0));
+    let kept = k.min(per_id.len());
+    let top = if kept < per_id.len() {
+        let (top, _, _) = per_id.select_nth_unstable_by(kept, order);
+        top
+    } else {
+        &mut per_id[..]
+    };
+    insertion_sort(top, order);
+    let total: f64 = top.iter().map(|s| s.1).sum();
+    if !(total > 0.0 && total.is_finite()) {
+        return Shares::new();
+    }
+    top.iter()
+        .map(|&(id, weight)| Share {
+            id,
+            // In (0, 1]: the cast cannot overflow.
+            weight: (weight / total) as f32,
+        })
+        .collect()
 }
 
 #[cfg(test)]

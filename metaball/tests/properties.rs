@@ -171,6 +171,21 @@ proptest! {
         }
     }
 
+    /// The one-pass query is the two separate ones, bit for bit, for every falloff.
+    #[test]
+    fn value_gradient_and_shares_is_both_queries_at_once(
+        field in strategies::field2(),
+        p in strategies::vec2_in(120.0),
+        k in 0usize..6,
+    ) {
+        let (value, gradient, shares) = field.value_gradient_and_shares(p, k);
+        let (v, g) = field.value_and_gradient(p);
+        prop_assert_eq!(value.to_bits(), v.to_bits());
+        prop_assert_eq!(gradient.x.to_bits(), g.x.to_bits());
+        prop_assert_eq!(gradient.y.to_bits(), g.y.to_bits());
+        prop_assert_eq!(shares, field.shares(p, k));
+    }
+
     #[test]
     fn blending_a_constant_gives_the_constant(
         field in strategies::field2(),

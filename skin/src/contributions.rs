@@ -56,11 +56,17 @@ pub fn from_contributions(
             None => totals.push((bone, f64::from(value))),
         }
     }
-    totals.retain(|&mut (_, t)| t > 0.0);
+    if totals.iter().any(|&(_, t)| !(t > 0.0)) {
+        totals.retain(|&mut (_, t)| t > 0.0);
+    }
     if totals.is_empty() {
         return Err(SkinError::ZeroContribution);
     }
-    totals.sort_by(|a, b| b.1.total_cmp(&a.1).then(a.0.cmp(&b.0)));
+    let order = |a: &(u16, f64), b: &(u16, f64)| b.1.total_cmp(&a.1).then(a.0.cmp(&b.0));
+    // Often sorted already (the top shares of a field come largest first).
+    if !totals.windows(2).all(|w| order(&w[0], &w[1]).is_le()) {
+        totals.sort_by(order);
+    }
     totals.truncate(k);
     let sum: f64 = totals.iter().map(|&(_, t)| t).sum();
     let mut inf = Influences::NONE;

@@ -162,6 +162,7 @@ fn build(skeleton: &Skeleton2d, params: &Params2d, seed: u64) -> Result<Creature
     // Mesh.
     let options = MeshOptions::DEFAULT
         .with_interior_spacing(params.interior_spacing)
+        .with_clearance(params.interior_clearance)
         .with_min_angle(params.min_angle)
         .with_simplify(params.simplify);
     let mesh = triangulate(&rings, &options)?;

@@ -60,14 +60,20 @@ pub fn params_2d() -> impl Strategy<Value = Params2d> {
         0.0f32..=4.0,
     );
     let eyes = (int_span(0, 8), span(0.0, 1.0));
-    let mesh = (3.0f32..=8.0, 0.0f32..=0.5, 10.0f32..=40.0, 0.0f32..=30.0);
+    let mesh = (
+        3.0f32..=8.0,
+        0.0f32..=0.5,
+        10.0f32..=40.0,
+        0.0f32..=1.5,
+        0.0f32..=30.0,
+    );
     let texture = (any::<bool>(), 8u32..=64, 0.0f32..=4.0, 0.0f32..=50.0);
     (spine, limbs, eyes, mesh, texture).prop_map(
         |(
             (spine_bones, spine_thickness, spine_length, spine_multiplier),
             (limb_probability, limb_bones, limb_length, limb_thickness, limb_multiplier, socket),
             (eye_count, eye_size),
-            (outline_step, simplify, interior_spacing, min_angle),
+            (outline_step, simplify, interior_spacing, clearance, min_angle),
             (texture, texture_size, depth_shading, normal_relief),
         )| {
             Params2d::DEFAULT
@@ -87,6 +93,7 @@ pub fn params_2d() -> impl Strategy<Value = Params2d> {
                 // A fraction of the step: `simplify` must not exceed it.
                 .with_simplify(simplify * outline_step)
                 .with_interior_spacing(interior_spacing)
+                .with_interior_clearance(clearance)
                 .with_min_angle(min_angle)
                 .with_texture(texture)
                 .with_texture_size(texture_size)

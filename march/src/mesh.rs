@@ -378,9 +378,9 @@ fn morton_key(p: Vec2, lo: Vec2, hi: Vec2) -> u32 {
 /// every ring edge.
 ///
 /// (Grading the lattice towards the outline — nested lattices of halved spacing in distance
-/// bands — was tried: spade's cost grows with the vertex count, and the graded set, 810
-/// points before and 1,095 after refinement on the bench creature against 993 from this
-/// lattice, was slower.)
+/// bands — was tried with the spade-based mesher this crate had before its own: the cost grows
+/// with the vertex count, and the graded set, 810 points before and 1,095 after refinement on
+/// the bench creature against 993 from this lattice, was slower.)
 fn interior_points(rings: &[&[Vec2]], options: &MeshOptions, out: &mut Vec<Vec2>) {
     let Some((lo, hi)) = crate::ring::bounds(&rings.concat()) else {
         return;

@@ -2,6 +2,7 @@
 //! texture.
 
 use alloc::vec::Vec;
+use core::cell::RefCell;
 
 use glam::{Vec2, Vec3};
 
@@ -9,7 +10,8 @@ use creature_march::{
     MarchOptions, MeshOptions, Ring, TileField, contains_each, trace_field, triangulate,
 };
 use creature_metaball::{
-    Ball2, CoverOptions, Falloff, Field2, ISO_LEVEL, MULTIPLIER_RANGE, cover_segment_with,
+    Ball2, BlockSampler, CoverOptions, Falloff, Field2, ISO_LEVEL, MULTIPLIER_RANGE,
+    cover_segment_with,
 };
 use creature_skin::{Influences, from_contributions, report};
 
@@ -48,13 +50,20 @@ pub fn generate_2d(seed: u64, params: &Params2d) -> Result<Creature2d, Error> {
 }
 
 /// The metaball field as `creature-march` samples it: whole 8 × 8 tiles of grid nodes at once
-/// through [`Field2::sample_block`] (its separable, culled path), single points through
+/// through a [`BlockSampler`] ([`Field2::sample_block`]'s separable, culled path, each
+/// ball's row and column factors reused between tiles), single points through
 /// [`Field2::value`].
-struct TiledField<'a>(&'a Field2);
+struct TiledField<'a>(RefCell<BlockSampler<'a>>);
+
+impl<'a> TiledField<'a> {
+    fn new(field: &'a Field2) -> Self {
+        Self(RefCell::new(field.block_sampler()))
+    }
+}
 
 impl TileField for TiledField<'_> {
     fn value(&self, p: Vec2) -> f32 {
-        self.0.value(p)
+        self.0.borrow().field().value(p)
     }
 
     fn prefers_tiles(&self) -> bool {
@@ -64,7 +73,11 @@ impl TileField for TiledField<'_> {
     fn sample_tile(&self, first: [i32; 2], step: f32, out: &mut [f32; creature_march::TILE_NODES]) {
         let size = creature_march::TILE_SIZE;
         let origin = creature_march::node_point(first, step);
-        if self.0.sample_block(origin, step, size, size, out).is_err() {
+        let sampled = self
+            .0
+            .borrow_mut()
+            .sample_block(origin, step, size, size, out);
+        if sampled.is_err() {
             // Only for a non-finite origin or step, which the tracer never passes: outside.
             out.fill(f32::NAN);
         }
@@ -123,7 +136,7 @@ fn build(skeleton: &Skeleton2d, params: &Params2d, seed: u64) -> Result<Creature
     // Outline.
     let hints: Vec<Vec2> = plain.iter().map(|b| b.center).collect();
     let mut rings = trace_field(
-        &TiledField(&field),
+        &TiledField::new(&field),
         &hints,
         params.outline_step,
         ISO_LEVEL,

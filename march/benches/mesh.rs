@@ -102,7 +102,8 @@ fn bench(c: &mut Criterion) {
 
     let mut group = c.benchmark_group("creature_49_balls_step_5");
     group.sample_size(50);
-    let tiled = support::TiledField(&field);
+    // A new tile sampler per trace, as for a new field: its factor cache starts empty.
+    let tiled = || support::TiledField::new(&field);
     group.bench_function("outline_trace", |b| {
         b.iter(|| trace(culled, black_box(&hints), 5.0, 1.0));
     });
@@ -110,7 +111,15 @@ fn bench(c: &mut Criterion) {
         b.iter(|| trace_with(culled, black_box(&hints), 5.0, 1.0, &no_holes));
     });
     group.bench_function("outline_trace_tiles", |b| {
-        b.iter(|| trace_field(&tiled, black_box(&hints), 5.0, 1.0, &MarchOptions::DEFAULT));
+        b.iter(|| {
+            trace_field(
+                &tiled(),
+                black_box(&hints),
+                5.0,
+                1.0,
+                &MarchOptions::DEFAULT,
+            )
+        });
     });
     group.bench_function("triangulate", |b| {
         b.iter(|| triangulate(black_box(&rings), &options));
@@ -132,8 +141,14 @@ fn bench(c: &mut Criterion) {
     });
     group.bench_function("outline_trace_tiles_and_triangulate_simplify_0.5", |b| {
         b.iter(|| {
-            let rings = trace_field(&tiled, black_box(&hints), 5.0, 1.0, &MarchOptions::DEFAULT)
-                .expect("outline");
+            let rings = trace_field(
+                &tiled(),
+                black_box(&hints),
+                5.0,
+                1.0,
+                &MarchOptions::DEFAULT,
+            )
+            .expect("outline");
             triangulate(&rings, &lean)
         });
     });

@@ -151,9 +151,13 @@ fn bench(c: &mut Criterion) {
     let copied =
         trace_field(&grid_tiles, &hints, step, 1.0, &MarchOptions::DEFAULT).expect("valid trace");
     let traced = trace(culled, &hints, step, 1.0).expect("valid trace");
-    let tiled = support::TiledField(&field);
+    // A new tile sampler per trace, as for a new field: its factor cache starts empty.
+    let tiled = || support::TiledField::new(&field);
+    let uncached = support::UncachedTiledField(&field);
     let traced_tiles =
-        trace_field(&tiled, &hints, step, 1.0, &MarchOptions::DEFAULT).expect("valid trace");
+        trace_field(&tiled(), &hints, step, 1.0, &MarchOptions::DEFAULT).expect("valid trace");
+    let traced_uncached =
+        trace_field(&uncached, &hints, step, 1.0, &MarchOptions::DEFAULT).expect("valid trace");
     let theirs = builder
         .contours(&values64, &[1.0])
         .expect("valid contour-rs grid");
@@ -169,6 +173,7 @@ fn bench(c: &mut Criterion) {
     assert_eq!(looked_up, copied, "same samples, same rings");
     assert_eq!(grid.len(), traced.len(), "same rings");
     assert_eq!(grid.len(), traced_tiles.len(), "same rings");
+    assert_eq!(traced_tiles, traced_uncached, "same samples, same rings");
     assert_eq!(grid.len(), their_rings, "same rings as contour-rs");
     let points =
         |rings: &[creature_march::Ring]| rings.iter().map(|r| r.points.len()).sum::<usize>();
@@ -204,10 +209,29 @@ fn bench(c: &mut Criterion) {
         b.iter(|| trace_with(culled, black_box(&hints), step, 1.0, &no_holes));
     });
     group.bench_function("trace_tiles_field", |b| {
-        b.iter(|| trace_field(&tiled, black_box(&hints), step, 1.0, &MarchOptions::DEFAULT));
+        b.iter(|| {
+            trace_field(
+                &tiled(),
+                black_box(&hints),
+                step,
+                1.0,
+                &MarchOptions::DEFAULT,
+            )
+        });
     });
     group.bench_function("trace_tiles_field_no_hole_scan", |b| {
-        b.iter(|| trace_field(&tiled, black_box(&hints), step, 1.0, &no_holes));
+        b.iter(|| trace_field(&tiled(), black_box(&hints), step, 1.0, &no_holes));
+    });
+    group.bench_function("trace_tiles_field_uncached", |b| {
+        b.iter(|| {
+            trace_field(
+                &uncached,
+                black_box(&hints),
+                step,
+                1.0,
+                &MarchOptions::DEFAULT,
+            )
+        });
     });
     group.bench_function("trace_grid_lookup", |b| {
         b.iter(|| trace(lookup, black_box(&hints), step, 1.0));

@@ -79,16 +79,18 @@ pub fn node_point([i, j]: [i32; 2], step: f32) -> Vec2 {
 /// ```
 ///
 /// A newtype wires in a field from another crate, for instance a `creature-metaball`
-/// `Field2`, whose `sample_block` fills a block with its separable fast path:
+/// `Field2`, whose `BlockSampler` fills a block with its separable fast path, reusing each
+/// ball's row and column factors between tiles (so it keeps state: a `RefCell`, one per trace):
 ///
 /// ```ignore
-/// struct Tiled<'a>(&'a creature_metaball::Field2);
+/// struct Tiled<'a>(RefCell<creature_metaball::BlockSampler<'a>>);
 ///
 /// impl TileField for Tiled<'_> {
-///     fn value(&self, p: Vec2) -> f32 { self.0.value(p) }
+///     fn value(&self, p: Vec2) -> f32 { self.0.borrow().field().value(p) }
 ///     fn prefers_tiles(&self) -> bool { true }
 ///     fn sample_tile(&self, first: [i32; 2], step: f32, out: &mut [f32; TILE_NODES]) {
-///         let ok = self.0.sample_block(node_point(first, step), step, TILE_SIZE, TILE_SIZE, out);
+///         let origin = node_point(first, step);
+///         let ok = self.0.borrow_mut().sample_block(origin, step, TILE_SIZE, TILE_SIZE, out);
 ///         if ok.is_err() { out.fill(f32::NAN) } // only for a non-finite point: outside
 ///     }
 /// }

@@ -44,7 +44,8 @@ fn tiled_metaball_fields_trace_the_outline_the_closure_traces() {
                     &options,
                 )
                 .unwrap();
-                let tiled = trace_field(&TiledField(&field), &hints, step, 1.0, &options).unwrap();
+                let tiled =
+                    trace_field(&TiledField::new(&field), &hints, step, 1.0, &options).unwrap();
                 validate_rings(&tiled).unwrap();
                 let at = format!("creature {seed}, step {step}, holes {holes}");
                 assert_eq!(tiled.len(), closure.len(), "{at}");
@@ -72,7 +73,7 @@ fn tiled_metaball_fields_find_holes() {
     let field = field_of(&balls);
     let hints = [balls.0[0].0];
     let tiled = trace_field(
-        &TiledField(&field),
+        &TiledField::new(&field),
         &hints,
         1.5,
         1.0,
@@ -89,7 +90,7 @@ fn tiled_metaball_fields_find_holes() {
 fn the_tiled_newtype_fills_tiles_from_the_block_sampler() {
     let balls = creature(3);
     let field = field_of(&balls);
-    let tiled = TiledField(&field);
+    let tiled = TiledField::new(&field);
     assert!(tiled.prefers_tiles());
     let mut tile = [0.0f32; creature_march::TILE_NODES];
     tiled.sample_tile([-16, 8], 2.0, &mut tile);

@@ -89,6 +89,7 @@ impl Core<2> {
         cols: usize,
         rows: usize,
         out: &mut [f32],
+        cache: Option<&mut FactorCache>,
     ) {
         if cols == 0 || rows == 0 {
             return;
@@ -108,7 +109,10 @@ impl Core<2> {
                     bits: 0,
                     balls: &self.balls,
                 };
-                return self.sample_tile(origin, step, size, balls, out);
+                return match cache {
+                    Some(cache) => self.sample_tile_cached(cache, origin, step, size, balls, out),
+                    None => self.sample_tile(origin, step, size, balls, out),
+                };
             }
         } else {
             out.fill(0.0);
@@ -134,7 +138,7 @@ impl Core<2> {
             // One cell: its list is already the balls in ball order, each once.
             let list = cell_entries(y0 * self.dims[0] + x0);
             if tile {
-                self.sample_tile(origin, step, size, list.iter(), out);
+                self.sample_tile_either(cache, origin, step, size, list.iter(), out);
             } else {
                 self.sample_into::<true>(origin, step, size, list.iter(), scratch, out);
             }
@@ -166,12 +170,13 @@ impl Core<2> {
                 balls: &self.balls,
             };
             if tile {
-                self.sample_tile(origin, step, size, balls, out);
+                self.sample_tile_either(cache, origin, step, size, balls, out);
             } else {
                 self.sample_into::<true>(origin, step, size, balls, scratch, out);
             }
         } else if tile {
-            self.sample_tile(origin, step, size, self.balls.iter(), out);
+            let balls = self.balls.iter();
+            self.sample_tile_either(cache, origin, step, size, balls, out);
         } else {
             self.sample_into::<true>(origin, step, size, self.balls.iter(), scratch, out);
         }
@@ -203,6 +208,99 @@ impl Core<2> {
             }
         }
         Some(seen)
+    }
+
+    /// [`sample_tile_cached`](Core::sample_tile_cached) with a cache, else
+    /// [`sample_tile`](Core::sample_tile).
+    fn sample_tile_either<'a>(
+        &self,
+        cache: Option<&mut FactorCache>,
+        origin: [f32; 2],
+        step: f32,
+        size: [usize; 2],
+        balls: impl Iterator<Item = &'a Entry<2>>,
+        out: &mut [f32],
+    ) {
+        match cache {
+            Some(cache) => self.sample_tile_cached(cache, origin, step, size, balls, out),
+            None => self.sample_tile(origin, step, size, balls, out),
+        }
+    }
+
+    /// [`sample_tile`](Core::sample_tile), with each reaching ball's column factors (for a
+    /// block 8 columns wide) and row factors (8 rows high) taken from `cache` when an earlier
+    /// block on the same grid spacing had the same first column (row), else computed as
+    /// `sample_tile` computes them and remembered. The factors are the same bits either way,
+    /// and so are the sums: the same terms, added in the same order.
+    fn sample_tile_cached<'a>(
+        &self,
+        cache: &mut FactorCache,
+        origin: [f32; 2],
+        step: f32,
+        [width, height]: [usize; 2],
+        balls: impl Iterator<Item = &'a Entry<2>>,
+        out: &mut [f32],
+    ) {
+        let Some((scale, sharpness)) = self.separable else {
+            return self.sample_tile(origin, step, [width, height], balls, out);
+        };
+        if width == 0 || height == 0 {
+            return;
+        }
+        cache.prepare(self.balls.len(), step);
+        let TileLanes {
+            xs,
+            ys,
+            first,
+            last,
+        } = TileLanes::new(origin, step, width, height);
+        let minus_sharpness = Vec4::splat(-sharpness);
+        // Only whole rows and columns are remembered: a shorter one repeats its last lane.
+        let keys = [
+            (width == TILE).then(|| cache.slot_base(0, first[0])),
+            (height == TILE).then(|| cache.slot_base(1, first[1])),
+        ];
+        let mut acc = [[Vec4::ZERO; 2]; TILE];
+        for ball in balls {
+            let (dx2, dy2) = squares(xs, ys, ball.center);
+            let (lo_x, hi_x) = extremes(first[0], last[0], ball.center[0], dx2[0].x, dx2[1].w);
+            let (lo_y, hi_y) = extremes(first[1], last[1], ball.center[1], dy2[0].x, dy2[1].w);
+            if !(lo_x + lo_y < ball.cutoff_d2) {
+                continue;
+            }
+            let partial = !(hi_x + hi_y < ball.cutoff_d2);
+            let inv_r2 = Vec4::splat(ball.inv_r2);
+            let factors = |d2: [Vec4; 2]| -> [f32; TILE] {
+                let mut lanes = [0.0f32; TILE];
+                for (four, d2) in lanes.chunks_exact_mut(4).zip(d2) {
+                    four.copy_from_slice(&(minus_sharpness * (d2 * inv_r2)).to_array());
+                }
+                // A loop, not `map`, which the compiler leaves as a call, unvectorised.
+                for lane in &mut lanes {
+                    *lane = math::exp_nonpositive_floored(*lane);
+                }
+                lanes
+            };
+            let index = ball.index as usize;
+            let columns = match keys[0] {
+                Some(key) => cache.get_or_insert(key, index, || factors(dx2)),
+                None => factors(dx2),
+            };
+            let rows = match keys[1] {
+                Some(key) => cache.get_or_insert(key, index, || factors(dy2)),
+                None => factors(dy2),
+            };
+            let columns = [
+                Vec4::from_slice(&columns[..4]),
+                Vec4::from_slice(&columns[4..]),
+            ];
+            if partial {
+                accumulate_partial(&mut acc, scale, columns, &rows, dx2, dy2, ball.cutoff_d2);
+            } else {
+                accumulate_whole(&mut acc, scale, columns, &rows);
+            }
+        }
+        write_rows(&acc, width, height, out);
     }
 
     /// [`sample_into`](Core::sample_into) with `BATCH` for blocks of at most
@@ -239,18 +337,12 @@ impl Core<2> {
         if width == 0 || height == 0 {
             return;
         }
-        // Sample coordinates, four lanes a vector: the columns' x, then the rows' y. Lanes past
-        // the block repeat its last column or row: they leave the extremes alone, and their
-        // sums are never read.
-        let mut at = [0.0f32; 2 * TILE];
-        for k in 0..TILE {
-            at[k] = origin[0] + step * k.min(width - 1) as f32;
-            at[TILE + k] = origin[1] + step * k.min(height - 1) as f32;
-        }
-        let first = [at[0], at[TILE]];
-        let last = [at[TILE - 1], at[2 * TILE - 1]];
-        let xs = [Vec4::from_slice(&at[..4]), Vec4::from_slice(&at[4..8])];
-        let ys = [Vec4::from_slice(&at[8..12]), Vec4::from_slice(&at[12..])];
+        let TileLanes {
+            xs,
+            ys,
+            first,
+            last,
+        } = TileLanes::new(origin, step, width, height);
         let minus_sharpness = Vec4::splat(-sharpness);
         let mut acc = [[Vec4::ZERO; 2]; TILE];
         // Reaching balls wait in a batch for their factors, so that the `exp`s of several
@@ -307,44 +399,13 @@ impl Core<2> {
                 let rows = &factors[TILE..];
                 if partial {
                     let (dx2, dy2) = squares(xs, ys, ball.center);
-                    let cutoff_d2 = Vec4::splat(ball.cutoff_d2);
-                    let dy2 = [dy2[0].to_array(), dy2[1].to_array()];
-                    let dy2 = dy2.as_flattened();
-                    for ((sums, &fy), &dy2) in acc.iter_mut().zip(rows).zip(dy2) {
-                        let row_factor = Vec4::splat(scale * fy);
-                        let dy2 = Vec4::splat(dy2);
-                        for ((sum, &dx2), &fx) in sums.iter_mut().zip(&dx2).zip(&columns) {
-                            // Same expression as `distance2`: (0 + dx²) + dy². Outside, +0,
-                            // which keeps the bits: a sample starts at +0 and only grows.
-                            let inside = (dx2 + dy2).cmplt(cutoff_d2);
-                            *sum += Vec4::select(inside, row_factor * fx, Vec4::ZERO);
-                        }
-                    }
+                    accumulate_partial(&mut acc, scale, columns, rows, dx2, dy2, ball.cutoff_d2);
                 } else {
-                    for (sums, &fy) in acc.iter_mut().zip(rows) {
-                        let row_factor = Vec4::splat(scale * fy);
-                        for (sum, &fx) in sums.iter_mut().zip(&columns) {
-                            *sum += row_factor * fx;
-                        }
-                    }
+                    accumulate_whole(&mut acc, scale, columns, rows);
                 }
             }
         }
-        for (samples, row) in out.chunks_exact_mut(width).zip(&acc).take(height) {
-            let row = row.map(|sums| saturate4(sums).to_array());
-            let row = row.as_flattened();
-            if let (Ok(samples), Ok(row)) = (
-                <&mut [f32; TILE]>::try_from(&mut *samples),
-                <&[f32; TILE]>::try_from(row),
-            ) {
-                // A whole row: a fixed-size copy (a variable-length one is a `memcpy` call).
-                *samples = *row;
-            } else {
-                for (sample, &a) in samples.iter_mut().zip(row) {
-                    *sample = a;
-                }
-            }
-        }
+        write_rows(&acc, width, height, out);
     }
 
     /// Adds the contributions of `balls` (in ball order, each once, a superset of the balls
@@ -502,6 +563,179 @@ fn squares(xs: [Vec4; 2], ys: [Vec4; 2], center: [f32; 2]) -> ([Vec4; 2], [Vec4;
         [dx[0] * dx[0], dx[1] * dx[1]],
         [dy[0] * dy[0], dy[1] * dy[1]],
     )
+}
+
+/// A tile's sample coordinates, four lanes a vector: the columns' x, then the rows' y. Lanes
+/// past the block repeat its last column or row: they leave the extremes alone, and their sums
+/// are never read.
+struct TileLanes {
+    xs: [Vec4; 2],
+    ys: [Vec4; 2],
+    /// The first column's x and row's y.
+    first: [f32; 2],
+    /// The last lane's (the last column's and row's).
+    last: [f32; 2],
+}
+
+impl TileLanes {
+    /// For a block of `width × height` samples (both in `1..=TILE`).
+    #[inline(always)]
+    fn new(origin: [f32; 2], step: f32, width: usize, height: usize) -> Self {
+        let mut at = [0.0f32; 2 * TILE];
+        for k in 0..TILE {
+            at[k] = origin[0] + step * k.min(width - 1) as f32;
+            at[TILE + k] = origin[1] + step * k.min(height - 1) as f32;
+        }
+        Self {
+            xs: [Vec4::from_slice(&at[..4]), Vec4::from_slice(&at[4..8])],
+            ys: [Vec4::from_slice(&at[8..12]), Vec4::from_slice(&at[12..])],
+            first: [at[0], at[TILE]],
+            last: [at[TILE - 1], at[2 * TILE - 1]],
+        }
+    }
+}
+
+/// Adds one ball's terms `(scale · row factor) · column factor` to every sample of a tile
+/// (a ball whose cutoff covers the whole tile).
+#[inline(always)]
+fn accumulate_whole(acc: &mut [[Vec4; 2]; TILE], scale: f32, columns: [Vec4; 2], rows: &[f32]) {
+    for (sums, &fy) in acc.iter_mut().zip(rows) {
+        let row_factor = Vec4::splat(scale * fy);
+        for (sum, &fx) in sums.iter_mut().zip(&columns) {
+            *sum += row_factor * fx;
+        }
+    }
+}
+
+/// Adds one ball's terms to the samples of a tile within its cutoff: `dx2`, `dy2` are the
+/// squared column and row distances.
+#[inline(always)]
+fn accumulate_partial(
+    acc: &mut [[Vec4; 2]; TILE],
+    scale: f32,
+    columns: [Vec4; 2],
+    rows: &[f32],
+    dx2: [Vec4; 2],
+    dy2: [Vec4; 2],
+    cutoff_d2: f32,
+) {
+    let cutoff_d2 = Vec4::splat(cutoff_d2);
+    let dy2 = [dy2[0].to_array(), dy2[1].to_array()];
+    let dy2 = dy2.as_flattened();
+    for ((sums, &fy), &dy2) in acc.iter_mut().zip(rows).zip(dy2) {
+        let row_factor = Vec4::splat(scale * fy);
+        let dy2 = Vec4::splat(dy2);
+        for ((sum, &dx2), &fx) in sums.iter_mut().zip(&dx2).zip(&columns) {
+            // Same expression as `distance2`: (0 + dx²) + dy². Outside, +0, which keeps the
+            // bits: a sample starts at +0 and only grows.
+            let inside = (dx2 + dy2).cmplt(cutoff_d2);
+            *sum += Vec4::select(inside, row_factor * fx, Vec4::ZERO);
+        }
+    }
+}
+
+/// Saturates a tile's sums into the `width × height` samples of `out`.
+#[inline(always)]
+fn write_rows(acc: &[[Vec4; 2]; TILE], width: usize, height: usize, out: &mut [f32]) {
+    for (samples, row) in out.chunks_exact_mut(width).zip(acc).take(height) {
+        let row = row.map(|sums| saturate4(sums).to_array());
+        let row = row.as_flattened();
+        if let (Ok(samples), Ok(row)) = (
+            <&mut [f32; TILE]>::try_from(&mut *samples),
+            <&[f32; TILE]>::try_from(row),
+        ) {
+            // A whole row: a fixed-size copy (a variable-length one is a `memcpy` call).
+            *samples = *row;
+        } else {
+            for (sample, &a) in samples.iter_mut().zip(row) {
+                *sample = a;
+            }
+        }
+    }
+}
+
+/// Slots per ball and axis in a [`FactorCache`]: blocks whose first column (row) lies in the
+/// same `8 × step` band modulo this many bands share a slot.
+const CACHE_WAYS: usize = 16;
+
+/// The tag of an empty [`FactorCache`] slot: a NaN, which no block's (finite) first column or
+/// row has.
+const EMPTY_TAG: u32 = 0x7fc0_0001;
+
+/// Row and column factors of 8 × 8 blocks, remembered per ball and per first column (row) for
+/// one grid spacing: what `BlockSampler` keeps between blocks.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct FactorCache {
+    /// The bits of the spacing the factors are for.
+    step: u32,
+    /// `1 / (8 × step)`: a coordinate's band.
+    inv_band: f32,
+    /// Per ball, per axis, per slot: the bits of the first coordinate whose factors the slot
+    /// holds (or [`EMPTY_TAG`]), and where in `factors` they are.
+    slots: Vec<(u32, u32)>,
+    /// Factors, in the order slots were first filled (so a cache only touches, and zeroes,
+    /// the memory it uses).
+    factors: Vec<[f32; TILE]>,
+    /// Lookups answered from the cache.
+    #[cfg(test)]
+    hits: usize,
+}
+
+impl FactorCache {
+    /// Empties the cache unless it is sized for `balls` and holds factors for `step`.
+    fn prepare(&mut self, balls: usize, step: f32) {
+        let slots = balls * 2 * CACHE_WAYS;
+        if self.slots.len() != slots || self.step != step.to_bits() {
+            self.slots.clear();
+            self.slots.resize(slots, (EMPTY_TAG, 0));
+            self.factors.clear();
+            self.step = step.to_bits();
+            self.inv_band = 1.0 / (TILE as f32 * step);
+        }
+    }
+
+    /// Where the factors of the row (`axis` 1) or column (`axis` 0) band starting at `first`
+    /// live, for ball 0, and the tag they carry.
+    #[inline]
+    fn slot_base(&self, axis: usize, first: f32) -> (usize, u32) {
+        // A saturating cast: any deterministic slot will do.
+        let band = (first * self.inv_band) as i32 as usize & (CACHE_WAYS - 1);
+        (axis * CACHE_WAYS + band, first.to_bits())
+    }
+
+    /// Ball `ball`'s factors under `key`, computed by `compute` and remembered on a miss.
+    #[inline]
+    fn get_or_insert(
+        &mut self,
+        (base, tag): (usize, u32),
+        ball: usize,
+        compute: impl FnOnce() -> [f32; TILE],
+    ) -> [f32; TILE] {
+        let Some(slot) = self.slots.get_mut(ball * 2 * CACHE_WAYS + base) else {
+            return compute();
+        };
+        if slot.0 == tag
+            && let Some(&factors) = self.factors.get(slot.1 as usize)
+        {
+            #[cfg(test)]
+            {
+                self.hits += 1;
+            }
+            return factors;
+        }
+        let factors = compute();
+        if slot.0 == EMPTY_TAG {
+            let Ok(row) = u32::try_from(self.factors.len()) else {
+                return factors;
+            };
+            self.factors.push(factors);
+            *slot = (tag, row);
+        } else if let Some(kept) = self.factors.get_mut(slot.1 as usize) {
+            *kept = factors;
+            slot.0 = tag;
+        }
+        factors
+    }
 }
 
 /// How many reaching balls [`Core::sample_tile`] gathers before their `exp`s.
@@ -1478,7 +1712,7 @@ mod tests {
                 ] {
                     let grid = core.sample_grid(origin, step, cols, rows);
                     let mut block = vec![f32::NAN; cols * rows];
-                    core.sample_block(origin, step, cols, rows, &mut block);
+                    core.sample_block(origin, step, cols, rows, &mut block, None);
                     for (n, (g, b)) in grid.iter().zip(&block).enumerate() {
                         let p = [
                             origin[0] + step * (n % cols) as f32,
@@ -1528,6 +1762,59 @@ mod tests {
         out
     }
 
+    /// A factor cache shared by many tiles (a walk over neighbouring tiles that revisits
+    /// rows and columns, changes spacing mid-way, mixes in short blocks and every candidate
+    /// path) gives the same bits as sampling each tile afresh, and actually hits.
+    #[test]
+    fn cached_factors_give_the_same_tiles_bit_for_bit() {
+        let mut hits = 0;
+        for (count, spread) in [(12, 60.0), (60, 200.0), (300, 400.0)] {
+            let balls = scattered(count, spread);
+            for falloff in [Falloff::SEED, Falloff::BLINN, Falloff::WYVILL] {
+                for cell_size in [None, Some(4.0), Some(1e3)] {
+                    let core = Core::<2>::build(&balls, falloff.kernel(), 1e-4, cell_size);
+                    let mut cache = FactorCache::default();
+                    let mut state = 0x2545_f491_u32;
+                    let (mut i, mut j) = (0i32, 0i32);
+                    for n in 0..300 {
+                        state ^= state << 13;
+                        state ^= state >> 17;
+                        state ^= state << 5;
+                        // A random walk of tiles, like a contour's.
+                        match state % 4 {
+                            0 => i += 1,
+                            1 => i -= 1,
+                            2 => j += 1,
+                            _ => j -= 1,
+                        }
+                        let step = if n < 150 { 2.39 } else { 0.7 };
+                        let size = match state / 4 % 8 {
+                            0 => [5, 8],
+                            1 => [8, 3],
+                            _ => [8, 8],
+                        };
+                        let origin = [8.0 * step * i as f32, 8.0 * step * j as f32];
+                        let origin = [origin[0] - spread * 0.3, origin[1] - spread * 0.2];
+                        let mut fresh = vec![f32::NAN; size[0] * size[1]];
+                        let mut cached = fresh.clone();
+                        core.sample_block(origin, step, size[0], size[1], &mut fresh, None);
+                        let cache = Some(&mut cache);
+                        core.sample_block(origin, step, size[0], size[1], &mut cached, cache);
+                        for (k, (a, b)) in fresh.iter().zip(&cached).enumerate() {
+                            let at = (count, falloff, cell_size, n, k);
+                            assert_eq!(a.to_bits(), b.to_bits(), "{at:?}: {a} vs {b}");
+                        }
+                    }
+                    if core.separable.is_some() {
+                        assert!(cache.hits > 100, "{}", cache.hits);
+                    }
+                    hits += cache.hits;
+                }
+            }
+        }
+        assert!(hits > 10_000, "{hits}");
+    }
+
     /// Every way a tile finds its candidate balls (one culling cell, the cells' bit sets for up
     /// to 256 balls, merged lists beyond, every ball for a tile over many cells), every class
     /// of ball (reaching no sample, every sample, some) and partial tiles: the same bits as the
@@ -1554,7 +1841,7 @@ mod tests {
                         let step = [0.3, 1.0, 2.39, 7.0, 40.0][i % 5];
                         let size = [[8, 8], [8, 8], [5, 8], [8, 3], [1, 1]][i / 5 % 5];
                         let mut block = vec![f32::NAN; size[0] * size[1]];
-                        core.sample_block(origin, step, size[0], size[1], &mut block);
+                        core.sample_block(origin, step, size[0], size[1], &mut block, None);
                         let expected = tile_by_definition(&core, origin, step, size);
                         for (n, (b, e)) in block.iter().zip(&expected).enumerate() {
                             let at = (count, falloff, cell_size, origin, step, size, n);
@@ -1591,7 +1878,7 @@ mod tests {
                     _ => (3.0, -2.0, rc * t / (7.0 * core::f32::consts::SQRT_2)),
                 };
                 let mut block = [f32::NAN; 64];
-                core.sample_block([x, y], step, 8, 8, &mut block);
+                core.sample_block([x, y], step, 8, 8, &mut block, None);
                 let expected = tile_by_definition(&core, [x, y], step, [8, 8]);
                 for (b, e) in block.iter().zip(&expected) {
                     assert_eq!(
@@ -1619,9 +1906,9 @@ mod tests {
                 let x = 1.0 + i as f32 * 6e-4;
                 let v = core.value([x, 0.0]);
                 let mut block = [f32::NAN; 1];
-                core.sample_block([x, 0.0], 1.0, 1, 1, &mut block);
+                core.sample_block([x, 0.0], 1.0, 1, 1, &mut block, None);
                 let mut tile = [f32::NAN; 64];
-                core.sample_block([x, 0.0], 0.25, 8, 8, &mut tile);
+                core.sample_block([x, 0.0], 0.25, 8, 8, &mut tile, None);
                 let grid = core.sample_grid([x, 0.0], 1.0, 1, 1);
                 for s in [block[0], tile[0], grid[0]] {
                     assert_eq!(s.to_bits(), v.to_bits(), "eps {epsilon} at {x}: {s} vs {v}");

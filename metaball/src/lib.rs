@@ -34,8 +34,8 @@ pub use falloff::{
     BLOBBINESS_RANGE, Falloff, ISO_LEVEL, SEED_BLOBBINESS, SHARPNESS_RANGE, STRENGTH_RANGE,
 };
 pub use field::{
-    Attribute, DEFAULT_EPSILON, EPSILON_RANGE, Field2, Field3, FieldOptions, GridStats,
-    MAX_FIELD_BALLS, MAX_GRID_SAMPLES, Share, Shares,
+    Attribute, BlockSampler, DEFAULT_EPSILON, EPSILON_RANGE, Field2, Field3, FieldOptions,
+    GridStats, MAX_FIELD_BALLS, MAX_GRID_SAMPLES, Share, Shares,
 };
 
 /// The `glam` version this crate's signatures use.

@@ -315,6 +315,58 @@ fn sample_block_fills_tiles_of_the_grid() {
 }
 
 #[test]
+fn a_block_sampler_samples_what_sample_block_samples() {
+    let field = Field2::new(&reference::creature(), Falloff::SEED).unwrap();
+    let mut sampler = field.block_sampler();
+    assert!(core::ptr::eq(sampler.field(), &field));
+    let origin = Vec2::new(-150.0, -40.0);
+    // Tiles of two spacings, row after row (so columns recur), each twice.
+    for step in [2.5f32, 1.25] {
+        for pass in 0..2 {
+            for ty in 0..6 {
+                for tx in 0..8 {
+                    let corner = origin + 8.0 * step * Vec2::new(tx as f32, ty as f32);
+                    let (mut cached, mut fresh) = ([0.0f32; 64], [0.0f32; 64]);
+                    sampler
+                        .sample_block(corner, step, 8, 8, &mut cached)
+                        .unwrap();
+                    field.sample_block(corner, step, 8, 8, &mut fresh).unwrap();
+                    let at = (step, pass, tx, ty);
+                    assert_eq!(cached.map(f32::to_bits), fresh.map(f32::to_bits), "{at:?}");
+                }
+            }
+        }
+    }
+    // The errors of `sample_block`, with `out` untouched.
+    let mut short = [7.0f32; 10];
+    assert_eq!(
+        sampler.sample_block(origin, 1.0, 4, 3, &mut short),
+        Err(MetaballError::WrongLength {
+            what: "block samples",
+            expected: 12,
+            found: 10
+        })
+    );
+    assert_eq!(short, [7.0; 10]);
+    assert!(matches!(
+        sampler.sample_block(origin, f32::NAN, 2, 2, &mut [0.0; 4]),
+        Err(MetaballError::NonFinite {
+            what: "grid step",
+            ..
+        })
+    ));
+    // Fields without a separable form are sampled as `sample_block` samples them.
+    let wyvill = Field2::new(&reference::creature(), Falloff::WYVILL).unwrap();
+    let (mut cached, mut fresh) = ([0.0f32; 64], [0.0f32; 64]);
+    wyvill
+        .block_sampler()
+        .sample_block(origin, 2.5, 8, 8, &mut cached)
+        .unwrap();
+    wyvill.sample_block(origin, 2.5, 8, 8, &mut fresh).unwrap();
+    assert_eq!(cached.map(f32::to_bits), fresh.map(f32::to_bits));
+}
+
+#[test]
 fn bad_inputs_are_typed_errors() {
     let good = Ball2::new(Vec2::ZERO, 1.0, 0);
     assert_eq!(Field2::new(&[], Falloff::SEED), Err(MetaballError::NoBalls));

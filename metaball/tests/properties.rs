@@ -357,6 +357,34 @@ proptest! {
     }
 
     #[test]
+    fn a_block_sampler_gives_sample_block_bit_for_bit(
+        field in strategies::field2(),
+        origin in strategies::vec2_in(150.0),
+        step in 0.5f32..20.0,
+        walk in proptest::collection::vec((0u8..4, 1usize..=8, 1usize..=8), 1..40),
+    ) {
+        // A walk of neighbouring blocks, as a contour tracer's tiles: rows and columns recur.
+        let mut sampler = field.block_sampler();
+        let (mut i, mut j) = (0i32, 0i32);
+        for (direction, cols, rows) in walk {
+            match direction {
+                0 => i += 1,
+                1 => i -= 1,
+                2 => j += 1,
+                _ => j -= 1,
+            }
+            let corner = origin + 8.0 * step * Vec2::new(i as f32, j as f32);
+            let mut cached = vec![f32::NAN; cols * rows];
+            let mut fresh = vec![f32::NAN; cols * rows];
+            sampler.sample_block(corner, step, cols, rows, &mut cached).unwrap();
+            field.sample_block(corner, step, cols, rows, &mut fresh).unwrap();
+            let cached: Vec<u32> = cached.iter().map(|v| v.to_bits()).collect();
+            let fresh: Vec<u32> = fresh.iter().map(|v| v.to_bits()).collect();
+            prop_assert_eq!(cached, fresh, "block at {} ({} × {})", corner, cols, rows);
+        }
+    }
+
+    #[test]
     fn a_lone_ball_meets_the_iso_level_at_its_iso_radius(
         ball in strategies::ball2(),
         falloff in strategies::falloff(),

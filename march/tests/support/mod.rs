@@ -183,11 +183,46 @@ pub fn is_simple(ring: &Ring) -> bool {
 }
 
 /// `creature-metaball`'s `Field2` as a [`TileField`](creature_march::TileField) that fills
-/// each tile with `Field2::sample_block` (its separable fast path): the newtype the README
-/// shows.
-pub struct TiledField<'a>(pub &'a creature_metaball::Field2);
+/// each tile through a `BlockSampler` (`Field2::sample_block`'s separable fast path, reusing
+/// each ball's row and column factors between tiles): the newtype the README shows. Make a
+/// new one per trace, as for a new field: its cache belongs to one grid spacing.
+pub struct TiledField<'a>(core::cell::RefCell<creature_metaball::BlockSampler<'a>>);
+
+impl<'a> TiledField<'a> {
+    pub fn new(field: &'a creature_metaball::Field2) -> Self {
+        Self(core::cell::RefCell::new(field.block_sampler()))
+    }
+}
 
 impl creature_march::TileField for TiledField<'_> {
+    fn value(&self, p: Vec2) -> f32 {
+        self.0.borrow().field().value(p)
+    }
+
+    fn prefers_tiles(&self) -> bool {
+        true
+    }
+
+    fn sample_tile(&self, first: [i32; 2], step: f32, out: &mut [f32; creature_march::TILE_NODES]) {
+        use creature_march::{TILE_SIZE, node_point};
+        let origin = node_point(first, step);
+        if self
+            .0
+            .borrow_mut()
+            .sample_block(origin, step, TILE_SIZE, TILE_SIZE, out)
+            .is_err()
+        {
+            // Only for a non-finite origin or step, which the tracer never passes: outside.
+            out.fill(f32::NAN);
+        }
+    }
+}
+
+/// `Field2` filling each tile with a plain `Field2::sample_block` call (no cache): the same
+/// samples as [`TiledField`], bit for bit.
+pub struct UncachedTiledField<'a>(pub &'a creature_metaball::Field2);
+
+impl creature_march::TileField for UncachedTiledField<'_> {
     fn value(&self, p: Vec2) -> f32 {
         self.0.value(p)
     }
@@ -204,7 +239,6 @@ impl creature_march::TileField for TiledField<'_> {
             .sample_block(origin, step, TILE_SIZE, TILE_SIZE, out)
             .is_err()
         {
-            // Only for a non-finite origin or step, which the tracer never passes: outside.
             out.fill(f32::NAN);
         }
     }

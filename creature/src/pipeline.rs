@@ -82,6 +82,15 @@ impl TileField for TiledField<'_> {
             out.fill(f32::NAN);
         }
     }
+
+    fn tile_inside(&self, first: [i32; 2], step: f32, iso: f32) -> bool {
+        let size = creature_march::TILE_SIZE;
+        let origin = creature_march::node_point(first, step);
+        let field = self.0.borrow().field();
+        field
+            .block_is_at_least(origin, step, size, size, iso)
+            .unwrap_or(false)
+    }
 }
 
 /// Builds a creature from any skeleton (generated, or made by hand as the thesis suggests):

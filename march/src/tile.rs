@@ -109,6 +109,23 @@ pub trait TileField {
         false
     }
 
+    /// Whether every node of the tile whose first node is `first` (as in
+    /// [`sample_tile`](Self::sample_tile)) is certainly inside: its sample at least `iso`.
+    /// Return `true` only when sure — a wrong `true` puts the outline in the wrong place —
+    /// and `false` when unsure (the default).
+    ///
+    /// The tracer asks (for fields that [prefer tiles](Self::prefers_tiles)) before it fills
+    /// a new tile whose inside flags alone it needs — the walk from a hint up to its outline,
+    /// and the hole scan, which reads every node a ring encloses — and leaves a tile proven
+    /// inside unsampled until a sample of it is needed (then it fills the whole tile as
+    /// usual, so the rings are the same bit for bit). Worth overriding when a proof costs
+    /// much less than a tile: a metaball field proves it from each nearby ball's smallest
+    /// contribution over the tile, with one `exp` a ball.
+    fn tile_inside(&self, first: [i32; 2], step: f32, iso: f32) -> bool {
+        let _ = (first, step, iso);
+        false
+    }
+
     /// Fills `out` with the field on the tile of grid nodes whose first (lowest `x`, lowest
     /// `y`) node is `first = [i, j]`: `out[row * TILE_SIZE + col]` is the field at grid node
     /// `[i + col, j + row]`, whose world point is

@@ -322,9 +322,17 @@ impl<F: TileField + ?Sized> Tracer<'_, F> {
         }
     }
 
-    /// Samples node `(i, j)`, in `slot` of `tile`, alone (point by point).
+    /// Samples node `(i, j)`, in `slot` of `tile`: alone (point by point), or, tiled, with
+    /// the rest of its tile (one proven inside and left unsampled so far).
     #[inline]
     fn sample_node(&mut self, tile: usize, slot: usize, i: i32, j: i32) -> f32 {
+        if self.tiled {
+            let first = [i & !TILE_MASK, j & !TILE_MASK];
+            let (field, step, iso) = (self.field, self.step, self.iso);
+            self.nodes
+                .fill(tile, iso, |out| field.sample_tile(first, step, out));
+            return self.nodes.sampled(tile, slot);
+        }
         let v = self.field.value(node_point([i, j], self.step));
         self.nodes.set(tile, slot, v, cell::is_inside(v, self.iso));
         v
@@ -344,20 +352,54 @@ impl<F: TileField + ?Sized> Tracer<'_, F> {
     /// [`Tracer::tile`] past the cache.
     #[inline(never)]
     fn tile_miss(&mut self, key: (i32, i32)) -> usize {
+        self.new_tile(key, false)
+    }
+
+    /// The tile at tile coordinates `key`, found or created. A new tile is filled when the
+    /// tracer samples by tiles, unless only its inside flags are needed (`flags`) and the
+    /// field proves it inside ([`TileField::tile_inside`]): then it is left unsampled.
+    fn new_tile(&mut self, key: (i32, i32), flags: bool) -> usize {
         let (tile, created) = self.nodes.find_or_add(key);
         if created && self.tiled {
             let first = [key.0 << TILE_SHIFT, key.1 << TILE_SHIFT];
             let (field, step, iso) = (self.field, self.step, self.iso);
-            self.nodes
-                .fill(tile, iso, |out| field.sample_tile(first, step, out));
+            if flags && field.tile_inside(first, step, iso) {
+                self.nodes.prove_inside(tile);
+            } else {
+                self.nodes
+                    .fill(tile, iso, |out| field.sample_tile(first, step, out));
+            }
         }
         tile
     }
 
+    /// The tile holding node `(i, j)`, for its inside flags only: as [`Tracer::tile`], but
+    /// a new tile the field proves inside is not sampled.
+    #[inline]
+    fn flag_tile(&mut self, i: i32, j: i32) -> usize {
+        let key = (i >> TILE_SHIFT, j >> TILE_SHIFT);
+        match self.nodes.cached(key) {
+            Some(tile) => tile,
+            None => self.flag_tile_miss(key),
+        }
+    }
+
+    /// [`Tracer::flag_tile`] past the cache.
+    #[inline(never)]
+    fn flag_tile_miss(&mut self, key: (i32, i32)) -> usize {
+        self.new_tile(key, true)
+    }
+
+    /// Whether node `(i, j)` is inside: from its tile's flags when known (sampled, or proven),
+    /// else from its sample.
     #[inline]
     fn inside(&mut self, i: i32, j: i32) -> bool {
-        let v = self.node(i, j);
-        cell::is_inside(v, self.iso)
+        let tile = self.flag_tile(i, j);
+        let slot = Nodes::slot(i, j);
+        match self.nodes.tiles.get(tile) {
+            Some(t) if (t.sampled | t.proven) & (1 << slot) != 0 => t.inside & (1 << slot) != 0,
+            _ => cell::is_inside(self.sample_node(tile, slot, i, j), self.iso),
+        }
     }
 
     /// Whether grid node `(x, y)` is already known to be inside a traced component: the
@@ -508,7 +550,7 @@ impl<F: TileField + ?Sized> Tracer<'_, F> {
                     self.node(x, up);
                 }
             }
-            let tile = self.tile(x, y + 1);
+            let tile = self.flag_tile(x, y + 1);
             let first = (y + 1) & TILE_MASK;
             let last_row = last & TILE_MASK;
             let rows = (u32::MAX << first) & (u32::MAX >> (31 - last_row));
@@ -959,8 +1001,11 @@ struct Tile {
     values: [f32; TILE_NODES],
     /// Bit `s`: `values[s]` has been sampled.
     sampled: u64,
-    /// Bit `s`: the sampled node in slot `s` is inside.
+    /// Bit `s`: the node in slot `s` is inside (known where sampled, or proven).
     inside: u64,
+    /// Every bit set when the field proved every node inside without sampling
+    /// ([`TileField::tile_inside`]): the inside flags are known, the values not.
+    proven: u64,
     /// Bit `s`: a traced ring crosses the edge from the node in slot `s` up to the node above.
     crossed: u64,
 }
@@ -983,7 +1028,8 @@ struct Nodes {
 impl Nodes {
     fn new() -> Self {
         Self {
-            tiles: Vec::with_capacity(64),
+            // A creature's outline and hole scan touch a couple of hundred tiles.
+            tiles: Vec::with_capacity(256),
             index: Table::with_slots(256),
             // No tile has coordinate `i32::MIN`: node coordinates stay within ±2^30.
             cache: [(i32::MIN, i32::MIN, 0); CACHE_SLOTS],
@@ -1018,6 +1064,7 @@ impl Nodes {
                     values: [0.0; TILE_NODES],
                     sampled: 0,
                     inside: 0,
+                    proven: 0,
                     crossed: 0,
                 });
                 self.index.insert(key, t as u32);
@@ -1056,7 +1103,16 @@ impl Nodes {
         }
     }
 
-    /// The inside flags of column `column` of `tile`: bit `r` for row `r` (sampled nodes only).
+    /// Marks every node of `tile` (unsampled) as proven inside.
+    fn prove_inside(&mut self, tile: usize) {
+        if let Some(t) = self.tiles.get_mut(tile) {
+            t.inside = u64::MAX;
+            t.proven = u64::MAX;
+        }
+    }
+
+    /// The inside flags of column `column` of `tile`: bit `r` for row `r` (sampled or proven
+    /// nodes only).
     #[inline]
     fn column_inside(&self, tile: usize, column: i32) -> u32 {
         self.tiles
@@ -1344,6 +1400,74 @@ mod tests {
         assert!(tiles.iter().any(|t| t[0] < 0) && tiles.iter().any(|t| t[1] < 0));
         // Point samples: 64 per tile plus one per hint (no saddles, no refinement here).
         assert_eq!(field.0.values.get(), 64 * tiles.len() + hints.len());
+    }
+
+    /// A wide annulus (inner radius 10, outer 60, a disc beside it) whose tiles prove
+    /// themselves inside from the range of `|p|` over the tile, and record what they prove.
+    struct Proving {
+        recording: Recording<fn(Vec2) -> f32>,
+        proven: core::cell::RefCell<Vec<[i32; 2]>>,
+    }
+
+    fn wide_annulus(p: Vec2) -> f32 {
+        (p.length() - 10.0).min(60.0 - p.length())
+    }
+
+    impl TileField for Proving {
+        fn value(&self, p: Vec2) -> f32 {
+            self.recording.value(p)
+        }
+        fn prefers_tiles(&self) -> bool {
+            true
+        }
+        fn sample_tile(&self, first: [i32; 2], step: f32, out: &mut [f32; TILE_NODES]) {
+            self.recording.sample_tile(first, step, out);
+        }
+        fn tile_inside(&self, first: [i32; 2], step: f32, iso: f32) -> bool {
+            let lo = node_point(first, step);
+            let hi = node_point([first[0] + 7, first[1] + 7], step);
+            let nearest = Vec2::ZERO.clamp(lo, hi).length();
+            let farthest = lo.abs().max(hi.abs()).length();
+            // A margin for rounding in `value`.
+            let inside = (nearest - 10.0).min(60.0 - farthest) > iso + 1e-3;
+            if inside {
+                self.proven.borrow_mut().push(first);
+            }
+            inside
+        }
+    }
+
+    #[test]
+    fn tiles_proven_inside_are_not_sampled_and_change_nothing() {
+        let hints = [Vec2::new(-35.3, 0.1), Vec2::new(0.2, 40.1)];
+        let expected = trace(wide_annulus, &hints, 1.3, 0.0).unwrap();
+        let field = Proving {
+            recording: Recording(tiled(wide_annulus as fn(Vec2) -> f32)),
+            proven: core::cell::RefCell::new(Vec::new()),
+        };
+        let rings = trace_field(&field, &hints, 1.3, 0.0, &MarchOptions::DEFAULT).unwrap();
+        assert_eq!(rings, expected, "the same rings, bit for bit");
+        assert_eq!(rings.len(), 2);
+        assert_eq!(rings.iter().filter(|r| r.hole).count(), 1);
+        let filled = field.recording.0.tiles.borrow();
+        let proven = field.proven.borrow();
+        // The hole scan crosses the band: many of its tiles need no samples.
+        assert!(proven.len() > 10, "{}", proven.len());
+        let mut all: Vec<[i32; 2]> = filled.iter().chain(proven.iter()).copied().collect();
+        all.sort_unstable();
+        all.dedup();
+        // A tile proven inside is filled later only when a sample of it is needed (for a
+        // crossing), never twice.
+        assert!(all.len() > filled.len());
+        let mut sorted = filled.clone();
+        sorted.sort_unstable();
+        sorted.dedup();
+        assert_eq!(sorted.len(), filled.len(), "a tile was filled twice");
+        // Without proofs, every one of them is filled.
+        let plain = Recording(tiled(wide_annulus as fn(Vec2) -> f32));
+        let again = trace_field(&plain, &hints, 1.3, 0.0, &MarchOptions::DEFAULT).unwrap();
+        assert_eq!(again, expected);
+        assert_eq!(plain.0.tiles.borrow().len(), all.len());
     }
 
     #[test]

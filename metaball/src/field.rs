@@ -674,6 +674,55 @@ impl Field2 {
         Ok(())
     }
 
+    /// Whether every sample of the `cols × rows` block that
+    /// [`sample_block`](Self::sample_block) would fill (and [`value`](Self::value) at each of
+    /// its points) is certainly at least `level` — `true` only when provably so, `false` when
+    /// unsure. For a contour tracer that needs only which nodes are inside (`value ≥ iso`)
+    /// somewhere deep inside a body: a block proven inside needs no samples.
+    ///
+    /// The proof: contributions are never negative, and each ball whose cutoff covers the
+    /// whole block contributes at least its value at the block's corner farthest from it; the
+    /// sum of those (in `f64`), less a slack for the samples' rounding (`1e-5` plus `ε` per
+    /// ball, relative), must reach `level`. It costs one `exp` per nearby ball (it stops as soon
+    /// as the sum suffices), a fraction of a block's samples. Blocks well inside one ball, or
+    /// inside the overlap of several, pass; blocks near the outline fail.
+    ///
+    /// ```
+    /// use creature_metaball::{Ball2, Falloff, Field2, ISO_LEVEL, glam::Vec2};
+    ///
+    /// let field = Field2::new(&[Ball2::new(Vec2::ZERO, 40.0, 0)], Falloff::SEED)?;
+    /// // An 8 × 8 block around the centre is inside; one straddling the outline is not.
+    /// assert!(field.block_is_at_least(Vec2::splat(-7.0), 2.0, 8, 8, ISO_LEVEL)?);
+    /// assert!(!field.block_is_at_least(Vec2::new(30.0, -7.0), 2.0, 8, 8, ISO_LEVEL)?);
+    /// let mut block = [0.0f32; 64];
+    /// field.sample_block(Vec2::splat(-7.0), 2.0, 8, 8, &mut block)?;
+    /// assert!(block.iter().all(|&v| v >= ISO_LEVEL));
+    /// # Ok::<(), creature_metaball::MetaballError>(())
+    /// ```
+    ///
+    /// # Errors
+    /// As [`sample_grid`](Self::sample_grid), and [`MetaballError::NonFinite`] for a NaN
+    /// `level`.
+    pub fn block_is_at_least(
+        &self,
+        origin: Vec2,
+        step: f32,
+        cols: usize,
+        rows: usize,
+        level: f32,
+    ) -> Result<bool, MetaballError> {
+        check_grid(origin, step, cols, rows)?;
+        if level.is_nan() {
+            return Err(MetaballError::NonFinite {
+                what: "level",
+                index: 0,
+            });
+        }
+        Ok(self
+            .core
+            .block_at_least(origin.to_array(), step, cols, rows, level))
+    }
+
     /// A [`BlockSampler`] of this field: [`sample_block`](Self::sample_block) for many
     /// blocks on one grid, reusing work between blocks that share rows or columns.
     #[must_use]

@@ -182,6 +182,68 @@ impl Core<2> {
         }
     }
 
+    /// Whether every sample of the `cols × rows` block (as [`sample_block`](Core::sample_block)
+    /// or [`value`](Core::value) computes it) is provably at least `level`: the sum over the
+    /// balls whose cutoff covers the whole block of each one's smallest contribution there (at
+    /// the block's farthest corner from it), less a slack for rounding, reaches `level`.
+    /// `false` when unsure; never `true` wrongly.
+    ///
+    /// Rounding is monotonic, so a sample's computed squared distance to a ball is at most the
+    /// corner's; the terms and sums a sample computes differ from the exact ones by at most a
+    /// few `1e-7` relative per term plus `n ε` over `n` terms, all covered by the slack (the
+    /// bound is summed in `f64`). Contributions are never negative, so balls left out only
+    /// lower the bound.
+    pub(crate) fn block_at_least(
+        &self,
+        origin: [f32; 2],
+        step: f32,
+        cols: usize,
+        rows: usize,
+        level: f32,
+    ) -> bool {
+        if cols == 0 || rows == 0 {
+            // No samples.
+            return true;
+        }
+        let far = [
+            origin[0] + step * (cols - 1) as f32,
+            origin[1] + step * (rows - 1) as f32,
+        ];
+        let slack = 1e-5 + (self.balls.len() as f64 + 8.0) * f64::from(f32::EPSILON);
+        let target = f64::from(level) / (1.0 - slack);
+        let mut sum = 0.0f64;
+        let mut add = |ball: &Entry<2>| {
+            let dx = (origin[0] - ball.center[0])
+                .abs()
+                .max((far[0] - ball.center[0]).abs());
+            let dy = (origin[1] - ball.center[1])
+                .abs()
+                .max((far[1] - ball.center[1]).abs());
+            let d2 = dx * dx + dy * dy;
+            if d2 < ball.cutoff_d2 {
+                let q = d2 * ball.inv_r2;
+                sum += f64::from(match self.separable {
+                    Some((scale, a)) => scale * math::exp_nonpositive(-a * q),
+                    None => self.kernel.value(q),
+                });
+            }
+            sum >= target
+        };
+        match self.bit_candidates(origin, far) {
+            Some(seen) => {
+                let mut balls = BitBalls {
+                    words: seen.get(..self.words).unwrap_or(&[]),
+                    base: 0,
+                    bits: 0,
+                    balls: &self.balls,
+                };
+                balls.any(&mut add)
+            }
+            // Every ball: a superset of the candidates.
+            None => self.balls.iter().any(add),
+        }
+    }
+
     /// The candidate balls of the block from `origin` to `far`: the or of the `bits` of the
     /// cells under it (every ball whose padded cutoff box meets the block), or `None` when
     /// the grid keeps no bits or the block covers more than [`MAX_BLOCK_CELLS`] cells.
@@ -658,6 +720,9 @@ fn write_rows(acc: &[[Vec4; 2]; TILE], width: usize, height: usize, out: &mut [f
 /// same `8 × step` band modulo this many bands share a slot.
 const CACHE_WAYS: usize = 16;
 
+/// Factor rows a [`FactorCache`] makes room for per ball at first.
+const FACTORS_PER_BALL: usize = 16;
+
 /// The tag of an empty [`FactorCache`] slot: a NaN, which no block's (finite) first column or
 /// row has.
 const EMPTY_TAG: u32 = 0x7fc0_0001;
@@ -689,6 +754,9 @@ impl FactorCache {
             self.slots.clear();
             self.slots.resize(slots, (EMPTY_TAG, 0));
             self.factors.clear();
+            // Room for a typical trace's rows and columns (about ten per ball), so that the
+            // factors rarely move as they grow.
+            self.factors.reserve(balls * FACTORS_PER_BALL);
             self.step = step.to_bits();
             self.inv_band = 1.0 / (TILE as f32 * step);
         }
@@ -1760,6 +1828,53 @@ mod tests {
             *sample = saturate(sum);
         }
         out
+    }
+
+    /// `block_at_least` is never wrong: whenever it proves a level, every sample of the block
+    /// (block sampler and point queries alike) reaches it, up to levels a hair under the
+    /// smallest sample; and it does prove levels comfortably below the smallest sample.
+    #[test]
+    fn block_bounds_never_claim_too_much() {
+        let mut proven = 0;
+        for (count, spread) in [(1, 10.0), (12, 60.0), (60, 200.0), (300, 400.0)] {
+            let balls = scattered(count, spread);
+            for falloff in [Falloff::SEED, Falloff::BLINN, Falloff::WYVILL] {
+                let core = Core::<2>::build(&balls, falloff.kernel(), 1e-4, None);
+                for i in 0..200 {
+                    let a = i as f32;
+                    let origin = [
+                        ((a * 0.377).fract() - 0.5) * spread * 0.8,
+                        ((a * 0.291).fract() - 0.5) * spread * 0.8,
+                    ];
+                    let step = [0.3, 1.0, 2.39][i % 3];
+                    let size = [[8, 8], [5, 8], [8, 3], [1, 1]][i / 3 % 4];
+                    let mut block = vec![0.0f32; size[0] * size[1]];
+                    core.sample_block(origin, step, size[0], size[1], &mut block, None);
+                    let mut min = block.iter().copied().fold(f32::INFINITY, f32::min);
+                    for n in 0..block.len() {
+                        let p = [
+                            origin[0] + step * (n % size[0]) as f32,
+                            origin[1] + step * (n / size[0]) as f32,
+                        ];
+                        min = min.min(core.value(p));
+                    }
+                    let above = f32::from_bits(min.to_bits() + 1);
+                    for level in [0.5 * min, min * (1.0 - 1e-4), min, above] {
+                        let at = (count, falloff, i, level, min);
+                        if core.block_at_least(origin, step, size[0], size[1], level) {
+                            assert!(min >= level, "{at:?}");
+                        }
+                    }
+                    if min > 0.0 && core.block_at_least(origin, step, size[0], size[1], 0.5 * min) {
+                        proven += 1;
+                    }
+                }
+            }
+        }
+        assert!(proven > 500, "{proven}");
+        // No samples: any level holds.
+        let core = Core::<2>::build(&scattered(3, 10.0), Falloff::SEED.kernel(), 1e-4, None);
+        assert!(core.block_at_least([0.0; 2], 1.0, 0, 8, 1e30));
     }
 
     /// A factor cache shared by many tiles (a walk over neighbouring tiles that revisits

@@ -216,6 +216,15 @@ impl creature_march::TileField for TiledField<'_> {
             out.fill(f32::NAN);
         }
     }
+
+    fn tile_inside(&self, first: [i32; 2], step: f32, iso: f32) -> bool {
+        use creature_march::{TILE_SIZE, node_point};
+        let origin = node_point(first, step);
+        let field = self.0.borrow().field();
+        field
+            .block_is_at_least(origin, step, TILE_SIZE, TILE_SIZE, iso)
+            .unwrap_or(false)
+    }
 }
 
 /// `Field2` filling each tile with a plain `Field2::sample_block` call (no cache): the same

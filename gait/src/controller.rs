@@ -10,8 +10,8 @@ use crate::ground::Ground;
 use crate::ik::{Lanes, SPARE, TwoBone, V3, solve_lanes, solve_two_bone};
 use crate::leg::{Chain, Layout, Leg, LimbKind, Pose, layout};
 use crate::math::{
-    abs, atan2, atan2_lanes, ceil, clamp_sym, cos, floor_non_negative, quat_yxz, sin_turns,
-    smoothing, sqrt,
+    abs, atan2, atan2_lanes, ceil, clamp_sym, cos, floor_non_negative, quat_yxz, quat_yxz_sin_cos,
+    sin_cos_lanes, sin_turns, sin_turns_arg, smoothing, sqrt,
 };
 use crate::metrics::{GaitMetrics, support_margin};
 use crate::options::GaitOptions;
@@ -206,8 +206,8 @@ pub struct Controller {
     // recompute what the legs and options fix.
     /// Each leg's rest position in world space, this update.
     rest_world: Vec<Vec3>,
-    /// Each leg's hip-roll lever: the hips' X distance to its partner (or a floor).
-    hip_width: Vec<f32>,
+    /// Each leg's hip-roll partner and lever (see `HipPair`).
+    hip_pairs: Vec<HipPair>,
     has_arms: bool,
     /// `cos(max_turn_angle)`: the turning-in-place check without `atan2`.
     cos_turn: f32,
@@ -263,6 +263,33 @@ impl LegLanes {
             lower: len(|l| l.lower),
         }
     }
+}
+
+/// A leg's hip roll (see `Controller::react`): none without a partner, else its own angle
+/// from the height difference to partner `j` over the lever, or the opposite of the partner's
+/// angle when the partner comes first with the same lever (one arctangent per pair).
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum HipPair {
+    None,
+    Own(usize, f32),
+    Mirror(usize),
+}
+
+/// How much higher a foot stands above its rest height than partner `j`'s.
+#[inline(always)]
+fn hip_rise(
+    state: &LegState,
+    rest_world: &Vec3,
+    states: &[LegState],
+    rests: &[Vec3],
+    j: usize,
+) -> f32 {
+    let da = state.foot.y - rest_world.y;
+    let db = match (states.get(j), rests.get(j)) {
+        (Some(s), Some(r)) => s.foot.y - r.y,
+        _ => 0.0,
+    };
+    da - db
 }
 
 /// Bisection steps of [`Controller::keep_within_reach`]: the reaction kept is within 2⁻¹⁰ of
@@ -335,12 +362,20 @@ impl Controller {
         options.validate()?;
         let layout = layout(legs)?;
         let swing_fraction = 1.0 / f32::from(layout.group_count.max(2));
-        let hip_width = legs
+        // Each leg's hip-roll lever: the hips' X distance to its partner (or a floor).
+        let hip_width: Vec<f32> = legs
             .iter()
             .enumerate()
             .map(|(i, a)| match layout.partner[i].and_then(|j| legs.get(j)) {
                 Some(b) => abs(a.hip.x - b.hip.x).max(1e-3 * a.size),
                 None => 0.0,
+            })
+            .collect();
+        let hip_pairs = (0..legs.len())
+            .map(|i| match layout.partner[i] {
+                Some(j) if j < i && hip_width.get(j) == hip_width.get(i) => HipPair::Mirror(j),
+                Some(j) => HipPair::Own(j, hip_width.get(i).copied().unwrap_or(0.0)),
+                None => HipPair::None,
             })
             .collect();
         Ok(Self {
@@ -373,7 +408,7 @@ impl Controller {
             wants: alloc::vec![0; legs.len()],
             motion: alloc::vec![Vec3::ZERO; legs.len()],
             rest_world: legs.iter().map(|l| l.rest).collect(),
-            hip_width,
+            hip_pairs,
             has_arms: legs.iter().any(|l| l.kind == LimbKind::Arm),
             cos_turn: cos(options.max_turn_angle),
             smoothing_dt: -1.0,
@@ -952,26 +987,45 @@ impl Controller {
         r.yaw = clamp_sym(r.yaw + (yaw_t - r.yaw) * k, o.sway_limit);
         r.pitch = clamp_sym(r.pitch + (pitch_t - r.pitch) * k, o.sway_limit);
         r.roll = clamp_sym(r.roll + (roll_t - r.roll) * k, o.sway_limit);
-        let breathe = o.breathe_amplitude * self.mean_size * sin_turns(self.idle_phase);
         let w = self.blend;
+        // The breathing's sine and the rotation's three half-angle sines and cosines, four
+        // lanes at once (`sin_turns` and `quat_yxz` bit for bit).
+        let (sign, turn) = sin_turns_arg(self.idle_phase);
+        let (s, c) = sin_cos_lanes(Vec4::new(
+            0.5 * (r.yaw * w),
+            0.5 * (r.pitch * w),
+            0.5 * (r.roll * w),
+            turn,
+        ));
+        let breathe = o.breathe_amplitude * self.mean_size * (sign * s.w);
         r.offset = Vec3::Y * ((r.bob + breathe) * w);
-        r.rotation = quat_yxz(r.yaw * w, r.pitch * w, r.roll * w);
+        r.rotation = quat_yxz_sin_cos(s, c);
 
         // Hip roll: the height difference between a foot and its partner (3D seed). A pair
         // with the same lever rolls by opposite angles: one arctangent per pair.
         for i in 0..self.legs.len() {
-            let roll = match self.layout.partner[i] {
-                Some(j) if self.states[i].grounded && self.states[j].grounded => {
-                    if j < i && self.hip_width[j] == self.hip_width[i] {
-                        self.states[i].hip_roll = -self.states[j].hip_roll;
-                        continue;
-                    }
-                    let da = self.states[i].foot.y - self.rest_world[i].y;
-                    let db = self.states[j].foot.y - self.rest_world[j].y;
-                    clamp_sym(
-                        o.hip_roll_gain * atan2(da - db, self.hip_width[i]),
-                        o.hip_roll_limit,
-                    )
+            let (Some(pair), Some(state)) = (self.hip_pairs.get(i), self.states.get(i)) else {
+                continue;
+            };
+            let roll = match *pair {
+                HipPair::Own(j, width)
+                    if state.grounded && self.states.get(j).is_some_and(|s| s.grounded) =>
+                {
+                    let rise = hip_rise(
+                        state,
+                        &self.rest_world[i],
+                        &self.states,
+                        &self.rest_world,
+                        j,
+                    );
+                    clamp_sym(o.hip_roll_gain * atan2(rise, width), o.hip_roll_limit)
+                }
+                HipPair::Mirror(j)
+                    if state.grounded && self.states.get(j).is_some_and(|s| s.grounded) =>
+                {
+                    let mirrored = -self.states[j].hip_roll;
+                    self.states[i].hip_roll = mirrored;
+                    continue;
                 }
                 _ => 0.0,
             };

@@ -549,9 +549,14 @@ impl HeightField {
 
 impl Ground for HeightField {
     /// One bilinear lookup (no march): the same hit as `cast_ray` straight down.
+    ///
+    /// A non-finite `origin.x` or `origin.z` is outside the grid, and the distance found is
+    /// `+0` or more (`-0` when `origin.y` is `-0` on a height of `+0`), so a NaN or negative
+    /// `max_distance` (below `-0`) finds no hit: the checks of `cast_ray` come down to a finite
+    /// `origin.y`.
     #[inline(always)]
     fn cast_down(&self, origin: Vec3, max_distance: f32) -> Option<RayHit> {
-        if !(origin.is_finite() && max_distance >= 0.0) {
+        if !origin.y.is_finite() {
             return None;
         }
         self.vertical(origin, 1.0, max_distance)
@@ -559,14 +564,15 @@ impl Ground for HeightField {
 
     /// The bilinear height alone, without the normal: a patch's normal is always valid
     /// (finite and of unit length, or +Y where its slope overflows), so the hit is valid
-    /// exactly when its height and distance are finite.
+    /// exactly when its height and distance are finite: when its distance is (a NaN or
+    /// infinite `origin.y` or height gives a NaN or infinite distance, or none; and see
+    /// [`cast_down`](Self::cast_down) for the other checks).
     #[inline(always)]
     fn cast_down_point(&self, origin: Vec3, max_distance: f32) -> Option<Vec3> {
-        if !(origin.is_finite() && max_distance >= 0.0) {
-            return None;
-        }
         let (_, _, _, h, distance) = self.under(origin, 1.0, max_distance)?;
-        (h.is_finite() && distance.is_finite()).then(|| Vec3::new(origin.x, h, origin.z))
+        distance
+            .is_finite()
+            .then(|| Vec3::new(origin.x, h, origin.z))
     }
 
     fn cast_ray(&self, origin: Vec3, direction: Vec3, max_distance: f32) -> Option<RayHit> {
@@ -801,6 +807,52 @@ mod tests {
         let hit = steep.cast_down(origin, f32::INFINITY).unwrap();
         assert!(!hit.is_valid());
         assert_eq!(steep.cast_down_point(origin, f32::INFINITY), None);
+    }
+
+    #[test]
+    fn cast_down_checks_as_cast_ray_does() {
+        // Non-finite coordinates, signed zeros on a zero height, and NaN, negative and infinite
+        // lengths: `cast_down` finds what `cast_ray` straight down finds, and `cast_down_point`
+        // the point of its valid hits, though they check less up front.
+        let flat = HeightField::new(Vec2::ZERO, 1.0, 2, 2, vec![0.0; 4]).unwrap();
+        let steep = HeightField::new(Vec2::ZERO, 1.0, 2, 2, vec![-3e38, 0.0, 0.0, 0.0]).unwrap();
+        let odd = [
+            0.0,
+            -0.0,
+            0.5,
+            3e38,
+            -3e38,
+            f32::INFINITY,
+            -f32::INFINITY,
+            f32::NAN,
+        ];
+        let lengths = [
+            20.0,
+            0.0,
+            -0.0,
+            -1.0,
+            f32::INFINITY,
+            -f32::INFINITY,
+            f32::NAN,
+        ];
+        for field in [&flat, &steep] {
+            for (x, y, z) in odd
+                .iter()
+                .flat_map(|&x| odd.iter().flat_map(move |&y| [(x, y, 0.25), (0.25, y, x)]))
+            {
+                for max in lengths {
+                    let origin = Vec3::new(x, y, z);
+                    let down = field.cast_down(origin, max);
+                    assert_eq!(
+                        down,
+                        field.cast_ray(origin, Vec3::NEG_Y, max),
+                        "{origin} {max}"
+                    );
+                    let valid = down.filter(RayHit::is_valid).map(|h| h.point);
+                    assert_eq!(field.cast_down_point(origin, max), valid, "{origin} {max}");
+                }
+            }
+        }
     }
 
     #[test]

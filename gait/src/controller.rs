@@ -802,11 +802,14 @@ impl Controller {
             *want = flags;
         }
 
-        // 3. Sequencing: the active group keeps the turn while any of its legs steps.
+        // 3. Sequencing: the active group keeps the turn while any of its legs steps. One pass
+        //    finds what step 4 needs of the group that then has the turn, this one or the next.
+        //    (Plain boolean arithmetic, no branches: which legs step and want to varies too
+        //    much to predict.)
         let count = self.layout.group_count.max(1);
         let active = self.active_group;
-        let mut group_stepping = false;
-        let mut group_wants = false;
+        let next = (active + 1) % count;
+        let (mut group_stepping, mut group_wants, mut next_moves) = (false, false, false);
         for (((leg, state), want), group) in self
             .legs
             .iter()
@@ -814,13 +817,15 @@ impl Controller {
             .zip(&self.wants)
             .zip(&self.layout.groups)
         {
-            if leg.kind == LimbKind::Leg && *group == active {
-                group_stepping |= state.stepping;
-                group_wants |= want & WANT != 0;
-            }
+            let sequenced = leg.kind == LimbKind::Leg;
+            let wants = want & WANT != 0;
+            group_stepping |= sequenced & (*group == active) & state.stepping;
+            group_wants |= sequenced & (*group == active) & wants;
+            next_moves |= sequenced & (*group == next) & (state.stepping | wants);
         }
-        if !group_stepping && (self.turn_taken || !group_wants) {
-            self.active_group = (active + 1) % count;
+        let advance = !group_stepping && (self.turn_taken || !group_wants);
+        if advance {
+            self.active_group = next;
             self.turn_taken = false;
         }
         let active = self.active_group;
@@ -829,18 +834,11 @@ impl Controller {
         //    trail behind their rest position by more than `group_join` of their reach join it,
         //    so a group steps together instead of leaving a leg to wait a whole cycle. Feet
         //    that are ahead (just landed) never join: they would step again at once.
-        let mut group_moves = false;
-        for (((leg, state), want), group) in self
-            .legs
-            .iter()
-            .zip(&self.states)
-            .zip(&self.wants)
-            .zip(&self.layout.groups)
-        {
-            if leg.kind == LimbKind::Leg && *group == active {
-                group_moves |= state.stepping || want & WANT != 0;
-            }
-        }
+        let group_moves = if advance {
+            next_moves
+        } else {
+            group_stepping | group_wants
+        };
         if group_moves {
             for (((((leg, state), want), group), motion), &(distance, reach_here)) in self
                 .legs
@@ -851,22 +849,17 @@ impl Controller {
                 .zip(&self.motion)
                 .zip(&self.strayed)
             {
-                if leg.kind != LimbKind::Leg
-                    || *group != active
-                    || state.stepping
-                    || !state.grounded
-                    || *want != 0
-                {
-                    continue;
-                }
+                let idle = (leg.kind == LimbKind::Leg)
+                    & (*group == active)
+                    & !state.stepping
+                    & state.grounded
+                    & (*want == 0);
                 let stray = horizontal(state.foot - state.anchor);
                 let trailing = stray.dot(*motion) < 0.0;
-                if !trailing {
-                    continue;
-                }
                 // The stray's length and the reach in its direction, as step 2 found them
-                // (every leg here went through it, and no foot has moved since).
-                if distance > o.group_join * reach_here * leg.size {
+                // (every idle leg went through it, and no foot has moved since).
+                let far = distance > o.group_join * reach_here * leg.size;
+                if idle & trailing & far {
                     *want = WANT;
                 }
             }

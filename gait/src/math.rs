@@ -263,6 +263,22 @@ pub(crate) fn sin_turns_arg(turns: f32) -> (f32, f32) {
     (sign, core::f32::consts::TAU * p)
 }
 
+/// [`sin_turns`] for `turns` in `[0, 0.5]` (as the sine height curve's), bit for bit: the
+/// whole turns are 0 there, so the reduction needs no floor.
+#[inline]
+pub(crate) fn sin_half_turn(turns: f32) -> f32 {
+    let mut p = turns;
+    let mut sign = 1.0;
+    if p >= 0.5 {
+        p -= 0.5;
+        sign = -1.0;
+    }
+    if p > 0.25 {
+        p = 0.5 - p;
+    }
+    sign * sin_cos(core::f32::consts::TAU * p).0
+}
+
 /// The rotation `from_rotation_y(yaw) · from_rotation_x(pitch) · from_rotation_z(roll)` (glam's
 /// `EulerRot::YXZ`), with [`sin_cos`] for the half angles.
 #[inline]
@@ -401,6 +417,24 @@ mod tests {
             assert_eq!(sin_turns(p), sin_turns(p + 3.0), "{p}");
         }
         assert_eq!(sin_turns(f32::NAN), 0.0);
+        // The half turn's shortcut, on every float of `[0, 0.5]` near its branch points and
+        // on a grid: the same bits.
+        let mut turns: alloc::vec::Vec<f32> = (0..=5000).map(|k| k as f32 * 1e-4).collect();
+        for edge in [0.0f32, 0.25, 0.5] {
+            let mut x = edge;
+            for _ in 0..50 {
+                turns.push(x);
+                x = f32::from_bits(x.to_bits().saturating_sub(1));
+            }
+            let mut x = edge;
+            for _ in 0..50 {
+                turns.push(x);
+                x = f32::from_bits(x.to_bits() + 1);
+            }
+        }
+        for t in turns.into_iter().filter(|t| (0.0..=0.5).contains(t)) {
+            assert_eq!(sin_half_turn(t).to_bits(), sin_turns(t).to_bits(), "{t}");
+        }
         let q = quat_yxz(0.3, -0.2, 0.25);
         let g = glam::Quat::from_euler(glam::EulerRot::YXZ, 0.3, -0.2, 0.25);
         assert!(q.dot(g) > 1.0 - 1e-6);

@@ -3,7 +3,7 @@
 
 use alloc::vec::Vec;
 
-use glam::{Mat3A, Quat, Vec2, Vec3, Vec3A, Vec4};
+use glam::{BVec4A, Mat3A, Quat, Vec2, Vec3, Vec3A, Vec4};
 
 use crate::error::{GaitError, finite, finite3, in_range};
 use crate::ground::Ground;
@@ -222,6 +222,9 @@ pub struct Controller {
     /// The legs four at a time (the last group padded with its first leg), in SIMD lanes
     /// for the IK: hips, poles and segment lengths.
     leg_lanes: Vec<LegLanes>,
+    /// The feet, four legs at a time (the last group padded with its first leg), once the
+    /// action has placed them (see `gather_feet`).
+    feet: Vec<V3>,
     /// The reacted body's hips, four legs at a time, and its rotation when they are this
     /// update's (see `keep_within_reach`).
     hips: Vec<V3>,
@@ -244,6 +247,9 @@ struct LegLanes {
     pole: V3,
     upper: Vec4,
     lower: Vec4,
+    /// The square of each leg's reach (`upper + lower`), infinite for arms: no foot is out of
+    /// an arm's reach (see `keep_within_reach`).
+    reach2: Vec4,
 }
 
 impl LegLanes {
@@ -261,6 +267,10 @@ impl LegLanes {
             pole: V3::gather(get(|l| l.pole)),
             upper: len(|l| l.upper),
             lower: len(|l| l.lower),
+            reach2: len(|l| match l.kind {
+                LimbKind::Leg => (l.upper + l.lower) * (l.upper + l.lower),
+                LimbKind::Arm => f32::INFINITY,
+            }),
         }
     }
 }
@@ -419,6 +429,7 @@ impl Controller {
             angles: alloc::vec![0.0; legs.len()],
             strayed: alloc::vec![(0.0, 0.0); legs.len()],
             hips: legs.chunks(4).map(|l| LegLanes::new(l).hip).collect(),
+            feet: legs.chunks(4).map(|l| LegLanes::new(l).rest).collect(),
             reacted_rotation: None,
             centre_of_mass: Vec3A::from(options.centre_of_mass),
         })
@@ -540,6 +551,7 @@ impl Controller {
         self.active_group = 0;
         self.turn_taken = false;
         self.initialized = true;
+        self.gather_feet();
         self.solve_joints();
         self.metrics = GaitMetrics::default();
         Ok(())
@@ -618,6 +630,7 @@ impl Controller {
         // The pose's rotation as a matrix, for the action and the reaction.
         let rotation = Mat3A::from_quat(pose.rotation);
         self.action(dt, &pose, &rotation, velocity, angular_velocity, ground);
+        self.gather_feet();
         self.react(&pose, &rotation);
         self.keep_within_reach(&pose);
         self.intend(&pose, angular_velocity);
@@ -1032,22 +1045,18 @@ impl Controller {
     fn foot_angles(&mut self, pose: &Pose, rotation: &Mat3A) {
         let inverse = rotation.transpose();
         let t = pose.translation;
-        for ((lanes, angles), states) in self
+        let t = V3 {
+            x: Vec4::splat(t.x),
+            y: Vec4::splat(t.y),
+            z: Vec4::splat(t.z),
+        };
+        for ((lanes, angles), feet) in self
             .leg_lanes
             .iter()
             .zip(self.angles.chunks_mut(4))
-            .zip(self.states.chunks(4))
+            .zip(&self.feet)
         {
-            // Missing lanes repeat the first leg.
-            let feet = match states {
-                [a, b, c, d] => [a.foot - t, b.foot - t, c.foot - t, d.foot - t],
-                [first, ..] => {
-                    let foot = |k: usize| states.get(k).unwrap_or(first).foot - t;
-                    [foot(0), foot(1), foot(2), foot(3)]
-                }
-                [] => continue,
-            };
-            let local = V3::gather(feet).rotate(&inverse);
+            let local = feet.sub(t).rotate(&inverse);
             let rest = lanes.rest;
             let cross = rest.z * local.x - rest.x * local.z;
             let dot = rest.z * local.z + rest.x * local.x;
@@ -1055,6 +1064,21 @@ impl Controller {
             for (k, a) in angles.iter_mut().enumerate() {
                 *a = yaw[k];
             }
+        }
+    }
+
+    /// The feet the action placed, four legs at a time (`feet`), for the reaction, the reach
+    /// check and the IK; missing lanes repeat the first leg.
+    fn gather_feet(&mut self) {
+        for (feet, states) in self.feet.iter_mut().zip(self.states.chunks(4)) {
+            *feet = V3::gather(match states {
+                [a, b, c, d] => [a.foot, b.foot, c.foot, d.foot],
+                [first, ..] => {
+                    let foot = |k: usize| states.get(k).unwrap_or(first).foot;
+                    [foot(0), foot(1), foot(2), foot(3)]
+                }
+                [] => continue,
+            });
         }
     }
 
@@ -1069,19 +1093,23 @@ impl Controller {
         let rotation = Mat3A::from_quat((pose.rotation * reaction.rotation).normalize());
         let origin = pose.translation + reaction.offset;
         let mut out = false;
-        for ((lanes, hips), (legs, states)) in self
+        for (((lanes, hips), feet), states) in self
             .leg_lanes
             .iter()
             .zip(&mut self.hips)
-            .zip(self.legs.chunks(4).zip(self.states.chunks(4)))
+            .zip(&self.feet)
+            .zip(self.states.chunks(4))
         {
             *hips = lanes.hip.transform(&rotation, origin);
-            for ((leg, state), hip) in legs.iter().zip(states).zip(hips.split()) {
-                let reach = leg.upper + leg.lower;
-                out |= leg.kind == LimbKind::Leg
-                    && state.planted
-                    && state.foot.distance_squared(hip) > reach * reach;
-            }
+            // Four legs at a time: `foot.distance_squared(hip) > reach²` (arms: never), for the
+            // planted feet (missing lanes repeat the first leg).
+            let Some(first) = states.first() else {
+                continue;
+            };
+            let planted = |k: usize| states.get(k).unwrap_or(first).planted;
+            let planted = BVec4A::new(planted(0), planted(1), planted(2), planted(3));
+            let d = feet.sub(*hips);
+            out |= (d.dot(d).cmpgt(lanes.reach2) & planted).any();
         }
         if !out {
             self.reacted_rotation = Some(rotation);
@@ -1250,26 +1278,27 @@ impl Controller {
         };
         // Four legs at a time, one per SIMD lane (see `solve_lanes`).
         let mut spare = [SPARE; 3];
-        for (((lanes, hips), states), rest) in self
+        for ((((lanes, hips), feet), states), rest) in self
             .leg_lanes
             .iter()
             .zip(&self.hips)
+            .zip(&self.feet)
             .zip(self.states.chunks_mut(4))
             .zip(self.rest_world.chunks(4))
         {
             let target = |s: &LegState, r: Option<&Vec3>| match r {
-                Some(r) if w != 1.0 => r.lerp(s.foot, w),
-                _ => s.foot,
+                Some(r) => r.lerp(s.foot, w),
+                None => s.foot,
             };
             // Missing lanes repeat the first leg.
             let targets = match &*states {
-                [a, b, c, d] if w == 1.0 => [a.foot, b.foot, c.foot, d.foot],
+                _ if w == 1.0 => *feet,
                 [first, ..] => {
                     let lane = |k: usize| match states.get(k) {
                         Some(s) => target(s, rest.get(k)),
                         None => target(first, rest.first()),
                     };
-                    [lane(0), lane(1), lane(2), lane(3)]
+                    V3::gather([lane(0), lane(1), lane(2), lane(3)])
                 }
                 [] => continue,
             };
@@ -1279,7 +1308,7 @@ impl Controller {
                 } else {
                     lanes.hip.transform(&rotation, translation)
                 },
-                target: V3::gather(targets),
+                target: targets,
                 pole: lanes.pole.rotate(&rotation),
                 upper: lanes.upper,
                 lower: lanes.lower,

@@ -242,9 +242,10 @@ pub struct HeightField {
     /// `(columns − 1, rows − 1)` as floats: the largest grid coordinates (no conversion per
     /// lookup).
     max_grid: Vec2,
-    /// `(columns − 2, rows − 2)`, the last cell's indices, when both are below 2²⁴ (every
-    /// practical grid: lookups then convert through `i32`, exactly); `None` otherwise.
-    last_cell: Option<(i32, i32)>,
+    /// `(columns − 2, rows − 2)`, the last cell's indices, and `columns` as a `u32`, when both
+    /// indices are below 2²⁴ (every practical grid): lookups then convert through `i32`,
+    /// exactly, and read a cell's four heights with one bounds check; `None` otherwise.
+    grid: Option<(i32, i32, u32)>,
 }
 
 impl HeightField {
@@ -302,8 +303,10 @@ impl HeightField {
             heights,
             inv_cell: 1.0 / cell,
             max_grid: Vec2::new((columns - 1) as f32, (rows - 1) as f32),
-            last_cell: match (i32::try_from(columns - 2), i32::try_from(rows - 2)) {
-                (Ok(i), Ok(j)) if i < 1 << 24 && j < 1 << 24 => Some((i, j)),
+            grid: match (i32::try_from(columns - 2), i32::try_from(rows - 2)) {
+                (Ok(i), Ok(j)) if i < 1 << 24 && j < 1 << 24 => {
+                    Some((i, j, (i + 2).cast_unsigned()))
+                }
                 _ => None,
             },
         })
@@ -390,7 +393,7 @@ impl HeightField {
             return None;
         }
         // Non-negative here, so truncation is the floor (no libm call).
-        if let Some((last_i, last_j)) = self.last_cell {
+        if let Some((last_i, last_j, _)) = self.grid {
             // Below 2²⁴ here: `i32` conversions both ways are exact and cheaper than `usize`'s.
             let i = (gx as i32).min(last_i);
             let j = (gz as i32).min(last_j);
@@ -404,6 +407,16 @@ impl HeightField {
     /// Bilinear coefficients `[a, b, c, d]` of cell `(i, j)`: `h = a + b u + c v + d u v`.
     #[inline(always)]
     fn patch(&self, i: usize, j: usize) -> [f32; 4] {
+        if let Some((_, _, columns)) = self.grid {
+            // Both rows in one slice of `columns + 2` samples: one bounds check (never failing
+            // for a located cell); `columns` below 2³² makes the four reads provably inside it.
+            let c = columns as usize;
+            let k = j * c + i;
+            if let Some(q) = self.heights.get(k..k + c + 2) {
+                let (h00, h10, h01, h11) = (q[0], q[1], q[c], q[c + 1]);
+                return [h00, h10 - h00, h01 - h00, h00 - h10 - h01 + h11];
+            }
+        }
         // Two rows of two samples: two bounds checks (never failing for a located cell).
         let k = j * self.columns + i;
         let (h00, h10) = match self.heights.get(k..k + 2) {

@@ -1060,9 +1060,8 @@ impl Controller {
             let rest = lanes.rest;
             let cross = rest.z * local.x - rest.x * local.z;
             let dot = rest.z * local.z + rest.x * local.x;
-            let yaw = atan2_lanes(cross, dot);
-            for (k, a) in angles.iter_mut().enumerate() {
-                *a = yaw[k];
+            for (angle, yaw) in angles.iter_mut().zip(atan2_lanes(cross, dot).to_array()) {
+                *angle = yaw;
             }
         }
     }

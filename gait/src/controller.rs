@@ -3,15 +3,15 @@
 
 use alloc::vec::Vec;
 
-use glam::{Mat3A, Quat, Vec2, Vec3, Vec3A, Vec4};
+use glam::{BVec4A, Mat3A, Quat, Vec2, Vec3, Vec3A, Vec4};
 
 use crate::error::{GaitError, finite, finite3, in_range};
 use crate::ground::Ground;
 use crate::ik::{Lanes, SPARE, TwoBone, V3, solve_lanes, solve_two_bone};
 use crate::leg::{Chain, Layout, Leg, LimbKind, Pose, layout};
 use crate::math::{
-    abs, atan2, atan2_lanes, ceil, clamp_sym, cos, floor_non_negative, quat_yxz, sin_turns,
-    smoothing, sqrt,
+    abs, atan2, atan2_lanes, ceil, clamp_sym, cos, floor_non_negative, quat_yxz, quat_yxz_sin_cos,
+    sin_cos_lanes, sin_turns, sin_turns_arg, smoothing, sqrt,
 };
 use crate::metrics::{GaitMetrics, support_margin};
 use crate::options::GaitOptions;
@@ -206,8 +206,8 @@ pub struct Controller {
     // recompute what the legs and options fix.
     /// Each leg's rest position in world space, this update.
     rest_world: Vec<Vec3>,
-    /// Each leg's hip-roll lever: the hips' X distance to its partner (or a floor).
-    hip_width: Vec<f32>,
+    /// Each leg's hip-roll partner and lever (see `HipPair`).
+    hip_pairs: Vec<HipPair>,
     has_arms: bool,
     /// `cos(max_turn_angle)`: the turning-in-place check without `atan2`.
     cos_turn: f32,
@@ -222,6 +222,9 @@ pub struct Controller {
     /// The legs four at a time (the last group padded with its first leg), in SIMD lanes
     /// for the IK: hips, poles and segment lengths.
     leg_lanes: Vec<LegLanes>,
+    /// The feet, four legs at a time (the last group padded with its first leg), once the
+    /// action has placed them (see `gather_feet`).
+    feet: Vec<V3>,
     /// The reacted body's hips, four legs at a time, and its rotation when they are this
     /// update's (see `keep_within_reach`).
     hips: Vec<V3>,
@@ -244,6 +247,9 @@ struct LegLanes {
     pole: V3,
     upper: Vec4,
     lower: Vec4,
+    /// The square of each leg's reach (`upper + lower`), infinite for arms: no foot is out of
+    /// an arm's reach (see `keep_within_reach`).
+    reach2: Vec4,
 }
 
 impl LegLanes {
@@ -261,8 +267,39 @@ impl LegLanes {
             pole: V3::gather(get(|l| l.pole)),
             upper: len(|l| l.upper),
             lower: len(|l| l.lower),
+            reach2: len(|l| match l.kind {
+                LimbKind::Leg => (l.upper + l.lower) * (l.upper + l.lower),
+                LimbKind::Arm => f32::INFINITY,
+            }),
         }
     }
+}
+
+/// A leg's hip roll (see `Controller::react`): none without a partner, else its own angle
+/// from the height difference to partner `j` over the lever, or the opposite of the partner's
+/// angle when the partner comes first with the same lever (one arctangent per pair).
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum HipPair {
+    None,
+    Own(usize, f32),
+    Mirror(usize),
+}
+
+/// How much higher a foot stands above its rest height than partner `j`'s.
+#[inline(always)]
+fn hip_rise(
+    state: &LegState,
+    rest_world: &Vec3,
+    states: &[LegState],
+    rests: &[Vec3],
+    j: usize,
+) -> f32 {
+    let da = state.foot.y - rest_world.y;
+    let db = match (states.get(j), rests.get(j)) {
+        (Some(s), Some(r)) => s.foot.y - r.y,
+        _ => 0.0,
+    };
+    da - db
 }
 
 /// Bisection steps of [`Controller::keep_within_reach`]: the reaction kept is within 2⁻¹⁰ of
@@ -335,12 +372,20 @@ impl Controller {
         options.validate()?;
         let layout = layout(legs)?;
         let swing_fraction = 1.0 / f32::from(layout.group_count.max(2));
-        let hip_width = legs
+        // Each leg's hip-roll lever: the hips' X distance to its partner (or a floor).
+        let hip_width: Vec<f32> = legs
             .iter()
             .enumerate()
             .map(|(i, a)| match layout.partner[i].and_then(|j| legs.get(j)) {
                 Some(b) => abs(a.hip.x - b.hip.x).max(1e-3 * a.size),
                 None => 0.0,
+            })
+            .collect();
+        let hip_pairs = (0..legs.len())
+            .map(|i| match layout.partner[i] {
+                Some(j) if j < i && hip_width.get(j) == hip_width.get(i) => HipPair::Mirror(j),
+                Some(j) => HipPair::Own(j, hip_width.get(i).copied().unwrap_or(0.0)),
+                None => HipPair::None,
             })
             .collect();
         Ok(Self {
@@ -373,7 +418,7 @@ impl Controller {
             wants: alloc::vec![0; legs.len()],
             motion: alloc::vec![Vec3::ZERO; legs.len()],
             rest_world: legs.iter().map(|l| l.rest).collect(),
-            hip_width,
+            hip_pairs,
             has_arms: legs.iter().any(|l| l.kind == LimbKind::Arm),
             cos_turn: cos(options.max_turn_angle),
             smoothing_dt: -1.0,
@@ -384,6 +429,7 @@ impl Controller {
             angles: alloc::vec![0.0; legs.len()],
             strayed: alloc::vec![(0.0, 0.0); legs.len()],
             hips: legs.chunks(4).map(|l| LegLanes::new(l).hip).collect(),
+            feet: legs.chunks(4).map(|l| LegLanes::new(l).rest).collect(),
             reacted_rotation: None,
             centre_of_mass: Vec3A::from(options.centre_of_mass),
         })
@@ -505,6 +551,7 @@ impl Controller {
         self.active_group = 0;
         self.turn_taken = false;
         self.initialized = true;
+        self.gather_feet();
         self.solve_joints();
         self.metrics = GaitMetrics::default();
         Ok(())
@@ -583,6 +630,7 @@ impl Controller {
         // The pose's rotation as a matrix, for the action and the reaction.
         let rotation = Mat3A::from_quat(pose.rotation);
         self.action(dt, &pose, &rotation, velocity, angular_velocity, ground);
+        self.gather_feet();
         self.react(&pose, &rotation);
         self.keep_within_reach(&pose);
         self.intend(&pose, angular_velocity);
@@ -767,11 +815,14 @@ impl Controller {
             *want = flags;
         }
 
-        // 3. Sequencing: the active group keeps the turn while any of its legs steps.
+        // 3. Sequencing: the active group keeps the turn while any of its legs steps. One pass
+        //    finds what step 4 needs of the group that then has the turn, this one or the next.
+        //    (Plain boolean arithmetic, no branches: which legs step and want to varies too
+        //    much to predict.)
         let count = self.layout.group_count.max(1);
         let active = self.active_group;
-        let mut group_stepping = false;
-        let mut group_wants = false;
+        let next = (active + 1) % count;
+        let (mut group_stepping, mut group_wants, mut next_moves) = (false, false, false);
         for (((leg, state), want), group) in self
             .legs
             .iter()
@@ -779,13 +830,15 @@ impl Controller {
             .zip(&self.wants)
             .zip(&self.layout.groups)
         {
-            if leg.kind == LimbKind::Leg && *group == active {
-                group_stepping |= state.stepping;
-                group_wants |= want & WANT != 0;
-            }
+            let sequenced = leg.kind == LimbKind::Leg;
+            let wants = want & WANT != 0;
+            group_stepping |= sequenced & (*group == active) & state.stepping;
+            group_wants |= sequenced & (*group == active) & wants;
+            next_moves |= sequenced & (*group == next) & (state.stepping | wants);
         }
-        if !group_stepping && (self.turn_taken || !group_wants) {
-            self.active_group = (active + 1) % count;
+        let advance = !group_stepping && (self.turn_taken || !group_wants);
+        if advance {
+            self.active_group = next;
             self.turn_taken = false;
         }
         let active = self.active_group;
@@ -794,18 +847,11 @@ impl Controller {
         //    trail behind their rest position by more than `group_join` of their reach join it,
         //    so a group steps together instead of leaving a leg to wait a whole cycle. Feet
         //    that are ahead (just landed) never join: they would step again at once.
-        let mut group_moves = false;
-        for (((leg, state), want), group) in self
-            .legs
-            .iter()
-            .zip(&self.states)
-            .zip(&self.wants)
-            .zip(&self.layout.groups)
-        {
-            if leg.kind == LimbKind::Leg && *group == active {
-                group_moves |= state.stepping || want & WANT != 0;
-            }
-        }
+        let group_moves = if advance {
+            next_moves
+        } else {
+            group_stepping | group_wants
+        };
         if group_moves {
             for (((((leg, state), want), group), motion), &(distance, reach_here)) in self
                 .legs
@@ -816,22 +862,17 @@ impl Controller {
                 .zip(&self.motion)
                 .zip(&self.strayed)
             {
-                if leg.kind != LimbKind::Leg
-                    || *group != active
-                    || state.stepping
-                    || !state.grounded
-                    || *want != 0
-                {
-                    continue;
-                }
+                let idle = (leg.kind == LimbKind::Leg)
+                    & (*group == active)
+                    & !state.stepping
+                    & state.grounded
+                    & (*want == 0);
                 let stray = horizontal(state.foot - state.anchor);
                 let trailing = stray.dot(*motion) < 0.0;
-                if !trailing {
-                    continue;
-                }
                 // The stray's length and the reach in its direction, as step 2 found them
-                // (every leg here went through it, and no foot has moved since).
-                if distance > o.group_join * reach_here * leg.size {
+                // (every idle leg went through it, and no foot has moved since).
+                let far = distance > o.group_join * reach_here * leg.size;
+                if idle & trailing & far {
                     *want = WANT;
                 }
             }
@@ -952,26 +993,45 @@ impl Controller {
         r.yaw = clamp_sym(r.yaw + (yaw_t - r.yaw) * k, o.sway_limit);
         r.pitch = clamp_sym(r.pitch + (pitch_t - r.pitch) * k, o.sway_limit);
         r.roll = clamp_sym(r.roll + (roll_t - r.roll) * k, o.sway_limit);
-        let breathe = o.breathe_amplitude * self.mean_size * sin_turns(self.idle_phase);
         let w = self.blend;
+        // The breathing's sine and the rotation's three half-angle sines and cosines, four
+        // lanes at once (`sin_turns` and `quat_yxz` bit for bit).
+        let (sign, turn) = sin_turns_arg(self.idle_phase);
+        let (s, c) = sin_cos_lanes(Vec4::new(
+            0.5 * (r.yaw * w),
+            0.5 * (r.pitch * w),
+            0.5 * (r.roll * w),
+            turn,
+        ));
+        let breathe = o.breathe_amplitude * self.mean_size * (sign * s.w);
         r.offset = Vec3::Y * ((r.bob + breathe) * w);
-        r.rotation = quat_yxz(r.yaw * w, r.pitch * w, r.roll * w);
+        r.rotation = quat_yxz_sin_cos(s, c);
 
         // Hip roll: the height difference between a foot and its partner (3D seed). A pair
         // with the same lever rolls by opposite angles: one arctangent per pair.
         for i in 0..self.legs.len() {
-            let roll = match self.layout.partner[i] {
-                Some(j) if self.states[i].grounded && self.states[j].grounded => {
-                    if j < i && self.hip_width[j] == self.hip_width[i] {
-                        self.states[i].hip_roll = -self.states[j].hip_roll;
-                        continue;
-                    }
-                    let da = self.states[i].foot.y - self.rest_world[i].y;
-                    let db = self.states[j].foot.y - self.rest_world[j].y;
-                    clamp_sym(
-                        o.hip_roll_gain * atan2(da - db, self.hip_width[i]),
-                        o.hip_roll_limit,
-                    )
+            let (Some(pair), Some(state)) = (self.hip_pairs.get(i), self.states.get(i)) else {
+                continue;
+            };
+            let roll = match *pair {
+                HipPair::Own(j, width)
+                    if state.grounded && self.states.get(j).is_some_and(|s| s.grounded) =>
+                {
+                    let rise = hip_rise(
+                        state,
+                        &self.rest_world[i],
+                        &self.states,
+                        &self.rest_world,
+                        j,
+                    );
+                    clamp_sym(o.hip_roll_gain * atan2(rise, width), o.hip_roll_limit)
+                }
+                HipPair::Mirror(j)
+                    if state.grounded && self.states.get(j).is_some_and(|s| s.grounded) =>
+                {
+                    let mirrored = -self.states[j].hip_roll;
+                    self.states[i].hip_roll = mirrored;
+                    continue;
                 }
                 _ => 0.0,
             };
@@ -985,29 +1045,39 @@ impl Controller {
     fn foot_angles(&mut self, pose: &Pose, rotation: &Mat3A) {
         let inverse = rotation.transpose();
         let t = pose.translation;
-        for ((lanes, angles), states) in self
+        let t = V3 {
+            x: Vec4::splat(t.x),
+            y: Vec4::splat(t.y),
+            z: Vec4::splat(t.z),
+        };
+        for ((lanes, angles), feet) in self
             .leg_lanes
             .iter()
             .zip(self.angles.chunks_mut(4))
-            .zip(self.states.chunks(4))
+            .zip(&self.feet)
         {
-            // Missing lanes repeat the first leg.
-            let feet = match states {
-                [a, b, c, d] => [a.foot - t, b.foot - t, c.foot - t, d.foot - t],
-                [first, ..] => {
-                    let foot = |k: usize| states.get(k).unwrap_or(first).foot - t;
-                    [foot(0), foot(1), foot(2), foot(3)]
-                }
-                [] => continue,
-            };
-            let local = V3::gather(feet).rotate(&inverse);
+            let local = feet.sub(t).rotate(&inverse);
             let rest = lanes.rest;
             let cross = rest.z * local.x - rest.x * local.z;
             let dot = rest.z * local.z + rest.x * local.x;
-            let yaw = atan2_lanes(cross, dot);
-            for (k, a) in angles.iter_mut().enumerate() {
-                *a = yaw[k];
+            for (angle, yaw) in angles.iter_mut().zip(atan2_lanes(cross, dot).to_array()) {
+                *angle = yaw;
             }
+        }
+    }
+
+    /// The feet the action placed, four legs at a time (`feet`), for the reaction, the reach
+    /// check and the IK; missing lanes repeat the first leg.
+    fn gather_feet(&mut self) {
+        for (feet, states) in self.feet.iter_mut().zip(self.states.chunks(4)) {
+            *feet = V3::gather(match states {
+                [a, b, c, d] => [a.foot, b.foot, c.foot, d.foot],
+                [first, ..] => {
+                    let foot = |k: usize| states.get(k).unwrap_or(first).foot;
+                    [foot(0), foot(1), foot(2), foot(3)]
+                }
+                [] => continue,
+            });
         }
     }
 
@@ -1022,19 +1092,23 @@ impl Controller {
         let rotation = Mat3A::from_quat((pose.rotation * reaction.rotation).normalize());
         let origin = pose.translation + reaction.offset;
         let mut out = false;
-        for ((lanes, hips), (legs, states)) in self
+        for (((lanes, hips), feet), states) in self
             .leg_lanes
             .iter()
             .zip(&mut self.hips)
-            .zip(self.legs.chunks(4).zip(self.states.chunks(4)))
+            .zip(&self.feet)
+            .zip(self.states.chunks(4))
         {
             *hips = lanes.hip.transform(&rotation, origin);
-            for ((leg, state), hip) in legs.iter().zip(states).zip(hips.split()) {
-                let reach = leg.upper + leg.lower;
-                out |= leg.kind == LimbKind::Leg
-                    && state.planted
-                    && state.foot.distance_squared(hip) > reach * reach;
-            }
+            // Four legs at a time: `foot.distance_squared(hip) > reach²` (arms: never), for the
+            // planted feet (missing lanes repeat the first leg).
+            let Some(first) = states.first() else {
+                continue;
+            };
+            let planted = |k: usize| states.get(k).unwrap_or(first).planted;
+            let planted = BVec4A::new(planted(0), planted(1), planted(2), planted(3));
+            let d = feet.sub(*hips);
+            out |= (d.dot(d).cmpgt(lanes.reach2) & planted).any();
         }
         if !out {
             self.reacted_rotation = Some(rotation);
@@ -1203,26 +1277,27 @@ impl Controller {
         };
         // Four legs at a time, one per SIMD lane (see `solve_lanes`).
         let mut spare = [SPARE; 3];
-        for (((lanes, hips), states), rest) in self
+        for ((((lanes, hips), feet), states), rest) in self
             .leg_lanes
             .iter()
             .zip(&self.hips)
+            .zip(&self.feet)
             .zip(self.states.chunks_mut(4))
             .zip(self.rest_world.chunks(4))
         {
             let target = |s: &LegState, r: Option<&Vec3>| match r {
-                Some(r) if w != 1.0 => r.lerp(s.foot, w),
-                _ => s.foot,
+                Some(r) => r.lerp(s.foot, w),
+                None => s.foot,
             };
             // Missing lanes repeat the first leg.
             let targets = match &*states {
-                [a, b, c, d] if w == 1.0 => [a.foot, b.foot, c.foot, d.foot],
+                _ if w == 1.0 => *feet,
                 [first, ..] => {
                     let lane = |k: usize| match states.get(k) {
                         Some(s) => target(s, rest.get(k)),
                         None => target(first, rest.first()),
                     };
-                    [lane(0), lane(1), lane(2), lane(3)]
+                    V3::gather([lane(0), lane(1), lane(2), lane(3)])
                 }
                 [] => continue,
             };
@@ -1232,7 +1307,7 @@ impl Controller {
                 } else {
                     lanes.hip.transform(&rotation, translation)
                 },
-                target: V3::gather(targets),
+                target: targets,
                 pole: lanes.pole.rotate(&rotation),
                 upper: lanes.upper,
                 lower: lanes.lower,

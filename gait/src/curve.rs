@@ -1,7 +1,7 @@
 //! The two shaping curves of a step: how far a foot may stray in each direction
 //! ([`ReachCurve`]) and how high it lifts along a step ([`HeightCurve`]).
 
-use crate::math::sin_turns;
+use crate::math::sin_half_turn;
 
 /// How far a planted foot may stray from its rest position before the leg steps, as a function
 /// of direction, in units of the leg's [`size`](crate::Leg::size).
@@ -120,7 +120,8 @@ impl HeightCurve {
     pub fn evaluate(&self, t: f32) -> f32 {
         let t = if t.is_nan() { 0.0 } else { t.clamp(0.0, 1.0) };
         let value = match *self {
-            Self::Sine => sin_turns(0.5 * t),
+            // `t` is in [0, 1] here.
+            Self::Sine => sin_half_turn(0.5 * t),
             Self::Parabola => 4.0 * t * (1.0 - t),
             Self::Custom(f) => f(t),
         };

@@ -242,9 +242,10 @@ pub struct HeightField {
     /// `(columns − 1, rows − 1)` as floats: the largest grid coordinates (no conversion per
     /// lookup).
     max_grid: Vec2,
-    /// `(columns − 2, rows − 2)`, the last cell's indices, when both are below 2²⁴ (every
-    /// practical grid: lookups then convert through `i32`, exactly); `None` otherwise.
-    last_cell: Option<(i32, i32)>,
+    /// `(columns − 2, rows − 2)`, the last cell's indices, and `columns` as a `u32`, when both
+    /// indices are below 2²⁴ (every practical grid): lookups then convert through `i32`,
+    /// exactly, and read a cell's four heights with one bounds check; `None` otherwise.
+    grid: Option<(i32, i32, u32)>,
 }
 
 impl HeightField {
@@ -302,8 +303,10 @@ impl HeightField {
             heights,
             inv_cell: 1.0 / cell,
             max_grid: Vec2::new((columns - 1) as f32, (rows - 1) as f32),
-            last_cell: match (i32::try_from(columns - 2), i32::try_from(rows - 2)) {
-                (Ok(i), Ok(j)) if i < 1 << 24 && j < 1 << 24 => Some((i, j)),
+            grid: match (i32::try_from(columns - 2), i32::try_from(rows - 2)) {
+                (Ok(i), Ok(j)) if i < 1 << 24 && j < 1 << 24 => {
+                    Some((i, j, (i + 2).cast_unsigned()))
+                }
                 _ => None,
             },
         })
@@ -390,7 +393,7 @@ impl HeightField {
             return None;
         }
         // Non-negative here, so truncation is the floor (no libm call).
-        if let Some((last_i, last_j)) = self.last_cell {
+        if let Some((last_i, last_j, _)) = self.grid {
             // Below 2²⁴ here: `i32` conversions both ways are exact and cheaper than `usize`'s.
             let i = (gx as i32).min(last_i);
             let j = (gz as i32).min(last_j);
@@ -404,6 +407,16 @@ impl HeightField {
     /// Bilinear coefficients `[a, b, c, d]` of cell `(i, j)`: `h = a + b u + c v + d u v`.
     #[inline(always)]
     fn patch(&self, i: usize, j: usize) -> [f32; 4] {
+        if let Some((_, _, columns)) = self.grid {
+            // Both rows in one slice of `columns + 2` samples: one bounds check (never failing
+            // for a located cell); `columns` below 2³² makes the four reads provably inside it.
+            let c = columns as usize;
+            let k = j * c + i;
+            if let Some(q) = self.heights.get(k..k + c + 2) {
+                let (h00, h10, h01, h11) = (q[0], q[1], q[c], q[c + 1]);
+                return [h00, h10 - h00, h01 - h00, h00 - h10 - h01 + h11];
+            }
+        }
         // Two rows of two samples: two bounds checks (never failing for a located cell).
         let k = j * self.columns + i;
         let (h00, h10) = match self.heights.get(k..k + 2) {
@@ -549,9 +562,14 @@ impl HeightField {
 
 impl Ground for HeightField {
     /// One bilinear lookup (no march): the same hit as `cast_ray` straight down.
+    ///
+    /// A non-finite `origin.x` or `origin.z` is outside the grid, and the distance found is
+    /// `+0` or more (`-0` when `origin.y` is `-0` on a height of `+0`), so a NaN or negative
+    /// `max_distance` (below `-0`) finds no hit: the checks of `cast_ray` come down to a finite
+    /// `origin.y`.
     #[inline(always)]
     fn cast_down(&self, origin: Vec3, max_distance: f32) -> Option<RayHit> {
-        if !(origin.is_finite() && max_distance >= 0.0) {
+        if !origin.y.is_finite() {
             return None;
         }
         self.vertical(origin, 1.0, max_distance)
@@ -559,14 +577,15 @@ impl Ground for HeightField {
 
     /// The bilinear height alone, without the normal: a patch's normal is always valid
     /// (finite and of unit length, or +Y where its slope overflows), so the hit is valid
-    /// exactly when its height and distance are finite.
+    /// exactly when its height and distance are finite: when its distance is (a NaN or
+    /// infinite `origin.y` or height gives a NaN or infinite distance, or none; and see
+    /// [`cast_down`](Self::cast_down) for the other checks).
     #[inline(always)]
     fn cast_down_point(&self, origin: Vec3, max_distance: f32) -> Option<Vec3> {
-        if !(origin.is_finite() && max_distance >= 0.0) {
-            return None;
-        }
         let (_, _, _, h, distance) = self.under(origin, 1.0, max_distance)?;
-        (h.is_finite() && distance.is_finite()).then(|| Vec3::new(origin.x, h, origin.z))
+        distance
+            .is_finite()
+            .then(|| Vec3::new(origin.x, h, origin.z))
     }
 
     fn cast_ray(&self, origin: Vec3, direction: Vec3, max_distance: f32) -> Option<RayHit> {
@@ -801,6 +820,52 @@ mod tests {
         let hit = steep.cast_down(origin, f32::INFINITY).unwrap();
         assert!(!hit.is_valid());
         assert_eq!(steep.cast_down_point(origin, f32::INFINITY), None);
+    }
+
+    #[test]
+    fn cast_down_checks_as_cast_ray_does() {
+        // Non-finite coordinates, signed zeros on a zero height, and NaN, negative and infinite
+        // lengths: `cast_down` finds what `cast_ray` straight down finds, and `cast_down_point`
+        // the point of its valid hits, though they check less up front.
+        let flat = HeightField::new(Vec2::ZERO, 1.0, 2, 2, vec![0.0; 4]).unwrap();
+        let steep = HeightField::new(Vec2::ZERO, 1.0, 2, 2, vec![-3e38, 0.0, 0.0, 0.0]).unwrap();
+        let odd = [
+            0.0,
+            -0.0,
+            0.5,
+            3e38,
+            -3e38,
+            f32::INFINITY,
+            -f32::INFINITY,
+            f32::NAN,
+        ];
+        let lengths = [
+            20.0,
+            0.0,
+            -0.0,
+            -1.0,
+            f32::INFINITY,
+            -f32::INFINITY,
+            f32::NAN,
+        ];
+        for field in [&flat, &steep] {
+            for (x, y, z) in odd
+                .iter()
+                .flat_map(|&x| odd.iter().flat_map(move |&y| [(x, y, 0.25), (0.25, y, x)]))
+            {
+                for max in lengths {
+                    let origin = Vec3::new(x, y, z);
+                    let down = field.cast_down(origin, max);
+                    assert_eq!(
+                        down,
+                        field.cast_ray(origin, Vec3::NEG_Y, max),
+                        "{origin} {max}"
+                    );
+                    let valid = down.filter(RayHit::is_valid).map(|h| h.point);
+                    assert_eq!(field.cast_down_point(origin, max), valid, "{origin} {max}");
+                }
+            }
+        }
     }
 
     #[test]

@@ -368,7 +368,7 @@ impl V3 {
     }
 
     #[inline(always)]
-    fn add(self, o: Self) -> Self {
+    pub(crate) fn add(self, o: Self) -> Self {
         Self {
             x: self.x + o.x,
             y: self.y + o.y,
@@ -377,7 +377,7 @@ impl V3 {
     }
 
     #[inline(always)]
-    fn sub(self, o: Self) -> Self {
+    pub(crate) fn sub(self, o: Self) -> Self {
         Self {
             x: self.x - o.x,
             y: self.y - o.y,
@@ -396,7 +396,7 @@ impl V3 {
 
     /// `Vec3::dot`'s order: `(x x' + y y') + z z'`.
     #[inline(always)]
-    fn dot(self, o: Self) -> Vec4 {
+    pub(crate) fn dot(self, o: Self) -> Vec4 {
         self.x * o.x + self.y * o.y + self.z * o.z
     }
 

@@ -203,6 +203,31 @@ pub(crate) fn sin_cos(x: f32) -> (f32, f32) {
     (x * s, 1.0 - t * c)
 }
 
+/// [`sin_cos`] of four lanes, bit for bit: the same operations lane by lane. Lanes outside
+/// `|x| ≤ π/2` (which `sin_cos` sends to the backend) are computed one by one.
+#[inline(always)]
+pub(crate) fn sin_cos_lanes(x: Vec4) -> (Vec4, Vec4) {
+    let t = x * x;
+    let s = t * (1.0 / 6_227_020_800.0) - 1.0 / 39_916_800.0;
+    let s = s * t + 1.0 / 362_880.0;
+    let s = s * t - 1.0 / 5040.0;
+    let s = s * t + 1.0 / 120.0;
+    let s = s * t - 1.0 / 6.0;
+    let s = s * t + 1.0;
+    let c = t * (1.0 / 87_178_291_200.0) - 1.0 / 479_001_600.0;
+    let c = c * t + 1.0 / 3_628_800.0;
+    let c = c * t - 1.0 / 40320.0;
+    let c = c * t + 1.0 / 720.0;
+    let c = c * t - 1.0 / 24.0;
+    let c = c * t + 0.5;
+    if x.abs().cmple(Vec4::splat(FRAC_PI_2)).all() {
+        (x * s, Vec4::ONE - t * c)
+    } else {
+        let [a, b, c, d] = x.to_array().map(sin_cos);
+        (Vec4::new(a.0, b.0, c.0, d.0), Vec4::new(a.1, b.1, c.1, d.1))
+    }
+}
+
 /// `sin(2π · turns)` for any finite `turns` (non-finite gives 0): reduced to a quarter turn,
 /// then [`sin_cos`]. Periodic with period 1 exactly (it only sees the fractional part).
 #[inline]
@@ -210,12 +235,39 @@ pub(crate) fn sin_turns(turns: f32) -> f32 {
     if !turns.is_finite() {
         return 0.0;
     }
+    let (sign, x) = sin_turns_arg(turns);
+    sign * sin_cos(x).0
+}
+
+/// The reduction of [`sin_turns`]: `(sign, x)` with `sin_turns(turns) = sign · sin_cos(x).0`,
+/// bit for bit (`x` within a quarter turn; `(1, 0)` for non-finite `turns`).
+#[inline]
+pub(crate) fn sin_turns_arg(turns: f32) -> (f32, f32) {
+    if !turns.is_finite() {
+        return (1.0, 0.0);
+    }
     let whole = if turns >= 0.0 {
         floor_non_negative(turns)
     } else {
         floor(turns)
     };
     let mut p = turns - whole; // [0, 1]
+    let mut sign = 1.0;
+    if p >= 0.5 {
+        p -= 0.5;
+        sign = -1.0;
+    }
+    if p > 0.25 {
+        p = 0.5 - p;
+    }
+    (sign, core::f32::consts::TAU * p)
+}
+
+/// [`sin_turns`] for `turns` in `[0, 0.5]` (as the sine height curve's), bit for bit: the
+/// whole turns are 0 there, so the reduction needs no floor.
+#[inline]
+pub(crate) fn sin_half_turn(turns: f32) -> f32 {
+    let mut p = turns;
     let mut sign = 1.0;
     if p >= 0.5 {
         p -= 0.5;
@@ -234,9 +286,16 @@ pub(crate) fn quat_yxz(yaw: f32, pitch: f32, roll: f32) -> glam::Quat {
     let (sy, cy) = sin_cos(0.5 * yaw);
     let (sx, cx) = sin_cos(0.5 * pitch);
     let (sz, cz) = sin_cos(0.5 * roll);
-    glam::Quat::from_xyzw(0.0, sy, 0.0, cy)
-        * glam::Quat::from_xyzw(sx, 0.0, 0.0, cx)
-        * glam::Quat::from_xyzw(0.0, 0.0, sz, cz)
+    quat_yxz_sin_cos(Vec4::new(sy, sx, sz, 0.0), Vec4::new(cy, cx, cz, 0.0))
+}
+
+/// [`quat_yxz`] from the sines `s` and cosines `c` of its half angles: yaw, pitch and roll in
+/// lanes 0, 1 and 2 (lane 3 unused).
+#[inline]
+pub(crate) fn quat_yxz_sin_cos(s: Vec4, c: Vec4) -> glam::Quat {
+    glam::Quat::from_xyzw(0.0, s.x, 0.0, c.x)
+        * glam::Quat::from_xyzw(s.y, 0.0, 0.0, c.y)
+        * glam::Quat::from_xyzw(0.0, 0.0, s.z, c.z)
 }
 
 /// `floor(x)` for `x >= 0` without a library call: truncation, exact below 2²³ (every float
@@ -358,6 +417,24 @@ mod tests {
             assert_eq!(sin_turns(p), sin_turns(p + 3.0), "{p}");
         }
         assert_eq!(sin_turns(f32::NAN), 0.0);
+        // The half turn's shortcut, on every float of `[0, 0.5]` near its branch points and
+        // on a grid: the same bits.
+        let mut turns: alloc::vec::Vec<f32> = (0..=5000).map(|k| k as f32 * 1e-4).collect();
+        for edge in [0.0f32, 0.25, 0.5] {
+            let mut x = edge;
+            for _ in 0..50 {
+                turns.push(x);
+                x = f32::from_bits(x.to_bits().saturating_sub(1));
+            }
+            let mut x = edge;
+            for _ in 0..50 {
+                turns.push(x);
+                x = f32::from_bits(x.to_bits() + 1);
+            }
+        }
+        for t in turns.into_iter().filter(|t| (0.0..=0.5).contains(t)) {
+            assert_eq!(sin_half_turn(t).to_bits(), sin_turns(t).to_bits(), "{t}");
+        }
         let q = quat_yxz(0.3, -0.2, 0.25);
         let g = glam::Quat::from_euler(glam::EulerRot::YXZ, 0.3, -0.2, 0.25);
         assert!(q.dot(g) > 1.0 - 1e-6);

@@ -2,7 +2,8 @@
 //! 49 balls): the culled field against the plain all-balls reference in
 //! `tests/support/reference.rs` (every ball at every sample, as the seed does) and against the
 //! crate's own exact sum; the same grid filled block by block with `Field2::sample_block`
-//! (8 × 8 blocks, as `creature-march`'s tile cache asks for them); and `value_and_gradient`
+//! (8 × 8 blocks, as `creature-march`'s tile cache asks for them), plain and through a
+//! `BlockSampler`; and `value_and_gradient`
 //! and top-4 `shares` at every sample (what the `creature` facade asks at each outline and
 //! mesh vertex).
 //!
@@ -52,6 +53,28 @@ macro_rules! per_point {
     }};
 }
 
+/// Fills the `SIDE × SIDE` grid of `samples` block by block: `sample` fills the 8 × 8 block
+/// whose first sample is at the given corner.
+fn by_blocks(
+    origin: Vec2,
+    step: f32,
+    samples: &mut [f32],
+    mut sample: impl FnMut(Vec2, &mut [f32]) -> Result<(), creature_metaball::MetaballError>,
+) {
+    let mut block = [0.0f32; 64];
+    for by in 0..SIDE / 8 {
+        for bx in 0..SIDE / 8 {
+            let corner = origin + step * Vec2::new((bx * 8) as f32, (by * 8) as f32);
+            sample(corner, &mut block).expect("valid block");
+            for (row, chunk) in block.chunks_exact(8).enumerate() {
+                let at = (by * 8 + row) * SIDE + bx * 8;
+                samples[at..at + 8].copy_from_slice(chunk);
+            }
+        }
+    }
+    black_box(&samples);
+}
+
 fn bench(c: &mut Criterion) {
     let (balls, origin, step) = inputs();
     let field = Field2::new(&balls, Falloff::SEED).expect("valid creature");
@@ -69,20 +92,20 @@ fn bench(c: &mut Criterion) {
         // The same samples, as 1,024 blocks of 8 × 8 (as a contour tracer's tile cache asks).
         let mut samples = vec![0.0f32; SIDE * SIDE];
         b.iter(|| {
-            let mut block = [0.0f32; 64];
-            for by in 0..SIDE / 8 {
-                for bx in 0..SIDE / 8 {
-                    let corner = origin + step * Vec2::new((bx * 8) as f32, (by * 8) as f32);
-                    field
-                        .sample_block(black_box(corner), black_box(step), 8, 8, &mut block)
-                        .expect("valid block");
-                    for (row, chunk) in block.chunks_exact(8).enumerate() {
-                        let at = (by * 8 + row) * SIDE + bx * 8;
-                        samples[at..at + 8].copy_from_slice(chunk);
-                    }
-                }
-            }
-            black_box(&samples);
+            by_blocks(origin, step, &mut samples, |corner, block| {
+                field.sample_block(black_box(corner), black_box(step), 8, 8, block)
+            });
+        });
+    });
+    group.bench_function("culled_block_sampler_8x8", |b| {
+        // The same 1,024 blocks through a `BlockSampler` (a new one per pass, as per trace):
+        // each ball's column factors are reused down the grid, row factors along it.
+        let mut samples = vec![0.0f32; SIDE * SIDE];
+        b.iter(|| {
+            let mut sampler = field.block_sampler();
+            by_blocks(origin, step, &mut samples, |corner, block| {
+                sampler.sample_block(black_box(corner), black_box(step), 8, 8, block)
+            });
         });
     });
     group.bench_function("culled_value_per_point", |b| {

@@ -329,6 +329,7 @@ fn doc(w: &Workspace) -> Result<(), String> {
 }
 
 fn package(w: &Workspace) -> Result<(), String> {
+    forget_packaged_sources(&w.no_std_packages())?;
     let mut c = w.cargo();
     // --allow-dirty: a developer's tree may have uncommitted files; CI's clone is clean anyway.
     c.args([
@@ -340,6 +341,61 @@ fn package(w: &Workspace) -> Result<(), String> {
         "--locked",
     ]);
     run(c)
+}
+
+/// Removes this workspace's crates from the sources cargo extracted out of earlier
+/// `cargo package --workspace` runs.
+///
+/// To verify a crate that depends on another workspace crate, `cargo package --workspace`
+/// puts the freshly packaged dependency in a temporary local registry under
+/// `target/package`, and cargo extracts it into `$CARGO_HOME/registry/src/-<hash>/`, the
+/// hash naming the registry's path. An extracted crate is never extracted again: a later run
+/// from a checkout at the same path (a CI clone into the same folder) with the same version
+/// number would build the dependent against the earlier run's sources, and fail on any API
+/// added since. Those `-<hash>` folders belong to such temporary registries only (crates.io's
+/// is `index.crates.io-<hash>`), so removing our crates from them loses nothing.
+fn forget_packaged_sources(packages: &[String]) -> Result<(), String> {
+    let home = match env::var_os("CARGO_HOME") {
+        Some(home) => PathBuf::from(home),
+        None => match env::var_os("HOME") {
+            Some(home) => Path::new(&home).join(".cargo"),
+            None => return Ok(()),
+        },
+    };
+    for kind in ["src", "cache"] {
+        let Ok(registries) = fs::read_dir(home.join("registry").join(kind)) else {
+            continue;
+        };
+        for registry in registries.flatten() {
+            if !registry.file_name().to_string_lossy().starts_with('-') {
+                continue;
+            }
+            let Ok(entries) = fs::read_dir(registry.path()) else {
+                continue;
+            };
+            for entry in entries.flatten() {
+                let name = entry.file_name().to_string_lossy().into_owned();
+                // `<package>-<version>` (a folder) or `<package>-<version>.crate`.
+                let ours = packages.iter().any(|p| {
+                    name.strip_prefix(p.as_str())
+                        .and_then(|rest| rest.strip_prefix('-'))
+                        .is_some_and(|v| v.starts_with(|c: char| c.is_ascii_digit()))
+                });
+                if !ours {
+                    continue;
+                }
+                let path = entry.path();
+                let removed = if path.is_dir() {
+                    fs::remove_dir_all(&path)
+                } else {
+                    fs::remove_file(&path)
+                };
+                removed.map_err(|e| format!("cannot remove {}: {e}", path.display()))?;
+                println!("removed the stale packaged sources {}", path.display());
+            }
+        }
+    }
+    Ok(())
 }
 
 fn bench_build(w: &Workspace) -> Result<(), String> {

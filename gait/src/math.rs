@@ -251,7 +251,13 @@ pub(crate) fn sin_turns_arg(turns: f32) -> (f32, f32) {
     } else {
         floor(turns)
     };
-    let mut p = turns - whole; // [0, 1]
+    fold_turn(turns - whole)
+}
+
+/// `(sign, x)` with `sin(2π p) = sign · sin(x)` for a fraction of a turn `p` in `[0, 1]`:
+/// folded to the first quarter turn.
+#[inline(always)]
+fn fold_turn(mut p: f32) -> (f32, f32) {
     let mut sign = 1.0;
     if p >= 0.5 {
         p -= 0.5;
@@ -267,16 +273,8 @@ pub(crate) fn sin_turns_arg(turns: f32) -> (f32, f32) {
 /// whole turns are 0 there, so the reduction needs no floor.
 #[inline]
 pub(crate) fn sin_half_turn(turns: f32) -> f32 {
-    let mut p = turns;
-    let mut sign = 1.0;
-    if p >= 0.5 {
-        p -= 0.5;
-        sign = -1.0;
-    }
-    if p > 0.25 {
-        p = 0.5 - p;
-    }
-    sign * sin_cos(core::f32::consts::TAU * p).0
+    let (sign, x) = fold_turn(turns);
+    sign * sin_cos(x).0
 }
 
 /// The rotation `from_rotation_y(yaw) · from_rotation_x(pitch) · from_rotation_z(roll)` (glam's

@@ -342,23 +342,32 @@ impl<F: TileField + ?Sized> Tracer<'_, F> {
     /// created (and, tiled, filled) by [`Tracer::tile_miss`].
     #[inline(always)]
     fn tile(&mut self, i: i32, j: i32) -> usize {
+        self.lookup_tile(i, j, false)
+    }
+
+    /// The tile holding node `(i, j)`, for its inside flags only: as [`Tracer::tile`], but
+    /// a new tile the field proves inside is not sampled.
+    #[inline(always)]
+    fn flag_tile(&mut self, i: i32, j: i32) -> usize {
+        self.lookup_tile(i, j, true)
+    }
+
+    /// [`Tracer::tile`] (`flags` false) or [`Tracer::flag_tile`] (true).
+    #[inline(always)]
+    fn lookup_tile(&mut self, i: i32, j: i32, flags: bool) -> usize {
         let key = (i >> TILE_SHIFT, j >> TILE_SHIFT);
         match self.nodes.cached(key) {
             Some(tile) => tile,
-            None => self.tile_miss(key),
+            None => self.tile_miss(key, flags),
         }
     }
 
-    /// [`Tracer::tile`] past the cache.
+    /// The tile at tile coordinates `key`, past the cache: found or created. A new tile is
+    /// filled when the tracer samples by tiles, unless only its inside flags are needed
+    /// (`flags`) and the field proves it inside ([`TileField::tile_inside`]): then it is left
+    /// unsampled.
     #[inline(never)]
-    fn tile_miss(&mut self, key: (i32, i32)) -> usize {
-        self.new_tile(key, false)
-    }
-
-    /// The tile at tile coordinates `key`, found or created. A new tile is filled when the
-    /// tracer samples by tiles, unless only its inside flags are needed (`flags`) and the
-    /// field proves it inside ([`TileField::tile_inside`]): then it is left unsampled.
-    fn new_tile(&mut self, key: (i32, i32), flags: bool) -> usize {
+    fn tile_miss(&mut self, key: (i32, i32), flags: bool) -> usize {
         let (tile, created) = self.nodes.find_or_add(key);
         if created && self.tiled {
             let first = [key.0 << TILE_SHIFT, key.1 << TILE_SHIFT];
@@ -371,23 +380,6 @@ impl<F: TileField + ?Sized> Tracer<'_, F> {
             }
         }
         tile
-    }
-
-    /// The tile holding node `(i, j)`, for its inside flags only: as [`Tracer::tile`], but
-    /// a new tile the field proves inside is not sampled.
-    #[inline]
-    fn flag_tile(&mut self, i: i32, j: i32) -> usize {
-        let key = (i >> TILE_SHIFT, j >> TILE_SHIFT);
-        match self.nodes.cached(key) {
-            Some(tile) => tile,
-            None => self.flag_tile_miss(key),
-        }
-    }
-
-    /// [`Tracer::flag_tile`] past the cache.
-    #[inline(never)]
-    fn flag_tile_miss(&mut self, key: (i32, i32)) -> usize {
-        self.new_tile(key, true)
     }
 
     /// Whether node `(i, j)` is inside: from its tile's flags when known (sampled, or proven),

@@ -310,33 +310,21 @@ impl Core<2> {
             return;
         }
         cache.prepare(self.balls.len(), step);
-        let TileLanes {
-            xs,
-            ys,
-            first,
-            last,
-        } = TileLanes::new(origin, step, width, height);
+        let lanes = TileLanes::new(origin, step, width, height);
         let minus_sharpness = Vec4::splat(-sharpness);
         // Only whole rows and columns are remembered: a shorter one repeats its last lane.
         let keys = [
-            (width == TILE).then(|| cache.slot_base(0, first[0])),
-            (height == TILE).then(|| cache.slot_base(1, first[1])),
+            (width == TILE).then(|| cache.slot_base(0, lanes.first[0])),
+            (height == TILE).then(|| cache.slot_base(1, lanes.first[1])),
         ];
         let mut acc = [[Vec4::ZERO; 2]; TILE];
         for ball in balls {
-            let (dx2, dy2) = squares(xs, ys, ball.center);
-            let (lo_x, hi_x) = extremes(first[0], last[0], ball.center[0], dx2[0].x, dx2[1].w);
-            let (lo_y, hi_y) = extremes(first[1], last[1], ball.center[1], dy2[0].x, dy2[1].w);
-            if !(lo_x + lo_y < ball.cutoff_d2) {
+            let Some((dx2, dy2, partial)) = lanes.reach(ball) else {
                 continue;
-            }
-            let partial = !(hi_x + hi_y < ball.cutoff_d2);
-            let inv_r2 = Vec4::splat(ball.inv_r2);
+            };
             let factors = |d2: [Vec4; 2]| -> [f32; TILE] {
                 let mut lanes = [0.0f32; TILE];
-                for (four, d2) in lanes.chunks_exact_mut(4).zip(d2) {
-                    four.copy_from_slice(&(minus_sharpness * (d2 * inv_r2)).to_array());
-                }
+                exponents(&mut lanes, d2, minus_sharpness, ball.inv_r2);
                 // A loop, not `map`, which the compiler leaves as a call, unvectorised.
                 for lane in &mut lanes {
                     *lane = math::exp_nonpositive_floored(*lane);
@@ -399,12 +387,7 @@ impl Core<2> {
         if width == 0 || height == 0 {
             return;
         }
-        let TileLanes {
-            xs,
-            ys,
-            first,
-            last,
-        } = TileLanes::new(origin, step, width, height);
+        let lanes = TileLanes::new(origin, step, width, height);
         let minus_sharpness = Vec4::splat(-sharpness);
         let mut acc = [[Vec4::ZERO; 2]; TILE];
         // Reaching balls wait in a batch for their factors, so that the `exp`s of several
@@ -415,26 +398,16 @@ impl Core<2> {
         while balls.peek().is_some() {
             let mut len = 0;
             for ball in balls.by_ref() {
-                // Squared distances: dx² per column, dy² per row. Finite coordinates and
-                // centres, so no NaN (at worst +∞).
-                let (dx2, dy2) = squares(xs, ys, ball.center);
-                let (lo_x, hi_x) = extremes(first[0], last[0], ball.center[0], dx2[0].x, dx2[1].w);
-                let (lo_y, hi_y) = extremes(first[1], last[1], ball.center[1], dy2[0].x, dy2[1].w);
-                // Also skips balls with no cutoff (r_c² = 0) and a NaN sum.
-                if !(lo_x + lo_y < ball.cutoff_d2) {
+                let Some((dx2, dy2, partial)) = lanes.reach(ball) else {
                     continue;
-                }
-                let partial = !(hi_x + hi_y < ball.cutoff_d2);
-                let (Some(exponents), Some(slot)) = (batch.get_mut(len), waiting.get_mut(len))
-                else {
+                };
+                let (Some(batched), Some(slot)) = (batch.get_mut(len), waiting.get_mut(len)) else {
                     break;
                 };
-                // Column exponents, then row exponents: `−a d²/R²`.
-                let inv_r2 = Vec4::splat(ball.inv_r2);
-                let d2s = [dx2[0], dx2[1], dy2[0], dy2[1]];
-                for (lanes, d2) in exponents.chunks_exact_mut(4).zip(d2s) {
-                    lanes.copy_from_slice(&(minus_sharpness * (d2 * inv_r2)).to_array());
-                }
+                // Column exponents, then row exponents.
+                let (columns, rows) = batched.split_at_mut(TILE);
+                exponents(columns, dx2, minus_sharpness, ball.inv_r2);
+                exponents(rows, dy2, minus_sharpness, ball.inv_r2);
                 *slot = Some((ball, partial));
                 len += 1;
                 if len == TILE_BATCH {
@@ -460,7 +433,7 @@ impl Core<2> {
                 ];
                 let rows = &factors[TILE..];
                 if partial {
-                    let (dx2, dy2) = squares(xs, ys, ball.center);
+                    let (dx2, dy2) = squares(lanes.xs, lanes.ys, ball.center);
                     accumulate_partial(&mut acc, scale, columns, rows, dx2, dy2, ball.cutoff_d2);
                 } else {
                     accumulate_whole(&mut acc, scale, columns, rows);
@@ -640,6 +613,22 @@ struct TileLanes {
 }
 
 impl TileLanes {
+    /// Whether `ball` reaches a sample of the tile: if so, the squared column and row
+    /// distances (`dx²` per column, `dy²` per row) and whether it misses some sample
+    /// (`partial`); `None` when it reaches none (also for a ball with no cutoff, `r_c² = 0`).
+    /// Finite coordinates and centres, so no NaN (at worst +∞).
+    #[inline(always)]
+    fn reach(&self, ball: &Entry<2>) -> Option<([Vec4; 2], [Vec4; 2], bool)> {
+        let (dx2, dy2) = squares(self.xs, self.ys, ball.center);
+        let [cx, cy] = ball.center;
+        let (lo_x, hi_x) = extremes(self.first[0], self.last[0], cx, dx2[0].x, dx2[1].w);
+        let (lo_y, hi_y) = extremes(self.first[1], self.last[1], cy, dy2[0].x, dy2[1].w);
+        if !(lo_x + lo_y < ball.cutoff_d2) {
+            return None;
+        }
+        Some((dx2, dy2, !(hi_x + hi_y < ball.cutoff_d2)))
+    }
+
     /// For a block of `width × height` samples (both in `1..=TILE`).
     #[inline(always)]
     fn new(origin: [f32; 2], step: f32, width: usize, height: usize) -> Self {
@@ -654,6 +643,15 @@ impl TileLanes {
             first: [at[0], at[TILE]],
             last: [at[TILE - 1], at[2 * TILE - 1]],
         }
+    }
+}
+
+/// The exponents `−a d²/R²` of eight squared distances `d2` into `out` (eight lanes).
+#[inline(always)]
+fn exponents(out: &mut [f32], d2: [Vec4; 2], minus_sharpness: Vec4, inv_r2: f32) {
+    let inv_r2 = Vec4::splat(inv_r2);
+    for (four, d2) in out.chunks_exact_mut(4).zip(d2) {
+        four.copy_from_slice(&(minus_sharpness * (d2 * inv_r2)).to_array());
     }
 }
 

@@ -299,6 +299,19 @@ struct Tracer<'a, F: ?Sized> {
 }
 
 impl<F: TileField + ?Sized> Tracer<'_, F> {
+    /// Counts `nodes` a hole scan passes against the budget: the same total as one by one, so
+    /// the same outcome (the count only grows, and every budget error of a scan is the same).
+    fn count_scanned(&mut self, nodes: usize) -> Result<(), MarchError> {
+        self.cells += nodes;
+        if self.cells > self.options.max_cells {
+            return Err(MarchError::BudgetExceeded {
+                hint: usize::MAX,
+                cells: self.options.max_cells,
+            });
+        }
+        Ok(())
+    }
+
     fn tick(&mut self, hint: usize) -> Result<(), MarchError> {
         self.cells += 1;
         if self.cells > self.options.max_cells {
@@ -505,42 +518,115 @@ impl<F: TileField + ?Sized> Tracer<'_, F> {
             if !self.rings[r].outer || self.rings[r].nested {
                 continue;
             }
-            let verticals = self.rings[r].verticals.clone();
-            for pair in verticals.chunks_exact(2) {
-                let ((x, bottom), (x2, top)) = (pair[0], pair[1]);
-                if x != x2 {
-                    // Crossings come in pairs per column for a closed ring; skip defensively.
+            let verticals = core::mem::take(&mut self.rings[r].verticals);
+            let scanned = if self.tiled {
+                self.scan_bands(&verticals)
+            } else {
+                column_pairs(&verticals)
+                    .try_for_each(|(x, bottom, top)| self.scan_column(x, bottom, top))
+            };
+            if let Some(ring) = self.rings.get_mut(r) {
+                ring.verticals = verticals;
+            }
+            scanned?;
+        }
+        Ok(())
+    }
+
+    /// [`Tracer::scan_column`] for every column pair `verticals` holds (a ring's sorted
+    /// vertical crossings), when sampling by tiles: a band of eight columns (a column of
+    /// tiles) at a time, each tile of the band at once. Per tile, a mask of the rows each
+    /// column checks, and the inside flags of the tile and of the row below it, give every
+    /// node whose flag differs from the node below's; those not on a traced ring start a ring,
+    /// in the order `scan_column` meets them (by column, then row), so the same rings come out
+    /// in the same order, from the same tiles (proven or filled).
+    fn scan_bands(&mut self, verticals: &[(i32, i32)]) -> Result<(), MarchError> {
+        let mut masks: Vec<u64> = Vec::new();
+        let mut starts: Vec<(i32, i32, bool)> = Vec::new();
+        let mut rest = verticals;
+        while let Some(&(first, _)) = rest.first() {
+            let band = first >> TILE_SHIFT;
+            let end = rest.partition_point(|v| v.0 >> TILE_SHIFT == band);
+            let (pairs, next) = rest.split_at(end);
+            rest = next;
+            // The band's checked rows: those above each pair's first enclosed node.
+            let (mut low, mut high) = (i32::MAX, i32::MIN);
+            for (_, bottom, top) in column_pairs(pairs) {
+                self.cells += (top - bottom - 1).max(0) as usize;
+                if top - bottom >= 2 {
+                    low = low.min((bottom + 2) >> TILE_SHIFT);
+                    high = high.max(top >> TILE_SHIFT);
+                }
+            }
+            self.count_scanned(0)?;
+            if low > high {
+                continue;
+            }
+            masks.clear();
+            masks.resize((i64::from(high) - i64::from(low)) as usize + 1, 0);
+            for (x, bottom, top) in column_pairs(pairs) {
+                let column = COLUMN << (x & TILE_MASK);
+                for ty in (bottom + 2) >> TILE_SHIFT..=top >> TILE_SHIFT {
+                    let base = ty << TILE_SHIFT;
+                    let first = (bottom + 2 - base).max(0);
+                    let last = (top - base).min(TILE_MASK);
+                    if first > last {
+                        continue;
+                    }
+                    let rows = (u64::MAX << (8 * first)) & (u64::MAX >> (8 * (TILE_MASK - last)));
+                    if let Some(mask) = masks.get_mut((ty - low) as usize) {
+                        *mask |= rows & column;
+                    }
+                }
+            }
+            starts.clear();
+            let x = band << TILE_SHIFT;
+            for (ty, &checked) in (low..).zip(&masks) {
+                if checked == 0 {
                     continue;
                 }
-                self.scan_column(x, bottom, top)?;
+                let y = ty << TILE_SHIFT;
+                let tile = self.flag_tile(x, y);
+                let inside = self.nodes.tile_inside(tile);
+                // The flags of the row below the tile's first, where that row is checked.
+                let below = if checked & ROW != 0 {
+                    let under = self.flag_tile(x, y - 1);
+                    self.nodes.tile_inside(under) >> (8 * TILE_MASK)
+                } else {
+                    0
+                };
+                let mut changes = (inside ^ (inside << 8 | below)) & checked;
+                while changes != 0 {
+                    let slot = changes.trailing_zeros() as i32;
+                    changes &= changes - 1;
+                    let node = (x + (slot & TILE_MASK), y + (slot >> TILE_SHIFT));
+                    starts.push((node.0, node.1, inside >> slot & 1 != 0));
+                }
+            }
+            // `scan_column`'s order: by column, then row.
+            starts.sort_unstable();
+            for &(x, up, inside) in &starts {
+                self.trace_nested(x, up, inside)?;
             }
         }
         Ok(())
     }
 
-    /// Scans nodes `bottom + 1 ..= top` of column `x` (enclosed by a ring), tracing every
-    /// crossing between two of them that no ring has crossed yet. The nodes above the first
-    /// are counted against the budget at once (the same total as one by one, so the same
-    /// outcome: the count only grows, and every budget error of a scan is the same). Runs tile
-    /// by tile: the inside flags of the column's segment in a tile come from the tile's mask,
-    /// and only the rows where the flag changes are looked at.
+    /// Scans nodes `bottom + 1 ..= top` of column `x` (enclosed by a ring), point by point,
+    /// tracing every crossing between two of them that no ring has crossed yet. The nodes
+    /// above the first are counted against the budget at once ([`Tracer::count_scanned`]).
+    /// Runs a tile's rows at a time: each node is sampled, then the inside flags of the
+    /// column's segment come from the tile's mask, and only the rows where the flag changes
+    /// are looked at. (Sampling by tiles, [`Tracer::scan_bands`] scans instead.)
     fn scan_column(&mut self, x: i32, bottom: i32, top: i32) -> Result<(), MarchError> {
-        self.cells += (top - bottom - 1).max(0) as usize;
-        if self.cells > self.options.max_cells {
-            return Err(MarchError::BudgetExceeded {
-                hint: usize::MAX,
-                cells: self.options.max_cells,
-            });
-        }
+        self.count_scanned((top - bottom - 1).max(0) as usize)?;
         let mut below = self.inside(x, bottom + 1);
         let mut y = bottom + 1;
         while y < top {
             // Nodes y + 1 ..= last lie in one tile, in rows `first ..= last_row` of it.
             let last = ((y + 1) | TILE_MASK).min(top);
-            if !self.tiled {
-                for up in y + 1..=last {
-                    self.node(x, up);
-                }
+            for up in y + 1..=last {
+                self.node(x, up);
             }
             let tile = self.flag_tile(x, y + 1);
             let first = (y + 1) & TILE_MASK;
@@ -555,17 +641,25 @@ impl<F: TileField + ?Sized> Tracer<'_, F> {
             while changes != 0 {
                 let up = base + changes.trailing_zeros() as i32;
                 changes &= changes - 1;
-                // Rings traced from here on may cross the rows above: ask each time.
-                if !self.nodes.crossed(x, up - 1) {
-                    if inside & (1 << (up - base)) == 0 {
-                        self.trace_ring((x - 1, up - 1), 1, usize::MAX, true)?;
-                    } else {
-                        self.trace_ring((x, up - 1), 3, usize::MAX, true)?;
-                    }
-                }
+                self.trace_nested(x, up, inside & (1 << (up - base)) != 0)?;
             }
             below = inside & (1 << last_row) != 0;
             y = last;
+        }
+        Ok(())
+    }
+
+    /// Traces the ring crossing the edge from node `(x, up − 1)` to node `(x, up)` (whose
+    /// inside flag is `inside`, the other node's the opposite) inside a scanned ring, unless
+    /// a traced ring crosses it already. Rings traced during a scan may cross edges the scan
+    /// has yet to reach: it asks each time.
+    fn trace_nested(&mut self, x: i32, up: i32, inside: bool) -> Result<(), MarchError> {
+        if !self.nodes.crossed(x, up - 1) {
+            if inside {
+                self.trace_ring((x, up - 1), 3, usize::MAX, true)?;
+            } else {
+                self.trace_ring((x - 1, up - 1), 1, usize::MAX, true)?;
+            }
         }
         Ok(())
     }
@@ -942,6 +1036,20 @@ fn sort_by_column(crossings: &mut Vec<(i32, i32)>) -> Option<Columns> {
     Some(Columns { first: min, starts })
 }
 
+/// The enclosed stretches `(column, bottom, top)` of a ring's sorted vertical crossings: the
+/// nodes `bottom + 1 ..= top` of the column lie inside the ring. Crossings come in pairs per
+/// column for a closed ring; a pair across two columns (never from a closed ring) is skipped.
+fn column_pairs(verticals: &[(i32, i32)]) -> impl Iterator<Item = (i32, i32, i32)> + '_ {
+    verticals.chunks_exact(2).filter_map(|pair| match *pair {
+        [(x, bottom), (x2, top)] if x == x2 => Some((x, bottom, top)),
+        _ => None,
+    })
+}
+
+/// The bits of a tile's first column (bit `8 × row`), and of its first row.
+const COLUMN: u64 = 0x0101_0101_0101_0101;
+const ROW: u64 = 0xff;
+
 /// Where each column's crossings lie in a ring's sorted vertical crossings.
 struct Columns {
     /// The first column.
@@ -1101,6 +1209,12 @@ impl Nodes {
             t.inside = u64::MAX;
             t.proven = u64::MAX;
         }
+    }
+
+    /// The inside flags of `tile` (sampled or proven nodes only).
+    #[inline]
+    fn tile_inside(&self, tile: usize) -> u64 {
+        self.tiles.get(tile).map_or(0, |t| t.inside)
     }
 
     /// The inside flags of column `column` of `tile`: bit `r` for row `r` (sampled or proven

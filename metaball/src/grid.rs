@@ -632,19 +632,26 @@ impl TileLanes {
     /// For a block of `width × height` samples (both in `1..=TILE`).
     #[inline(always)]
     fn new(origin: [f32; 2], step: f32, width: usize, height: usize) -> Self {
-        let mut at = [0.0f32; 2 * TILE];
-        for k in 0..TILE {
-            at[k] = origin[0] + step * k.min(width - 1) as f32;
-            at[TILE + k] = origin[1] + step * k.min(height - 1) as f32;
-        }
+        // `origin + step × k` for lane `k` clamped to the block, in vector registers: lanes
+        // written one by one and read as vectors would stall on store forwarding.
+        let lanes = |origin: f32, size: usize| {
+            let last = Vec4::splat((size - 1) as f32);
+            let (origin, step) = (Vec4::splat(origin), Vec4::splat(step));
+            [LANE_INDEX[0], LANE_INDEX[1]].map(|k| origin + step * k.min(last))
+        };
+        let xs = lanes(origin[0], width);
+        let ys = lanes(origin[1], height);
         Self {
-            xs: [Vec4::from_slice(&at[..4]), Vec4::from_slice(&at[4..8])],
-            ys: [Vec4::from_slice(&at[8..12]), Vec4::from_slice(&at[12..])],
-            first: [at[0], at[TILE]],
-            last: [at[TILE - 1], at[2 * TILE - 1]],
+            xs,
+            ys,
+            first: [xs[0].x, ys[0].x],
+            last: [xs[1].w, ys[1].w],
         }
     }
 }
+
+/// The lane indices `0, 1, …, 7` of a tile's columns (rows), exact in `f32`.
+const LANE_INDEX: [Vec4; 2] = [Vec4::new(0.0, 1.0, 2.0, 3.0), Vec4::new(4.0, 5.0, 6.0, 7.0)];
 
 /// The exponents `−a d²/R²` of eight squared distances `d2` into `out` (eight lanes).
 #[inline(always)]
@@ -814,14 +821,11 @@ const TILE_BATCH: usize = 8;
 /// lies beyond one.
 #[inline(always)]
 fn extremes(first: f32, last: f32, center: f32, a: f32, b: f32) -> (f32, f32) {
-    let lo = if center < first {
-        a
-    } else if center > last {
-        b
-    } else {
-        0.0
-    };
-    (lo, a.max(b))
+    // Without branches (which tiles would mispredict): the distance beyond the row, or 0
+    // within it, squared as `a` and `b` were (rounding is symmetric: `fl(last − c)` is
+    // `−fl(c − last)`), so `a` when `center < first` and `b` when `center > last`, bit for bit.
+    let beyond = (first - center).max(center - last).max(0.0);
+    (beyond * beyond, a.max(b))
 }
 
 /// 2D fields of up to `64 ×` this many balls keep a bit set of balls per culling cell.

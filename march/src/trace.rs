@@ -535,13 +535,14 @@ impl<F: TileField + ?Sized> Tracer<'_, F> {
 
     /// [`Tracer::scan_column`] for every column pair `verticals` holds (a ring's sorted
     /// vertical crossings), when sampling by tiles: a band of eight columns (a column of
-    /// tiles) at a time, each tile of the band at once. Per tile, a mask of the rows each
-    /// column checks, and the inside flags of the tile and of the row below it, give every
-    /// node whose flag differs from the node below's; those not on a traced ring start a ring,
-    /// in the order `scan_column` meets them (by column, then row), so the same rings come out
-    /// in the same order, from the same tiles (proven or filled).
+    /// tiles) at a time, each tile of the band at once. The tiles holding the enclosed nodes
+    /// are proven or filled, as `scan_column` would; in each, the inside flags of the tile and
+    /// of the row below it give every node whose flag differs from the node below's. Those
+    /// whose edge no traced ring crosses (few: the ring's own crossings are traced) and whose
+    /// two nodes the ring encloses start a ring, in the order `scan_column` meets them (by
+    /// column, then row), so the same rings come out in the same order.
     fn scan_bands(&mut self, verticals: &[(i32, i32)]) -> Result<(), MarchError> {
-        let mut masks: Vec<u64> = Vec::new();
+        let mut visit: Vec<u64> = Vec::new();
         let mut starts: Vec<(i32, i32, bool)> = Vec::new();
         let mut rest = verticals;
         while let Some(&(first, _)) = rest.first() {
@@ -549,12 +550,12 @@ impl<F: TileField + ?Sized> Tracer<'_, F> {
             let end = rest.partition_point(|v| v.0 >> TILE_SHIFT == band);
             let (pairs, next) = rest.split_at(end);
             rest = next;
-            // The band's checked rows: those above each pair's first enclosed node.
+            // The tile rows holding enclosed nodes with a node above them to check.
             let (mut low, mut high) = (i32::MAX, i32::MIN);
             for (_, bottom, top) in column_pairs(pairs) {
                 self.cells += (top - bottom - 1).max(0) as usize;
                 if top - bottom >= 2 {
-                    low = low.min((bottom + 2) >> TILE_SHIFT);
+                    low = low.min((bottom + 1) >> TILE_SHIFT);
                     high = high.max(top >> TILE_SHIFT);
                 }
             }
@@ -562,45 +563,44 @@ impl<F: TileField + ?Sized> Tracer<'_, F> {
             if low > high {
                 continue;
             }
-            masks.clear();
-            masks.resize((i64::from(high) - i64::from(low)) as usize + 1, 0);
-            for (x, bottom, top) in column_pairs(pairs) {
-                let column = COLUMN << (x & TILE_MASK);
-                for ty in (bottom + 2) >> TILE_SHIFT..=top >> TILE_SHIFT {
-                    let base = ty << TILE_SHIFT;
-                    let first = (bottom + 2 - base).max(0);
-                    let last = (top - base).min(TILE_MASK);
-                    if first > last {
-                        continue;
-                    }
-                    let rows = (u64::MAX << (8 * first)) & (u64::MAX >> (8 * (TILE_MASK - last)));
-                    if let Some(mask) = masks.get_mut((ty - low) as usize) {
-                        *mask |= rows & column;
-                    }
-                }
+            visit.clear();
+            visit.resize(((i64::from(high) - i64::from(low)) as usize >> 6) + 1, 0);
+            for (_, bottom, top) in column_pairs(pairs).filter(|p| p.2 - p.1 >= 2) {
+                set_bits(
+                    &mut visit,
+                    ((bottom + 1) >> TILE_SHIFT) - low,
+                    (top >> TILE_SHIFT) - low,
+                );
             }
             starts.clear();
             let x = band << TILE_SHIFT;
-            for (ty, &checked) in (low..).zip(&masks) {
-                if checked == 0 {
-                    continue;
-                }
-                let y = ty << TILE_SHIFT;
-                let tile = self.flag_tile(x, y);
-                let inside = self.nodes.tile_inside(tile);
-                // The flags of the row below the tile's first, where that row is checked.
-                let below = if checked & ROW != 0 {
-                    let under = self.flag_tile(x, y - 1);
-                    self.nodes.tile_inside(under) >> (8 * TILE_MASK)
-                } else {
-                    0
-                };
-                let mut changes = (inside ^ (inside << 8 | below)) & checked;
-                while changes != 0 {
-                    let slot = changes.trailing_zeros() as i32;
-                    changes &= changes - 1;
-                    let node = (x + (slot & TILE_MASK), y + (slot >> TILE_SHIFT));
-                    starts.push((node.0, node.1, inside >> slot & 1 != 0));
+            for (word, &bits) in visit.iter().enumerate() {
+                let mut bits = bits;
+                while bits != 0 {
+                    let ty = low + (word << 6) as i32 + bits.trailing_zeros() as i32;
+                    bits &= bits - 1;
+                    let y = ty << TILE_SHIFT;
+                    let tile = self.flag_tile(x, y);
+                    let (inside, crossed) = self.nodes.flags(tile);
+                    // Rows 1 to 7 against the row below in the tile; row 0 against the tile
+                    // below's row 7, when that tile exists (else its nodes lie outside the
+                    // ring, and row 0's edges down cross it: nothing to check).
+                    let (below, crossed_below) = self
+                        .nodes
+                        .find(x, y - 1)
+                        .map_or((!0, !0), |t| self.nodes.flags(t));
+                    let row_7 = 8 * TILE_MASK;
+                    let changes = inside ^ (inside << 8 | below >> row_7);
+                    let crossed = crossed << 8 | crossed_below >> row_7;
+                    let mut changes = changes & !crossed;
+                    while changes != 0 {
+                        let slot = changes.trailing_zeros() as i32;
+                        changes &= changes - 1;
+                        let node = (x + (slot & TILE_MASK), y + (slot >> TILE_SHIFT));
+                        if encloses(pairs, node.0, node.1) && encloses(pairs, node.0, node.1 - 1) {
+                            starts.push((node.0, node.1, inside >> slot & 1 != 0));
+                        }
+                    }
                 }
             }
             // `scan_column`'s order: by column, then row.
@@ -1046,9 +1046,31 @@ fn column_pairs(verticals: &[(i32, i32)]) -> impl Iterator<Item = (i32, i32, i32
     })
 }
 
-/// The bits of a tile's first column (bit `8 × row`), and of its first row.
-const COLUMN: u64 = 0x0101_0101_0101_0101;
-const ROW: u64 = 0xff;
+/// Whether a ring encloses node `(x, y)`, by the parity of its vertical crossings above the
+/// node in its column, from `crossings`: sorted, and holding at least column `x`'s.
+fn encloses(crossings: &[(i32, i32)], x: i32, y: i32) -> bool {
+    crossings
+        .iter()
+        .filter(|&&(cx, cy)| cx == x && cy >= y)
+        .count()
+        % 2
+        == 1
+}
+
+/// Sets bits `from ..= to` (both at least 0) of the bit set `words`.
+fn set_bits(words: &mut [u64], from: i32, to: i32) {
+    let (from, to) = (from as usize, to as usize);
+    for (k, word) in words
+        .iter_mut()
+        .enumerate()
+        .take((to >> 6) + 1)
+        .skip(from >> 6)
+    {
+        let low = if k == from >> 6 { from & 63 } else { 0 };
+        let high = if k == to >> 6 { to & 63 } else { 63 };
+        *word |= (u64::MAX << low) & (u64::MAX >> (63 - high));
+    }
+}
 
 /// Where each column's crossings lie in a ring's sorted vertical crossings.
 struct Columns {
@@ -1211,10 +1233,13 @@ impl Nodes {
         }
     }
 
-    /// The inside flags of `tile` (sampled or proven nodes only).
+    /// The inside flags of `tile` (sampled or proven nodes only), and which of its nodes'
+    /// edges up traced rings cross.
     #[inline]
-    fn tile_inside(&self, tile: usize) -> u64 {
-        self.tiles.get(tile).map_or(0, |t| t.inside)
+    fn flags(&self, tile: usize) -> (u64, u64) {
+        self.tiles
+            .get(tile)
+            .map_or((0, 0), |t| (t.inside, t.crossed))
     }
 
     /// The inside flags of column `column` of `tile`: bit `r` for row `r` (sampled or proven

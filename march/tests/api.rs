@@ -121,14 +121,9 @@ fn the_hole_scan_finds_holes_at_every_tile_offset() {
     check_rings(&traced);
     assert_eq!(traced.len(), grid.len());
     assert_eq!(traced.iter().filter(|r| r.hole).count(), grid_holes);
-    let tiled = creature_march::trace_field(
-        &support::PreferTiles(field),
-        &hints,
-        step,
-        0.0,
-        &MarchOptions::DEFAULT,
-    )
-    .unwrap();
+    let tiled = support::PreferTiles(field)
+        .trace(&hints, step, 0.0)
+        .unwrap();
     assert_eq!(tiled, traced);
     let h = hausdorff(&traced, &to_world(&grid, (-60, -60), step));
     assert!(h < 0.01, "hausdorff {h}");

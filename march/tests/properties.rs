@@ -172,14 +172,7 @@ proptest! {
             (wavy / waves.len() as f32 + level).min((45.0 - p.length()) * 0.1)
         };
         let points = trace(field, &hints, step, 0.0).unwrap();
-        let tiles = trace_field(
-            &support::PreferTiles(field),
-            &hints,
-            step,
-            0.0,
-            &MarchOptions::DEFAULT,
-        )
-        .unwrap();
+        let tiles = support::PreferTiles(field).trace(&hints, step, 0.0).unwrap();
         prop_assert_eq!(points, tiles);
     }
 

@@ -257,6 +257,24 @@ impl creature_march::TileField for UncachedTiledField<'_> {
 /// 64 `value` calls): the same samples as the closure, so the same rings, bit for bit.
 pub struct PreferTiles<F>(pub F);
 
+impl<F: Fn(Vec2) -> f32> PreferTiles<F> {
+    /// `trace` of the closure, tile by tile (through `trace_field`, default options).
+    pub fn trace(
+        self,
+        hints: &[Vec2],
+        step: f32,
+        iso: f32,
+    ) -> Result<Vec<Ring>, creature_march::MarchError> {
+        creature_march::trace_field(
+            &self,
+            hints,
+            step,
+            iso,
+            &creature_march::MarchOptions::DEFAULT,
+        )
+    }
+}
+
 impl<F: Fn(Vec2) -> f32> creature_march::TileField for PreferTiles<F> {
     fn value(&self, p: Vec2) -> f32 {
         (self.0)(p)

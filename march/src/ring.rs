@@ -271,10 +271,23 @@ pub(crate) fn weld(points: &mut Vec<Vec2>, distance: f32) {
 /// Turns raw traced point lists into finished rings: welds, drops rings left with fewer than
 /// three points or no area, sets `hole` from the orientation and assigns parents.
 pub(crate) fn finish(raw: Vec<Vec<Vec2>>, weld_distance: f32) -> Vec<Ring> {
+    finish_with_areas(raw.into_iter().map(|points| (points, None)), weld_distance)
+}
+
+/// [`finish`], for point lists some of which come with their [`signed_area`] (exactly that
+/// value, which is kept unless welding removes a point).
+pub(crate) fn finish_with_areas(
+    raw: impl ExactSizeIterator<Item = (Vec<Vec2>, Option<f64>)>,
+    weld_distance: f32,
+) -> Vec<Ring> {
     let mut rings: Vec<(Vec<Vec2>, f64)> = Vec::with_capacity(raw.len());
-    for mut points in raw {
+    for (mut points, area) in raw {
+        let count = points.len();
         weld(&mut points, weld_distance);
-        let area = signed_area(&points);
+        let area = match area {
+            Some(area) if points.len() == count => area,
+            _ => signed_area(&points),
+        };
         if points.len() >= 3 && area != 0.0 {
             rings.push((points, area));
         }
@@ -566,6 +579,27 @@ mod tests {
         assert_eq!(rings[0].parent, Some(1));
         assert!(!rings[1].hole && rings[1].parent.is_none());
         assert!(!rings[2].hole);
+    }
+
+    #[test]
+    fn known_areas_give_what_finish_gives() {
+        // One ring that welding leaves alone, and a sliver it shortens (a near-duplicate
+        // point), which turns it from counter-clockwise to clockwise: its area before welding
+        // must not be kept.
+        let whole = square(Vec2::splat(20.0), 3.0, true);
+        let sliver = vec![
+            Vec2::ZERO,
+            Vec2::new(10.0, 0.0),
+            Vec2::new(10.0, 0.4),
+            Vec2::new(5.0, -0.1),
+        ];
+        assert!(signed_area(&sliver) > 0.0);
+        let raw = vec![whole, sliver];
+        let known = raw.iter().map(|p| (p.clone(), Some(signed_area(p))));
+        let rings = finish_with_areas(known, 0.5);
+        assert_eq!(rings, finish(raw, 0.5));
+        // The sliver, welded, is a hole with no outer ring around it: dropped.
+        assert_eq!(rings.len(), 1);
     }
 
     #[test]

@@ -234,9 +234,9 @@ pub fn trace_field<F: TileField + ?Sized>(
             tracer.scan_pending()?;
         }
     }
-    let raw = tracer.rings.into_iter().map(|r| r.points).collect();
+    let raw = tracer.rings.into_iter().map(|r| (r.points, Some(r.area)));
     let weld = options.weld * step;
-    Ok(crate::ring::finish(raw, weld))
+    Ok(crate::ring::finish_with_areas(raw, weld))
 }
 
 /// A ring while tracing.
@@ -249,6 +249,8 @@ struct Traced {
     columns: Option<Columns>,
     /// Counter-clockwise: an outer ring.
     outer: bool,
+    /// `ring::signed_area(points)`.
+    area: f64,
     /// Bounding box of `points`.
     lo: Vec2,
     hi: Vec2,
@@ -547,7 +549,11 @@ impl<F: TileField + ?Sized> Tracer<'_, F> {
         let mut rest = verticals;
         while let Some(&(first, _)) = rest.first() {
             let band = first >> TILE_SHIFT;
-            let end = rest.partition_point(|v| v.0 >> TILE_SHIFT == band);
+            // A band holds few crossings: a linear scan.
+            let end = rest
+                .iter()
+                .position(|v| v.0 >> TILE_SHIFT != band)
+                .unwrap_or(rest.len());
             let (pairs, next) = rest.split_at(end);
             rest = next;
             // The tile rows holding enclosed nodes with a node above them to check.
@@ -795,13 +801,15 @@ impl<F: TileField + ?Sized> Tracer<'_, F> {
             }
         }
         let columns = sort_by_column(&mut verticals);
-        let outer = crate::ring::signed_area(&points) > 0.0;
+        let area = crate::ring::signed_area(&points);
+        let outer = area > 0.0;
         let (lo, hi) = bounds(&points);
         self.rings.push(Traced {
             points,
             verticals,
             columns,
             outer,
+            area,
             lo,
             hi,
             nested,
@@ -1058,17 +1066,16 @@ fn encloses(crossings: &[(i32, i32)], x: i32, y: i32) -> bool {
 }
 
 /// Sets bits `from ..= to` (both at least 0) of the bit set `words`.
+#[inline]
 fn set_bits(words: &mut [u64], from: i32, to: i32) {
     let (from, to) = (from as usize, to as usize);
-    for (k, word) in words
-        .iter_mut()
-        .enumerate()
-        .take((to >> 6) + 1)
-        .skip(from >> 6)
-    {
-        let low = if k == from >> 6 { from & 63 } else { 0 };
-        let high = if k == to >> 6 { to & 63 } else { 63 };
-        *word |= (u64::MAX << low) & (u64::MAX >> (63 - high));
+    if let Some(words) = words.get_mut(from >> 6..=to >> 6) {
+        let top = words.len() - 1;
+        for (k, word) in words.iter_mut().enumerate() {
+            let low = if k == 0 { from & 63 } else { 0 };
+            let high = if k == top { to & 63 } else { 63 };
+            *word |= (u64::MAX << low) & (u64::MAX >> (63 - high));
+        }
     }
 }
 
@@ -1752,6 +1759,7 @@ mod tests {
                 verticals: by_comparisons.clone(),
                 columns,
                 outer: true,
+                area: 0.0,
                 lo: Vec2::ZERO,
                 hi: Vec2::ZERO,
                 nested: false,

@@ -1092,22 +1092,17 @@ const TILE_SHIFT: i32 = 3;
 const TILE_MASK: i32 = (1 << TILE_SHIFT) - 1;
 const _: () = assert!(TILE_NODES == 1 << (2 * TILE_SHIFT));
 
-/// Bit `s`: `values[s]` is inside `iso`. The flags as bytes first (which vectorises), then
-/// each row's eight bytes gathered into one.
+/// Bit `s`: `values[s]` is inside `iso` (a NaN is not), four lanes at a time: one compare and
+/// its sign mask per four samples.
 #[inline]
 fn inside_bits(values: &[f32; TILE_NODES], iso: f32) -> u64 {
-    let flags: [u8; TILE_NODES] = core::array::from_fn(|s| {
-        values
-            .get(s)
-            .map_or(0, |&v| u8::from(cell::is_inside(v, iso)))
-    });
-    flags
-        .chunks_exact(8)
+    let iso = glam::Vec4::splat(iso);
+    values
+        .chunks_exact(4)
         .enumerate()
-        .fold(0, |bits, (row, bytes)| {
-            let mut word = [0u8; 8];
-            word.copy_from_slice(bytes);
-            bits | gather_bytes(u64::from_le_bytes(word)) << (8 * row)
+        .fold(0, |bits, (k, four)| {
+            let inside = glam::Vec4::from_slice(four).cmpge(iso).bitmask();
+            bits | u64::from(inside) << (4 * k)
         })
 }
 

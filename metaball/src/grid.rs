@@ -821,11 +821,14 @@ const TILE_BATCH: usize = 8;
 /// lies beyond one.
 #[inline(always)]
 fn extremes(first: f32, last: f32, center: f32, a: f32, b: f32) -> (f32, f32) {
-    // Without branches (which tiles would mispredict): the distance beyond the row, or 0
-    // within it, squared as `a` and `b` were (rounding is symmetric: `fl(last − c)` is
-    // `−fl(c − last)`), so `a` when `center < first` and `b` when `center > last`, bit for bit.
-    let beyond = (first - center).max(center - last).max(0.0);
-    (beyond * beyond, a.max(b))
+    let lo = if center < first {
+        a
+    } else if center > last {
+        b
+    } else {
+        0.0
+    };
+    (lo, a.max(b))
 }
 
 /// 2D fields of up to `64 ×` this many balls keep a bit set of balls per culling cell.

@@ -1006,8 +1006,10 @@ fn bounds(points: &[Vec2]) -> (Vec2, Vec2) {
 /// and where each column's crossings start (and, last, where they end); `None` when there
 /// are more columns than crossings (not from a closed ring), sorted by comparisons instead.
 fn sort_by_column(crossings: &mut Vec<(i32, i32)>) -> Option<Columns> {
-    let min = crossings.iter().map(|c| c.0).min()?;
-    let max = crossings.iter().map(|c| c.0).max().unwrap_or(min);
+    let first = crossings.first()?.0;
+    let (min, max) = crossings
+        .iter()
+        .fold((first, first), |(lo, hi), c| (lo.min(c.0), hi.max(c.0)));
     let columns = (i64::from(max) - i64::from(min)) as usize + 1;
     if columns > crossings.len() {
         crossings.sort_unstable();
@@ -1018,8 +1020,11 @@ fn sort_by_column(crossings: &mut Vec<(i32, i32)>) -> Option<Columns> {
     for c in crossings.iter() {
         starts[(c.0 - min) as usize + 1] += 1;
     }
-    for k in 0..columns {
-        starts[k + 1] += starts[k];
+    // A running sum in a register (not each entry read back from the one just stored).
+    let mut sum = 0;
+    for start in &mut starts {
+        sum += *start;
+        *start = sum;
     }
     let mut sorted = alloc::vec![(0, 0); crossings.len()];
     for &c in crossings.iter().rev() {

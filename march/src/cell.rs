@@ -10,8 +10,24 @@
 /// The corner offsets of a cell, in corner order.
 pub(crate) const CORNERS: [(i32, i32); 4] = [(0, 0), (1, 0), (1, 1), (0, 1)];
 
-/// The offset to the neighbouring cell across each edge.
+/// The offset to the neighbouring cell across each edge (the definition [`across`] computes).
+#[cfg(test)]
 pub(crate) const ACROSS: [(i32, i32); 4] = [(0, -1), (1, 0), (0, 1), (-1, 0)];
+
+/// `CORNERS[k & 3]` by arithmetic rather than a table: a contour walk's next step waits on
+/// it, and a load takes several times as long as these few operations.
+#[inline(always)]
+pub(crate) const fn corner(k: usize) -> (i32, i32) {
+    (((k + 1) >> 1 & 1) as i32, (k >> 1 & 1) as i32)
+}
+
+/// `ACROSS[e & 3]` by arithmetic (see [`corner`]).
+#[inline(always)]
+pub(crate) const fn across(e: usize) -> (i32, i32) {
+    let odd = (e & 1) as i32;
+    let e = (e & 3) as i32;
+    (odd * (2 - e), (1 - odd) * (e - 1))
+}
 
 /// Whether a sample counts as inside: `v >= iso`; NaN is outside.
 #[inline]
@@ -110,6 +126,14 @@ pub(crate) fn mean_joined(values: [f32; 4], iso: f32) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn corner_and_across_are_their_tables() {
+        for k in 0..8 {
+            assert_eq!(corner(k), CORNERS[k & 3], "corner {k}");
+            assert_eq!(across(k), ACROSS[k & 3], "across {k}");
+        }
+    }
 
     #[test]
     fn single_inside_corner_cuts_it_off() {

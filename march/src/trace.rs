@@ -4,7 +4,7 @@ use alloc::vec::Vec;
 
 use glam::Vec2;
 
-use crate::cell::{self, ACROSS, CORNERS};
+use crate::cell::{self, CORNERS};
 use crate::options::MAX_GRID_COORDINATE;
 use crate::tile::{TILE_NODES, TileField, node_point};
 use crate::{MarchError, MarchOptions, Ring, Saddle};
@@ -736,7 +736,7 @@ impl<F: TileField + ?Sized> Tracer<'_, F> {
             path.push(p, &at);
             let flags =
                 usize::from(cell::is_inside(c, iso)) | usize::from(cell::is_inside(d, iso)) << 1;
-            let mut turn = Step::TURN[flags];
+            let mut turn = Step::turn(flags);
             if flags == 1 {
                 let mut values = [0.0; 4];
                 for (n, v) in [at.a, at.b, c, d].into_iter().enumerate() {
@@ -775,7 +775,7 @@ impl<F: TileField + ?Sized> Tracer<'_, F> {
                 let d = self.nodes.sampled(tile, slot_d);
                 let p = self.crossing(at.edge(), at.a, at.b);
                 path.push(p, &at);
-                at.advance(Step::TURN[flags as usize], c, d);
+                at.advance(Step::turn(flags as usize), c, d);
                 if closed(&at) {
                     break 'ring;
                 }
@@ -906,10 +906,19 @@ impl Step {
     /// As [`cell::exit_edge`], with the entry edge's corners known to be inside, outside.
     const TURN: [usize; 4] = [3, 1, 2, 1];
 
+    /// `TURN[flags & 3]` from a constant's bit pairs rather than a table (see
+    /// [`cell::corner`]).
+    #[inline(always)]
+    const fn turn(flags: usize) -> usize {
+        const PACKED: usize =
+            Step::TURN[0] | Step::TURN[1] << 2 | Step::TURN[2] << 4 | Step::TURN[3] << 6;
+        PACKED >> (2 * (flags & 3)) & 3
+    }
+
     /// Grid node of corner `k + n`.
     #[inline]
     fn corner(&self, n: usize) -> (i32, i32) {
-        let (di, dj) = CORNERS[(self.k + n) & 3];
+        let (di, dj) = cell::corner(self.k + n);
         (self.ci + di, self.cj + dj)
     }
 
@@ -935,8 +944,9 @@ impl Step {
         let cell = [self.a, self.b, c, d];
         self.a = cell[(turn + 1) & 3];
         self.b = cell[turn & 3];
-        self.ci += ACROSS[exit].0;
-        self.cj += ACROSS[exit].1;
+        let (di, dj) = cell::across(exit);
+        self.ci += di;
+        self.cj += dj;
         self.k = (exit + 2) & 3;
     }
 }

@@ -19,9 +19,13 @@
 //!   trace on the grid's own nodes (same step, same origin).
 //! - `trace_tiles_field` (and `_no_hole_scan`) trace through `trace_field` with
 //!   `tests/support`'s `TiledField` newtype, which fills each 8×8 node tile the trace touches
-//!   with one `Field2::sample_block` call.
+//!   through one `BlockSampler` per trace and proves tiles inside with
+//!   `Field2::block_is_at_least`; `trace_tiles_field_uncached` fills each with a plain
+//!   `Field2::sample_block` call and proves nothing.
 //! - `sample_grid_then_march_grid` and `sample_grid_then_contour_rs` are the full-grid
-//!   pipelines `trace_field` replaces.
+//!   pipelines `trace_field` replaces; `block_sweep_then_contour_rs` samples the grid faster,
+//!   8 × 8 block by block through one `BlockSampler` (`sample_grid` and `block_sweep` time the
+//!   sampling alone).
 //!
 //! Run: `cargo bench -p creature-march --bench outline`
 
@@ -126,6 +130,39 @@ fn bench(c: &mut Criterion) {
             .expect("a valid grid")
     };
     let values = sample(&field);
+    // The same grid, swept 8 × 8 block by block through one `BlockSampler` (a new one per
+    // sweep): the other way this crate's dependency offers to sample a grid.
+    let sweep = |f: &Field2| {
+        let mut sampler = f.block_sampler();
+        let mut v = vec![0.0f32; SIZE * SIZE];
+        let mut block = [0.0f32; TILE_NODES];
+        for ty in 0..SIZE / TILE_SIZE {
+            for tx in 0..SIZE / TILE_SIZE {
+                let first = Vec2::new((tx * TILE_SIZE) as f32, (ty * TILE_SIZE) as f32);
+                sampler
+                    .sample_block(
+                        corner + first * step,
+                        step,
+                        TILE_SIZE,
+                        TILE_SIZE,
+                        &mut block,
+                    )
+                    .expect("a valid block");
+                for (r, row) in block.chunks_exact(TILE_SIZE).enumerate() {
+                    let at = (ty * TILE_SIZE + r) * SIZE + tx * TILE_SIZE;
+                    v[at..at + TILE_SIZE].copy_from_slice(row);
+                }
+            }
+        }
+        v
+    };
+    let swept = sweep(&field);
+    let worst = values
+        .iter()
+        .zip(&swept)
+        .map(|(a, b)| (a - b).abs())
+        .fold(0.0f32, f32::max);
+    assert!(worst < 1e-4, "the sweep samples the grid: {worst}");
     let values64: Vec<f64> = values.iter().map(|&v| f64::from(v)).collect();
     let hints = balls.centres();
     let culled = |p: Vec2| field.value(p);
@@ -253,14 +290,22 @@ fn bench(c: &mut Criterion) {
             march_grid(&v, SIZE, SIZE, 1.0)
         });
     });
+    group.bench_function("sample_grid", |b| {
+        b.iter(|| sample(black_box(&field)));
+    });
+    group.bench_function("block_sweep", |b| {
+        b.iter(|| sweep(black_box(&field)));
+    });
+    // contour-rs on freshly sampled values (converted to `f64` in the timed code).
+    let contour_rs = |values: Vec<f32>| {
+        let values: Vec<f64> = values.into_iter().map(f64::from).collect();
+        builder.contours(&values, &[1.0])
+    };
+    group.bench_function("block_sweep_then_contour_rs", |b| {
+        b.iter(|| contour_rs(sweep(black_box(&field))));
+    });
     group.bench_function("sample_grid_then_contour_rs", |b| {
-        b.iter(|| {
-            let v: Vec<f64> = sample(black_box(&field))
-                .into_iter()
-                .map(f64::from)
-                .collect();
-            builder.contours(&v, &[1.0])
-        });
+        b.iter(|| contour_rs(sample(black_box(&field))));
     });
     group.finish();
 }

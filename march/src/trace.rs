@@ -262,7 +262,8 @@ impl Traced {
     /// Whether the ring encloses grid node `(x, y)`, by the parity of its crossings above the
     /// node on the node's column: exact, no floating point.
     fn encloses(&self, x: i32, y: i32) -> bool {
-        let column = match &self.columns {
+        let crossings = match &self.columns {
+            // Column `x`'s crossings alone, from the index.
             Some(Columns { first, starts }) => {
                 let k = i64::from(x) - i64::from(*first);
                 let range = usize::try_from(k)
@@ -270,13 +271,9 @@ impl Traced {
                     .and_then(|k| Some(*starts.get(k)? as usize..*starts.get(k + 1)? as usize));
                 range.and_then(|r| self.verticals.get(r)).unwrap_or(&[])
             }
-            None => {
-                let start = self.verticals.partition_point(|e| e.0 < x);
-                let end = self.verticals.partition_point(|e| e.0 <= x);
-                self.verticals.get(start..end).unwrap_or(&[])
-            }
+            None => &self.verticals,
         };
-        column.iter().filter(|e| e.1 >= y).count() % 2 == 1
+        encloses(crossings, x, y)
     }
 }
 
@@ -558,14 +555,15 @@ impl<F: TileField + ?Sized> Tracer<'_, F> {
             rest = next;
             // The tile rows holding enclosed nodes with a node above them to check.
             let (mut low, mut high) = (i32::MAX, i32::MIN);
+            let mut nodes = 0;
             for (_, bottom, top) in column_pairs(pairs) {
-                self.cells += (top - bottom - 1).max(0) as usize;
+                nodes += (top - bottom - 1).max(0) as usize;
                 if top - bottom >= 2 {
                     low = low.min((bottom + 1) >> TILE_SHIFT);
                     high = high.max(top >> TILE_SHIFT);
                 }
             }
-            self.count_scanned(0)?;
+            self.count_scanned(nodes)?;
             if low > high {
                 continue;
             }
@@ -1072,12 +1070,10 @@ fn column_pairs(verticals: &[(i32, i32)]) -> impl Iterator<Item = (i32, i32, i32
 /// Whether a ring encloses node `(x, y)`, by the parity of its vertical crossings above the
 /// node in its column, from `crossings`: sorted, and holding at least column `x`'s.
 fn encloses(crossings: &[(i32, i32)], x: i32, y: i32) -> bool {
-    crossings
-        .iter()
-        .filter(|&&(cx, cy)| cx == x && cy >= y)
-        .count()
-        % 2
-        == 1
+    let start = crossings.partition_point(|e| e.0 < x);
+    let end = crossings.partition_point(|e| e.0 <= x);
+    let column = crossings.get(start..end).unwrap_or(&[]);
+    column.iter().filter(|e| e.1 >= y).count() % 2 == 1
 }
 
 /// Sets bits `from ..= to` (both at least 0) of the bit set `words`.

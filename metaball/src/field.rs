@@ -668,9 +668,22 @@ impl Field2 {
         rows: usize,
         out: &mut [f32],
     ) -> Result<(), MetaballError> {
+        self.sample_block_with(origin, step, cols, rows, out, None)
+    }
+
+    /// [`sample_block`](Self::sample_block) through `cache`, if any (a [`BlockSampler`]'s).
+    fn sample_block_with(
+        &self,
+        origin: Vec2,
+        step: f32,
+        cols: usize,
+        rows: usize,
+        out: &mut [f32],
+        cache: Option<&mut FactorCache>,
+    ) -> Result<(), MetaballError> {
         check_block(origin, step, cols, rows, out)?;
         self.core
-            .sample_block(origin.to_array(), step, cols, rows, out, None);
+            .sample_block(origin.to_array(), step, cols, rows, out, cache);
         Ok(())
     }
 
@@ -790,12 +803,9 @@ impl<'a> BlockSampler<'a> {
         rows: usize,
         out: &mut [f32],
     ) -> Result<(), MetaballError> {
-        check_block(origin, step, cols, rows, out)?;
         let cache = Some(&mut self.cache);
         self.field
-            .core
-            .sample_block(origin.to_array(), step, cols, rows, out, cache);
-        Ok(())
+            .sample_block_with(origin, step, cols, rows, out, cache)
     }
 }
 

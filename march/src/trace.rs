@@ -1164,9 +1164,10 @@ struct Nodes {
 impl Nodes {
     fn new() -> Self {
         Self {
-            // A creature's outline and hole scan touch a couple of hundred tiles.
+            // A creature's outline and hole scan touch a couple of hundred tiles: room for
+            // 256 before either grows (the table keeps half its slots empty).
             tiles: Vec::with_capacity(256),
-            index: Table::with_slots(256),
+            index: Table::with_slots(512),
             // No tile has coordinate `i32::MIN`: node coordinates stay within ±2^30.
             cache: [(i32::MIN, i32::MIN, 0); CACHE_SLOTS],
         }
@@ -1192,21 +1193,18 @@ impl Nodes {
     /// The index of the tile at tile coordinates `key`, created (unsampled) when missing, and
     /// whether it was created. Caches it.
     fn find_or_add(&mut self, key: (i32, i32)) -> (usize, bool) {
-        let (tile, created) = match self.index.get(key) {
-            Some(t) => (t as usize, false),
-            None => {
-                let t = self.tiles.len();
-                self.tiles.push(Tile {
-                    values: [0.0; TILE_NODES],
-                    sampled: 0,
-                    inside: 0,
-                    proven: 0,
-                    crossed: 0,
-                });
-                self.index.insert(key, t as u32);
-                (t, true)
-            }
-        };
+        let next = self.tiles.len() as u32;
+        let (tile, created) = self.index.get_or_insert(key, next);
+        if created {
+            self.tiles.push(Tile {
+                values: [0.0; TILE_NODES],
+                sampled: 0,
+                inside: 0,
+                proven: 0,
+                crossed: 0,
+            });
+        }
+        let tile = tile as usize;
         self.cache[Self::cache_slot(key)] = (key.0, key.1, tile as u32);
         (tile, created)
     }
@@ -1334,16 +1332,40 @@ impl<V: Copy + Default> Table<V> {
         (key.wrapping_mul(0x9e37_79b9_7f4a_7c15) >> (64 - bits)) as usize & mask
     }
 
-    fn get(&self, at: (i32, i32)) -> Option<V> {
-        let key = Self::key(at);
+    /// The slot holding `key`, and `true`; else the empty slot where it would go, and
+    /// `false`. `None` only if the table were full, which it never is (it grows first).
+    fn probe(&self, key: u64) -> Option<(usize, bool)> {
         let mask = self.keys.len() - 1;
         let mut s = self.slot(key);
         loop {
-            match self.keys.get(s) {
-                Some(&k) if k == key => return self.values.get(s).copied(),
-                Some(&EMPTY) | None => return None,
-                Some(_) => s = (s + 1) & mask,
+            match *self.keys.get(s)? {
+                k if k == key => return Some((s, true)),
+                EMPTY => return Some((s, false)),
+                _ => s = (s + 1) & mask,
             }
+        }
+    }
+
+    fn get(&self, at: (i32, i32)) -> Option<V> {
+        match self.probe(Self::key(at))? {
+            (s, true) => self.values.get(s).copied(),
+            (_, false) => None,
+        }
+    }
+
+    /// The value at `at`, and `false`; else `value`, inserted, and `true`. One probe.
+    fn get_or_insert(&mut self, at: (i32, i32), value: V) -> (V, bool) {
+        if (self.len + 1) * 2 > self.keys.len() {
+            self.grow();
+        }
+        let key = Self::key(at);
+        match self.probe(key) {
+            Some((s, true)) => (self.values.get(s).copied().unwrap_or(value), false),
+            Some((s, false)) => {
+                self.store(s, key, value);
+                (value, true)
+            }
+            None => (value, false),
         }
     }
 
@@ -1352,20 +1374,17 @@ impl<V: Copy + Default> Table<V> {
             self.grow();
         }
         let key = Self::key(at);
-        let mask = self.keys.len() - 1;
-        let mut s = self.slot(key);
-        loop {
-            match self.keys.get(s) {
-                Some(&k) if k == key => break,
-                Some(&EMPTY) => {
-                    self.len += 1;
-                    break;
-                }
-                Some(_) => s = (s + 1) & mask,
-                None => return,
-            }
+        if let Some((s, _)) = self.probe(key) {
+            self.store(s, key, value);
         }
+    }
+
+    /// Writes `key` and `value` into slot `s`, counting the key if the slot was empty.
+    fn store(&mut self, s: usize, key: u64, value: V) {
         if let (Some(k), Some(v)) = (self.keys.get_mut(s), self.values.get_mut(s)) {
+            if *k == EMPTY {
+                self.len += 1;
+            }
             *k = key;
             *v = value;
         }
@@ -1375,18 +1394,13 @@ impl<V: Copy + Default> Table<V> {
         let size = self.keys.len() * 2;
         let keys = core::mem::replace(&mut self.keys, alloc::vec![EMPTY; size]);
         let values = core::mem::replace(&mut self.values, alloc::vec![V::default(); size]);
-        let mask = size - 1;
+        self.len = 0;
         for (key, value) in keys.into_iter().zip(values) {
             if key == EMPTY {
                 continue;
             }
-            let mut s = self.slot(key);
-            while self.keys.get(s).is_some_and(|&k| k != EMPTY) {
-                s = (s + 1) & mask;
-            }
-            if let (Some(k), Some(v)) = (self.keys.get_mut(s), self.values.get_mut(s)) {
-                *k = key;
-                *v = value;
+            if let Some((s, _)) = self.probe(key) {
+                self.store(s, key, value);
             }
         }
     }
@@ -1818,5 +1832,19 @@ mod tests {
         assert_eq!(t.get((1, 1)), None);
         t.insert((5, -5), 7);
         assert_eq!(t.get((5, -5)), Some(7));
+    }
+
+    #[test]
+    fn table_get_or_insert_inserts_once() {
+        let mut t: Table<u32> = Table::with_slots(16);
+        for i in 0..1000 {
+            assert_eq!(t.get_or_insert((i, 2 * i), i as u32), (i as u32, true));
+        }
+        for i in 0..1000 {
+            assert_eq!(t.get_or_insert((i, 2 * i), 5000), (i as u32, false));
+            assert_eq!(t.get((i, 2 * i)), Some(i as u32));
+        }
+        assert_eq!(t.len, 1000);
+        assert_eq!(t.get((1, 1)), None);
     }
 }

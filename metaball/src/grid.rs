@@ -102,13 +102,8 @@ impl Core<2> {
         let tile = cols <= TILE && rows <= TILE;
         if tile {
             // `sample_tile` writes every sample.
-            if let Some(seen) = self.bit_candidates(origin, far) {
-                let balls = BitBalls {
-                    words: seen.get(..self.words).unwrap_or(&[]),
-                    base: 0,
-                    bits: 0,
-                    balls: &self.balls,
-                };
+            let mut seen = [0u64; BIT_WORDS];
+            if let Some(balls) = self.bit_candidates(origin, far, &mut seen) {
                 return match cache {
                     Some(cache) => self.sample_tile_cached(cache, origin, step, size, balls, out),
                     None => self.sample_tile(origin, step, size, balls, out),
@@ -229,26 +224,26 @@ impl Core<2> {
             }
             sum >= target
         };
-        match self.bit_candidates(origin, far) {
-            Some(seen) => {
-                let mut balls = BitBalls {
-                    words: seen.get(..self.words).unwrap_or(&[]),
-                    base: 0,
-                    bits: 0,
-                    balls: &self.balls,
-                };
-                balls.any(&mut add)
-            }
+        let mut seen = [0u64; BIT_WORDS];
+        match self.bit_candidates(origin, far, &mut seen) {
+            Some(mut balls) => balls.any(&mut add),
             // Every ball: a superset of the candidates.
             None => self.balls.iter().any(add),
         }
     }
 
-    /// The candidate balls of the block from `origin` to `far`: the or of the `bits` of the
-    /// cells under it (every ball whose padded cutoff box meets the block), or `None` when
-    /// the grid keeps no bits or the block covers more than [`MAX_BLOCK_CELLS`] cells.
+    /// The candidate balls of the block from `origin` to `far`, in ball order: those whose
+    /// bits are set in any of the cells under it (every ball whose padded cutoff box meets the
+    /// block), gathered in `seen` (zeros on entry); `None` when the grid keeps no bits or the
+    /// block covers more than [`MAX_BLOCK_CELLS`] cells. A field of at most 64 balls keeps its
+    /// one word in a register, not in `seen`.
     #[inline]
-    fn bit_candidates(&self, origin: [f32; 2], far: [f32; 2]) -> Option<[u64; BIT_WORDS]> {
+    fn bit_candidates<'s>(
+        &'s self,
+        origin: [f32; 2],
+        far: [f32; 2],
+        seen: &'s mut [u64; BIT_WORDS],
+    ) -> Option<BitBalls<'s, 2>> {
         let words = self.words;
         if words == 0 {
             return None;
@@ -259,7 +254,22 @@ impl Core<2> {
         if (x1 - x0 + 1) * (y1 - y0 + 1) > MAX_BLOCK_CELLS {
             return None;
         }
-        let mut seen = [0u64; BIT_WORDS];
+        if words == 1 {
+            let mut bits = 0;
+            for y in y0..=y1 {
+                let row = y * width;
+                for x in x0..=x1 {
+                    bits |= self.bits.get(row + x).copied().unwrap_or(0);
+                }
+            }
+            // The one word, already loaded: no words left to read.
+            return Some(BitBalls {
+                words: &[],
+                base: 64,
+                bits,
+                balls: &self.balls,
+            });
+        }
         for y in y0..=y1 {
             let row = y * width;
             for x in x0..=x1 {
@@ -269,7 +279,12 @@ impl Core<2> {
                 }
             }
         }
-        Some(seen)
+        Some(BitBalls {
+            words: seen.get(..words).unwrap_or(&[]),
+            base: 0,
+            bits: 0,
+            balls: &self.balls,
+        })
     }
 
     /// [`sample_tile_cached`](Core::sample_tile_cached) with a cache, else
@@ -292,8 +307,10 @@ impl Core<2> {
     /// [`sample_tile`](Core::sample_tile), with each reaching ball's column factors (for a
     /// block 8 columns wide) and row factors (8 rows high) taken from `cache` when an earlier
     /// block on the same grid spacing had the same first column (row), else computed as
-    /// `sample_tile` computes them and remembered. The factors are the same bits either way,
-    /// and so are the sums: the same terms, added in the same order.
+    /// `sample_tile` computes them and remembered. Rows are remembered multiplied by the
+    /// kernel's scale, the products `scale · row factor` that `sample_tile` takes for each
+    /// row. The factors are the same bits either way, and so are the sums: the same terms,
+    /// added in the same order.
     fn sample_tile_cached<'a>(
         &self,
         cache: &mut FactorCache,
@@ -336,18 +353,28 @@ impl Core<2> {
                 Some(key) => cache.get_or_insert(key, index, || factors(dx2)),
                 None => factors(dx2),
             };
+            // Rows are kept multiplied by the kernel's scale: the products `scale · row
+            // factor` the sums take, computed once per row instead of once per tile.
+            let scaled = || {
+                let mut rows = factors(dy2);
+                for row in &mut rows {
+                    *row *= scale;
+                }
+                rows
+            };
             let rows = match keys[1] {
-                Some(key) => cache.get_or_insert(key, index, || factors(dy2)),
-                None => factors(dy2),
+                Some(key) => cache.get_or_insert(key, index, scaled),
+                None => scaled(),
             };
             let columns = [
                 Vec4::from_slice(&columns[..4]),
                 Vec4::from_slice(&columns[4..]),
             ];
+            // `1.0 · x` is `x`: the rows are scaled already.
             if partial {
-                accumulate_partial(&mut acc, scale, columns, &rows, dx2, dy2, ball.cutoff_d2);
+                accumulate_partial(&mut acc, 1.0, columns, &rows, dx2, dy2, ball.cutoff_d2);
             } else {
-                accumulate_whole(&mut acc, scale, columns, &rows);
+                accumulate_whole(&mut acc, 1.0, columns, &rows);
             }
         }
         write_rows(&acc, width, height, out);
@@ -733,7 +760,8 @@ const FACTORS_PER_BALL: usize = 16;
 const EMPTY_TAG: u32 = 0x7fc0_0001;
 
 /// Row and column factors of 8 × 8 blocks, remembered per ball and per first column (row) for
-/// one grid spacing: what `BlockSampler` keeps between blocks.
+/// one grid spacing: what `BlockSampler` keeps between blocks. (Row factors are kept
+/// multiplied by the kernel's scale: see [`Core::sample_tile_cached`].)
 #[derive(Debug, Clone, Default)]
 pub(crate) struct FactorCache {
     /// The bits of the spacing the factors are for.
@@ -838,7 +866,7 @@ const BIT_WORDS: usize = 4;
 /// ball order.
 struct BitBalls<'a, const D: usize> {
     words: &'a [u64],
-    /// The index of the first ball of the word in `bits`.
+    /// 64 more than the index of the first ball of the word in `bits`.
     base: usize,
     /// What is left of the current word.
     bits: u64,
@@ -1888,7 +1916,8 @@ mod tests {
     #[test]
     fn cached_factors_give_the_same_tiles_bit_for_bit() {
         let mut hits = 0;
-        for (count, spread) in [(12, 60.0), (60, 200.0), (300, 400.0)] {
+        // One word of candidate bits per cell, three, and none (over 256 balls).
+        for (count, spread) in [(12, 60.0), (60, 200.0), (150, 300.0), (300, 400.0)] {
             let balls = scattered(count, spread);
             for falloff in [Falloff::SEED, Falloff::BLINN, Falloff::WYVILL] {
                 for cell_size in [None, Some(4.0), Some(1e3)] {

@@ -939,9 +939,17 @@ impl Step {
     #[inline]
     fn advance(&mut self, turn: usize, c: f32, d: f32) {
         let exit = (self.k + turn) & 3;
-        let cell = [self.a, self.b, c, d];
-        self.a = cell[(turn + 1) & 3];
-        self.b = cell[turn & 3];
+        // Turn 1: `c`–`b`; 2: `d`–`c`; 3: `a`–`d` (selects, not an array in memory, which
+        // took longer). The turn is never 0 (back through the entry edge): `Step::turn` gives
+        // 1 to 3, and so does the saddle rule.
+        debug_assert!(matches!(turn, 1..=3), "turn {turn}");
+        let (a, b) = match turn & 3 {
+            1 => (c, self.b),
+            2 => (d, c),
+            _ => (self.a, d),
+        };
+        self.a = a;
+        self.b = b;
         let (di, dj) = cell::across(exit);
         self.ci += di;
         self.cj += dj;

@@ -637,6 +637,8 @@ struct TileLanes {
     first: [f32; 2],
     /// The last lane's (the last column's and row's).
     last: [f32; 2],
+    /// `first` then `last`, as one vector.
+    ends: Vec4,
 }
 
 impl TileLanes {
@@ -646,13 +648,17 @@ impl TileLanes {
     /// Finite coordinates and centres, so no NaN (at worst +∞).
     #[inline(always)]
     fn reach(&self, ball: &Entry<2>) -> Option<([Vec4; 2], [Vec4; 2], bool)> {
-        let (dx2, dy2) = squares(self.xs, self.ys, ball.center);
         let [cx, cy] = ball.center;
-        let (lo_x, hi_x) = extremes(self.first[0], self.last[0], cx, dx2[0].x, dx2[1].w);
-        let (lo_y, hi_y) = extremes(self.first[1], self.last[1], cy, dy2[0].x, dy2[1].w);
+        // The squared distances of the first and last column and row, first: the lanes the
+        // extremes need, the same bits as in `squares`, which only a reaching ball needs.
+        let ends = self.ends - Vec4::new(cx, cy, cx, cy);
+        let [ax, ay, bx, by] = (ends * ends).to_array();
+        let (lo_x, hi_x) = extremes(self.first[0], self.last[0], cx, ax, bx);
+        let (lo_y, hi_y) = extremes(self.first[1], self.last[1], cy, ay, by);
         if !(lo_x + lo_y < ball.cutoff_d2) {
             return None;
         }
+        let (dx2, dy2) = squares(self.xs, self.ys, ball.center);
         Some((dx2, dy2, !(hi_x + hi_y < ball.cutoff_d2)))
     }
 
@@ -673,6 +679,7 @@ impl TileLanes {
             ys,
             first: [xs[0].x, ys[0].x],
             last: [xs[1].w, ys[1].w],
+            ends: Vec4::new(xs[0].x, ys[0].x, xs[1].w, ys[1].w),
         }
     }
 }

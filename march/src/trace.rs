@@ -584,8 +584,6 @@ impl<F: TileField + ?Sized> Tracer<'_, F> {
                     let ty = low + (word << 6) as i32 + bits.trailing_zeros() as i32;
                     bits &= bits - 1;
                     let y = ty << TILE_SHIFT;
-                    let tile = self.flag_tile(x, y);
-                    let (inside, crossed) = self.nodes.flags(tile);
                     // Rows 1 to 7 against the row below in the tile; row 0 against the tile
                     // below's row 7, when that tile exists (else its nodes lie outside the
                     // ring, and row 0's edges down cross it: nothing to check).
@@ -593,6 +591,17 @@ impl<F: TileField + ?Sized> Tracer<'_, F> {
                         .nodes
                         .find(x, y - 1)
                         .map_or((!0, !0), |t| self.nodes.flags(t));
+                    // A new tile just above one holding an outside node is filled without
+                    // asking the field to prove it inside: the field dips below the level
+                    // within a tile of it, where a bound over the whole tile seldom holds,
+                    // and a failed proof costs about half a fill on top of the fill. Either
+                    // way the flags are the same.
+                    let tile = if below == !0 {
+                        self.flag_tile(x, y)
+                    } else {
+                        self.tile(x, y)
+                    };
+                    let (inside, crossed) = self.nodes.flags(tile);
                     let row_7 = 8 * TILE_MASK;
                     let changes = inside ^ (inside << 8 | below >> row_7);
                     let crossed = crossed << 8 | crossed_below >> row_7;
@@ -1580,6 +1589,15 @@ mod tests {
         (p.length() - 10.0).min(60.0 - p.length())
     }
 
+    /// Whether [`wide_annulus`] is above `iso` on the whole tile, with a margin for rounding.
+    fn wide_annulus_holds(first: [i32; 2], step: f32, iso: f32) -> bool {
+        let lo = node_point(first, step);
+        let hi = node_point([first[0] + 7, first[1] + 7], step);
+        let nearest = Vec2::ZERO.clamp(lo, hi).length();
+        let farthest = lo.abs().max(hi.abs()).length();
+        (nearest - 10.0).min(60.0 - farthest) > iso + 1e-3
+    }
+
     impl TileField for Proving {
         fn value(&self, p: Vec2) -> f32 {
             self.recording.value(p)
@@ -1591,12 +1609,7 @@ mod tests {
             self.recording.sample_tile(first, step, out);
         }
         fn tile_inside(&self, first: [i32; 2], step: f32, iso: f32) -> bool {
-            let lo = node_point(first, step);
-            let hi = node_point([first[0] + 7, first[1] + 7], step);
-            let nearest = Vec2::ZERO.clamp(lo, hi).length();
-            let farthest = lo.abs().max(hi.abs()).length();
-            // A margin for rounding in `value`.
-            let inside = (nearest - 10.0).min(60.0 - farthest) > iso + 1e-3;
+            let inside = wide_annulus_holds(first, step, iso);
             if inside {
                 self.proven.borrow_mut().push(first);
             }
@@ -1635,6 +1648,71 @@ mod tests {
         let again = trace_field(&plain, &hints, 1.3, 0.0, &MarchOptions::DEFAULT).unwrap();
         assert_eq!(again, expected);
         assert_eq!(plain.0.tiles.borrow().len(), all.len());
+    }
+
+    /// The hole scan fills a new tile lying just above a tile holding an outside node
+    /// without asking for a proof first (the field dips below the level right there), and
+    /// asks about the others: the rings are the same either way.
+    #[test]
+    fn scan_fills_tiles_above_outside_nodes_without_asking() {
+        /// Tiles filled (`None`) and asked about (`Some(answer)`), in order.
+        struct Logging(core::cell::RefCell<Vec<([i32; 2], Option<bool>)>>);
+        impl TileField for Logging {
+            fn value(&self, p: Vec2) -> f32 {
+                wide_annulus(p)
+            }
+            fn prefers_tiles(&self) -> bool {
+                true
+            }
+            fn sample_tile(&self, first: [i32; 2], step: f32, out: &mut [f32; TILE_NODES]) {
+                self.0.borrow_mut().push((first, None));
+                for (n, v) in out.iter_mut().enumerate() {
+                    let node = [first[0] + (n % 8) as i32, first[1] + (n / 8) as i32];
+                    *v = wide_annulus(node_point(node, step));
+                }
+            }
+            fn tile_inside(&self, first: [i32; 2], step: f32, iso: f32) -> bool {
+                let inside = wide_annulus_holds(first, step, iso);
+                self.0.borrow_mut().push((first, Some(inside)));
+                inside
+            }
+        }
+        let (step, iso) = (1.3, 0.0);
+        let hints = [Vec2::new(-35.3, 0.1), Vec2::new(0.2, 40.1)];
+        let expected = trace(wide_annulus, &hints, step, iso).unwrap();
+        let field = Logging(core::cell::RefCell::new(Vec::new()));
+        let rings = trace_field(&field, &hints, step, iso, &MarchOptions::DEFAULT).unwrap();
+        assert_eq!(rings, expected, "the same rings, bit for bit");
+        let log = field.0.borrow();
+        let holds_outside = |first: [i32; 2]| {
+            (0..TILE_NODES).any(|n| {
+                let node = [first[0] + (n % 8) as i32, first[1] + (n / 8) as i32];
+                !cell::is_inside(wide_annulus(node_point(node, step)), iso)
+            })
+        };
+        // Replayed: which tiles were filled before each event.
+        let mut filled: Vec<[i32; 2]> = Vec::new();
+        let (mut asked, mut filled_unasked) = (0, 0);
+        for (n, &(first, answer)) in log.iter().enumerate() {
+            let below = [first[0], first[1] - (1 << TILE_SHIFT)];
+            let over_outside = filled.contains(&below) && holds_outside(below);
+            match answer {
+                Some(_) => {
+                    asked += 1;
+                    // The hint walks ask on their way up from a hint; the scan, after every
+                    // ring of a hint is traced, never over such a tile.
+                    let scanning = log[..n].iter().any(|e| e.1.is_none());
+                    assert!(!(scanning && over_outside), "asked about {first:?}");
+                }
+                None => {
+                    let was_asked = log[..n].iter().any(|e| e.0 == first);
+                    filled_unasked += usize::from(over_outside && !was_asked);
+                    filled.push(first);
+                }
+            }
+        }
+        assert!(asked > 10, "{asked}");
+        assert!(filled_unasked > 0, "no tile was filled without asking");
     }
 
     #[test]

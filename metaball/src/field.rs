@@ -660,6 +660,7 @@ impl Field2 {
     /// # Errors
     /// As [`sample_grid`](Self::sample_grid), plus [`MetaballError::WrongLength`] when
     /// `out.len()` is not `cols × rows`. On error `out` is left untouched.
+    #[inline]
     pub fn sample_block(
         &self,
         origin: Vec2,
@@ -672,6 +673,7 @@ impl Field2 {
     }
 
     /// [`sample_block`](Self::sample_block) through `cache`, if any (a [`BlockSampler`]'s).
+    #[inline]
     fn sample_block_with(
         &self,
         origin: Vec2,
@@ -716,6 +718,7 @@ impl Field2 {
     /// # Errors
     /// As [`sample_grid`](Self::sample_grid), and [`MetaballError::NonFinite`] for a NaN
     /// `level`.
+    #[inline]
     pub fn block_is_at_least(
         &self,
         origin: Vec2,
@@ -787,6 +790,7 @@ pub struct BlockSampler<'a> {
 impl<'a> BlockSampler<'a> {
     /// The field sampled.
     #[must_use]
+    #[inline]
     pub fn field(&self) -> &'a Field2 {
         self.field
     }
@@ -795,6 +799,7 @@ impl<'a> BlockSampler<'a> {
     ///
     /// # Errors
     /// As [`Field2::sample_block`]. On error `out` is left untouched.
+    #[inline]
     pub fn sample_block(
         &mut self,
         origin: Vec2,
@@ -811,6 +816,7 @@ impl<'a> BlockSampler<'a> {
 
 /// Checks a block for [`Field2::sample_block`]: a valid grid, and `cols × rows` samples in
 /// `out`.
+#[inline]
 fn check_block(
     origin: Vec2,
     step: f32,
@@ -832,6 +838,7 @@ fn check_block(
 
 /// Checks a sampling grid: finite origin, finite positive step, at most [`MAX_GRID_SAMPLES`]
 /// samples.
+#[inline]
 fn check_grid(origin: Vec2, step: f32, width: usize, height: usize) -> Result<(), MetaballError> {
     if !origin.is_finite() {
         return Err(MetaballError::NonFinite {

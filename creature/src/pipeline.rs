@@ -86,8 +86,9 @@ impl TileField for TiledField<'_> {
     fn tile_inside(&self, first: [i32; 2], step: f32, iso: f32) -> bool {
         let size = creature_march::TILE_SIZE;
         let origin = creature_march::node_point(first, step);
-        let field = self.0.borrow().field();
-        field
+        // Through the sampler: the bound comes from the factors its tiles share.
+        self.0
+            .borrow_mut()
             .block_is_at_least(origin, step, size, size, iso)
             .unwrap_or(false)
     }

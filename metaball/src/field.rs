@@ -727,13 +727,7 @@ impl Field2 {
         rows: usize,
         level: f32,
     ) -> Result<bool, MetaballError> {
-        check_grid(origin, step, cols, rows)?;
-        if level.is_nan() {
-            return Err(MetaballError::NonFinite {
-                what: "level",
-                index: 0,
-            });
-        }
+        check_level(origin, step, cols, rows, level)?;
         Ok(self
             .core
             .block_at_least(origin.to_array(), step, cols, rows, level))
@@ -795,6 +789,50 @@ impl<'a> BlockSampler<'a> {
         self.field
     }
 
+    /// [`Field2::block_is_at_least`] for an `8 × 8` block, its bound taken from the block's
+    /// row and column factors through the factor cache (which it fills as
+    /// [`sample_block`](Self::sample_block) would): a proof that needs no `exp` when the
+    /// factors are there already. Other blocks are proven as by `Field2::block_is_at_least`.
+    /// Rigorous in the same way: `true` only when every sample is at least `level`.
+    ///
+    /// ```
+    /// use creature_metaball::{Ball2, Falloff, Field2, ISO_LEVEL, glam::Vec2};
+    ///
+    /// let field = Field2::new(&[Ball2::new(Vec2::ZERO, 40.0, 0)], Falloff::SEED)?;
+    /// let mut sampler = field.block_sampler();
+    /// let mut block = [0.0f32; 64];
+    /// // A block beside the centre, sampled: its row and column factors are remembered ...
+    /// sampler.sample_block(Vec2::new(-23.0, -7.0), 2.0, 8, 8, &mut block)?;
+    /// // ... and the block to its right, in the same rows, is proven from them.
+    /// assert!(sampler.block_is_at_least(Vec2::new(-7.0, -7.0), 2.0, 8, 8, ISO_LEVEL)?);
+    /// // One straddling the outline is not.
+    /// assert!(!sampler.block_is_at_least(Vec2::new(30.0, -7.0), 2.0, 8, 8, ISO_LEVEL)?);
+    /// # Ok::<(), creature_metaball::MetaballError>(())
+    /// ```
+    ///
+    /// # Errors
+    /// As [`Field2::block_is_at_least`].
+    #[inline]
+    pub fn block_is_at_least(
+        &mut self,
+        origin: Vec2,
+        step: f32,
+        cols: usize,
+        rows: usize,
+        level: f32,
+    ) -> Result<bool, MetaballError> {
+        if cols != 8 || rows != 8 {
+            return self
+                .field
+                .block_is_at_least(origin, step, cols, rows, level);
+        }
+        check_level(origin, step, cols, rows, level)?;
+        Ok(self
+            .field
+            .core
+            .block_at_least_cached(&mut self.cache, origin.to_array(), step, level))
+    }
+
     /// [`Field2::sample_block`], through the factor cache: the same samples, bit for bit.
     ///
     /// # Errors
@@ -838,6 +876,25 @@ fn check_block(
 
 /// Checks a sampling grid: finite origin, finite positive step, at most [`MAX_GRID_SAMPLES`]
 /// samples.
+/// [`check_grid`], and a level that is not NaN.
+#[inline]
+fn check_level(
+    origin: Vec2,
+    step: f32,
+    cols: usize,
+    rows: usize,
+    level: f32,
+) -> Result<(), MetaballError> {
+    check_grid(origin, step, cols, rows)?;
+    if level.is_nan() {
+        return Err(MetaballError::NonFinite {
+            what: "level",
+            index: 0,
+        });
+    }
+    Ok(())
+}
+
 #[inline]
 fn check_grid(origin: Vec2, step: f32, width: usize, height: usize) -> Result<(), MetaballError> {
     if !origin.is_finite() {

@@ -220,8 +220,8 @@ impl creature_march::TileField for TiledField<'_> {
     fn tile_inside(&self, first: [i32; 2], step: f32, iso: f32) -> bool {
         use creature_march::{TILE_SIZE, node_point};
         let origin = node_point(first, step);
-        let field = self.0.borrow().field();
-        field
+        self.0
+            .borrow_mut()
             .block_is_at_least(origin, step, TILE_SIZE, TILE_SIZE, iso)
             .unwrap_or(false)
     }

@@ -455,6 +455,15 @@ impl<F: TileField + ?Sized> Tracer<'_, F> {
             let (i, j) = (base.0 + di, base.1 + dj);
             (Vec2::new(i as f32, j as f32).distance_squared(g), (i, j))
         });
+        // Already outlined: the nearest node (the first of the nearest, in corner order) lies
+        // in a traced component (what the walk below would find, without sampling).
+        let nearest = corners
+            .iter()
+            .reduce(|a, b| if b.0.total_cmp(&a.0).is_lt() { b } else { a })
+            .map_or(base, |c| c.1);
+        if self.covered(nearest.0, nearest.1) {
+            return Ok(());
+        }
         // A stable insertion sort of four: ties keep the corner order.
         for n in 1..corners.len() {
             let mut m = n;
@@ -464,11 +473,6 @@ impl<F: TileField + ?Sized> Tracer<'_, F> {
             }
         }
         let corners = corners.map(|(_, c)| c);
-        // Already outlined: the nearest node lies in a traced component (what the walk below
-        // would find, without sampling).
-        if self.covered(corners[0].0, corners[0].1) {
-            return Ok(());
-        }
         if !cell::is_inside(self.field.value(hint), self.iso) {
             return Ok(());
         }
@@ -1097,6 +1101,13 @@ fn encloses(crossings: &[(i32, i32)], x: i32, y: i32) -> bool {
 #[inline]
 fn set_bits(words: &mut [u64], from: i32, to: i32) {
     let (from, to) = (from as usize, to as usize);
+    if from >> 6 == to >> 6 {
+        // One word (a band of up to 64 tile rows, the usual case).
+        if let Some(word) = words.get_mut(from >> 6) {
+            *word |= (u64::MAX << (from & 63)) & (u64::MAX >> (63 - (to & 63)));
+        }
+        return;
+    }
     if let Some(words) = words.get_mut(from >> 6..=to >> 6) {
         let top = words.len() - 1;
         for (k, word) in words.iter_mut().enumerate() {
@@ -1918,6 +1929,24 @@ mod tests {
         assert_eq!(t.get((1, 1)), None);
         t.insert((5, -5), 7);
         assert_eq!(t.get((5, -5)), Some(7));
+    }
+
+    #[test]
+    fn set_bits_sets_exactly_the_range() {
+        for from in 0..200 {
+            for to in from..200 {
+                let mut words = [0u64; 4];
+                set_bits(&mut words, from, to);
+                for bit in 0..256 {
+                    let set = words[bit / 64] >> (bit % 64) & 1 == 1;
+                    assert_eq!(
+                        set,
+                        (from..=to).contains(&(bit as i32)),
+                        "{from}..={to}: {bit}"
+                    );
+                }
+            }
+        }
     }
 
     #[test]

@@ -733,7 +733,7 @@ impl<F: TileField + ?Sized> Tracer<'_, F> {
         // The budget left for this ring, counted locally and settled when it closes.
         let budget = self.options.max_cells.saturating_sub(self.cells);
         let mut cells = 0;
-        'ring: loop {
+        loop {
             // Any cell: its far corners through the tile cache; saddles settled.
             cells += 1;
             if cells > budget {
@@ -745,6 +745,12 @@ impl<F: TileField + ?Sized> Tracer<'_, F> {
             let d = self.node(i, j);
             let p = self.crossing(at.edge(), at.a, at.b);
             path.push(p, &at);
+            if at.k & 1 == 1 {
+                // A vertical entry edge, from node (x, cj) up: marked crossed.
+                let x = at.corner(0).0;
+                let tile = self.tile(x, at.cj);
+                self.nodes.mark_crossed(tile, 1 << Nodes::slot(x, at.cj));
+            }
             let flags =
                 usize::from(cell::is_inside(c, iso)) | usize::from(cell::is_inside(d, iso)) << 1;
             let mut turn = Step::turn(flags);
@@ -771,12 +777,14 @@ impl<F: TileField + ?Sized> Tracer<'_, F> {
             let Some(inside) = self.nodes.all_inside(tile) else {
                 continue;
             };
-            loop {
+            // The vertical entry edges crossed in the tile, marked when the walk leaves it.
+            let mut crossed = 0u64;
+            let closed_here = loop {
                 let (slot_c, slot_d) = (at.slot(2), at.slot(3));
                 let flags = (inside >> slot_c & 1) | (inside >> slot_d & 1) << 1;
                 if flags == 1 {
                     // A saddle: settled above.
-                    continue 'ring;
+                    break false;
                 }
                 cells += 1;
                 if cells > budget {
@@ -786,13 +794,18 @@ impl<F: TileField + ?Sized> Tracer<'_, F> {
                 let d = self.nodes.sampled(tile, slot_d);
                 let p = self.crossing(at.edge(), at.a, at.b);
                 path.push(p, &at);
+                crossed |= ((at.k & 1) as u64) << Nodes::slot(at.corner(0).0, at.cj);
                 at.advance(Step::turn(flags as usize), c, d);
                 if closed(&at) {
-                    break 'ring;
+                    break true;
                 }
                 if at.ci & TILE_MASK == TILE_MASK || at.cj & TILE_MASK == TILE_MASK {
-                    continue 'ring;
+                    break false;
                 }
+            };
+            self.nodes.mark_crossed(tile, crossed);
+            if closed_here {
+                break;
             }
         }
         self.cells += cells;
@@ -802,10 +815,6 @@ impl<F: TileField + ?Sized> Tracer<'_, F> {
             crossed,
         } = path;
         verticals.truncate(crossed);
-        for &(x, y) in &verticals {
-            let tile = self.tile(x, y);
-            self.nodes.mark_crossed(tile, Nodes::slot(x, y));
-        }
         if let Some(table) = &mut self.ring_of_edge {
             for &edge in &verticals {
                 table.insert(edge, id as u32);
@@ -1309,11 +1318,12 @@ impl Nodes {
             .and_then(|t| (t.sampled == u64::MAX).then_some(t.inside))
     }
 
-    /// Records that a ring crosses the edge from the node in `slot` of `tile` up.
+    /// Records that a ring crosses the edges from the nodes of `tile` whose bits are set in
+    /// `slots` up.
     #[inline]
-    fn mark_crossed(&mut self, tile: usize, slot: usize) {
+    fn mark_crossed(&mut self, tile: usize, slots: u64) {
         if let Some(t) = self.tiles.get_mut(tile) {
-            t.crossed |= 1 << slot;
+            t.crossed |= slots;
         }
     }
 

@@ -262,18 +262,18 @@ impl Traced {
     /// Whether the ring encloses grid node `(x, y)`, by the parity of its crossings above the
     /// node on the node's column: exact, no floating point.
     fn encloses(&self, x: i32, y: i32) -> bool {
-        let crossings = match &self.columns {
-            // Column `x`'s crossings alone, from the index.
+        match &self.columns {
+            // Column `x`'s crossings alone, from the index: those above the node.
             Some(Columns { first, starts }) => {
                 let k = i64::from(x) - i64::from(*first);
                 let range = usize::try_from(k)
                     .ok()
                     .and_then(|k| Some(*starts.get(k)? as usize..*starts.get(k + 1)? as usize));
-                range.and_then(|r| self.verticals.get(r)).unwrap_or(&[])
+                let column = range.and_then(|r| self.verticals.get(r)).unwrap_or(&[]);
+                column.iter().filter(|e| e.1 >= y).count() % 2 == 1
             }
-            None => &self.verticals,
-        };
-        encloses(crossings, x, y)
+            None => encloses(&self.verticals, x, y),
+        }
     }
 }
 

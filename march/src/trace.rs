@@ -449,8 +449,13 @@ impl<F: TileField + ?Sized> Tracer<'_, F> {
     fn outline_hint(&mut self, index: usize, hint: Vec2) -> Result<(), MarchError> {
         // The corners of the cell holding the hint, nearest first.
         let g = hint / self.step;
-        let floor = g.floor();
-        let base = (floor.x as i32, floor.y as i32);
+        // `floor` by truncation (exact: hints lie within `MAX_GRID_COORDINATE` steps, where
+        // `f32` holds every integer), not a library call on targets without SSE4.1.
+        let floor = |v: f32| {
+            let t = v as i32;
+            if t as f32 > v { t - 1 } else { t }
+        };
+        let base = (floor(g.x), floor(g.y));
         let mut corners = CORNERS.map(|(di, dj)| {
             let (i, j) = (base.0 + di, base.1 + dj);
             (Vec2::new(i as f32, j as f32).distance_squared(g), (i, j))

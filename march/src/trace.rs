@@ -578,12 +578,22 @@ impl<F: TileField + ?Sized> Tracer<'_, F> {
             }
             visit.clear();
             visit.resize(((i64::from(high) - i64::from(low)) as usize >> 6) + 1, 0);
-            for (_, bottom, top) in column_pairs(pairs).filter(|p| p.2 - p.1 >= 2) {
-                set_bits(
-                    &mut visit,
-                    ((bottom + 1) >> TILE_SHIFT) - low,
-                    (top >> TILE_SHIFT) - low,
-                );
+            let enclosed =
+                column_pairs(pairs)
+                    .filter(|p| p.2 - p.1 >= 2)
+                    .map(|(_, bottom, top)| {
+                        (
+                            ((bottom + 1) >> TILE_SHIFT) - low,
+                            (top >> TILE_SHIFT) - low,
+                        )
+                    });
+            if let [word] = visit.as_mut_slice() {
+                // Up to 64 tile rows (the usual case): the word kept in a register.
+                *word = enclosed.fold(0, |bits, (from, to)| bits | bit_range(from, to));
+            } else {
+                for (from, to) in enclosed {
+                    set_bits(&mut visit, from, to);
+                }
             }
             starts.clear();
             let x = band << TILE_SHIFT;
@@ -1111,14 +1121,19 @@ fn encloses(crossings: &[(i32, i32)], x: i32, y: i32) -> bool {
     column.iter().filter(|e| e.1 >= y).count() % 2 == 1
 }
 
+/// Bits `from & 63 ..= to & 63` of a word (`from & 63 ≤ to & 63`).
+#[inline]
+fn bit_range(from: i32, to: i32) -> u64 {
+    (u64::MAX << (from & 63)) & (u64::MAX >> (63 - (to & 63)))
+}
+
 /// Sets bits `from ..= to` (both at least 0) of the bit set `words`.
 #[inline]
 fn set_bits(words: &mut [u64], from: i32, to: i32) {
     let (from, to) = (from as usize, to as usize);
     if from >> 6 == to >> 6 {
-        // One word (a band of up to 64 tile rows, the usual case).
         if let Some(word) = words.get_mut(from >> 6) {
-            *word |= (u64::MAX << (from & 63)) & (u64::MAX >> (63 - (to & 63)));
+            *word |= bit_range(from as i32, to as i32);
         }
         return;
     }

@@ -19,8 +19,8 @@
 //!   trace on the grid's own nodes (same step, same origin).
 //! - `trace_tiles_field` (and `_no_hole_scan`) trace through `trace_field` with
 //!   `tests/support`'s `TiledField` newtype, which fills each 8×8 node tile the trace touches
-//!   through one `BlockSampler` per trace and proves tiles inside with
-//!   `Field2::block_is_at_least`; `trace_tiles_field_uncached` fills each with a plain
+//!   through one `BlockSampler` per trace and proves tiles inside with its
+//!   `block_is_at_least`; `trace_tiles_field_uncached` fills each with a plain
 //!   `Field2::sample_block` call and proves nothing.
 //! - `sample_grid_then_march_grid` and `sample_grid_then_contour_rs` are the full-grid
 //!   pipelines `trace_field` replaces; `block_sweep_then_contour_rs` samples the grid faster,

@@ -212,7 +212,7 @@ mod tests {
         ];
         for n in 0..200_000 {
             let pick = |r: u32| {
-                if r % 4 == 0 {
+                if r.is_multiple_of(4) {
                     special[(r / 4) as usize % special.len()]
                 } else {
                     f32::from_bits(r)

@@ -120,9 +120,10 @@ pub trait TileField {
     /// inside unsampled until a sample of it is needed (then it fills the whole tile as
     /// usual, so the rings are the same bit for bit). The hole scan does not ask about a tile
     /// just above one holding an outside node: the field dips below the level there, where
-    /// a bound over a whole tile seldom holds, so it fills that tile at once. Worth overriding when a proof costs
-    /// much less than a tile: a metaball field proves it from each nearby ball's smallest
-    /// contribution over the tile, with one `exp` a ball.
+    /// a bound over a whole tile seldom holds, so it fills that tile at once. Worth overriding
+    /// when a proof costs much less than a tile: a metaball field proves it from each nearby
+    /// ball's smallest contribution over the tile, with one `exp` a ball (or none, from the
+    /// factors a `BlockSampler` keeps).
     fn tile_inside(&self, first: [i32; 2], step: f32, iso: f32) -> bool {
         let _ = (first, step, iso);
         false

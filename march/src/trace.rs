@@ -269,8 +269,7 @@ impl Traced {
                 let range = usize::try_from(k)
                     .ok()
                     .and_then(|k| Some(*starts.get(k)? as usize..*starts.get(k + 1)? as usize));
-                let column = range.and_then(|r| self.verticals.get(r)).unwrap_or(&[]);
-                column.iter().filter(|e| e.1 >= y).count() % 2 == 1
+                odd_above(range.and_then(|r| self.verticals.get(r)).unwrap_or(&[]), y)
             }
             None => encloses(&self.verticals, x, y),
         }
@@ -1117,7 +1116,12 @@ fn column_pairs(verticals: &[(i32, i32)]) -> impl Iterator<Item = (i32, i32, i32
 fn encloses(crossings: &[(i32, i32)], x: i32, y: i32) -> bool {
     let start = crossings.partition_point(|e| e.0 < x);
     let end = crossings.partition_point(|e| e.0 <= x);
-    let column = crossings.get(start..end).unwrap_or(&[]);
+    odd_above(crossings.get(start..end).unwrap_or(&[]), y)
+}
+
+/// Whether an odd number of a column's vertical crossings lie at row `y` or above.
+#[inline]
+fn odd_above(column: &[(i32, i32)], y: i32) -> bool {
     column.iter().filter(|e| e.1 >= y).count() % 2 == 1
 }
 
@@ -1413,9 +1417,7 @@ impl<V: Copy + Default> Table<V> {
 
     /// The value at `at`, and `false`; else `value`, inserted, and `true`. One probe.
     fn get_or_insert(&mut self, at: (i32, i32), value: V) -> (V, bool) {
-        if (self.len + 1) * 2 > self.keys.len() {
-            self.grow();
-        }
+        self.room_for_one();
         let key = Self::key(at);
         match self.probe(key) {
             Some((s, true)) => (self.values.get(s).copied().unwrap_or(value), false),
@@ -1428,9 +1430,7 @@ impl<V: Copy + Default> Table<V> {
     }
 
     fn insert(&mut self, at: (i32, i32), value: V) {
-        if (self.len + 1) * 2 > self.keys.len() {
-            self.grow();
-        }
+        self.room_for_one();
         let key = Self::key(at);
         if let Some((s, _)) = self.probe(key) {
             self.store(s, key, value);
@@ -1445,6 +1445,13 @@ impl<V: Copy + Default> Table<V> {
             }
             *k = key;
             *v = value;
+        }
+    }
+
+    /// Grows the table if one more key would fill more than half its slots.
+    fn room_for_one(&mut self) {
+        if (self.len + 1) * 2 > self.keys.len() {
+            self.grow();
         }
     }
 

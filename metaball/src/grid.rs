@@ -204,8 +204,7 @@ impl Core<2> {
             origin[0] + step * (cols - 1) as f32,
             origin[1] + step * (rows - 1) as f32,
         ];
-        let slack = 1e-5 + (self.balls.len() as f64 + 8.0) * f64::from(f32::EPSILON);
-        let target = f64::from(level) / (1.0 - slack);
+        let target = self.proof_target(level);
         let mut sum = 0.0f64;
         let mut add = |ball: &Entry<2>| {
             let dx = (origin[0] - ball.center[0])
@@ -230,6 +229,14 @@ impl Core<2> {
             // Every ball: a superset of the candidates.
             None => self.balls.iter().any(add),
         }
+    }
+
+    /// What a block proof's sum of smallest contributions must reach for every sample to be
+    /// at least `level`: `level` over one less the slack for the samples' rounding (`1e-5`
+    /// plus `ε` per ball, relative).
+    fn proof_target(&self, level: f32) -> f64 {
+        let slack = 1e-5 + (self.balls.len() as f64 + 8.0) * f64::from(f32::EPSILON);
+        f64::from(level) / (1.0 - slack)
     }
 
     /// [`block_at_least`](Core::block_at_least) for an 8 × 8 block through a factor cache:
@@ -261,8 +268,7 @@ impl Core<2> {
             cache.slot_base(0, lanes.first[0]),
             cache.slot_base(1, lanes.first[1]),
         ];
-        let slack = 1e-5 + (self.balls.len() as f64 + 8.0) * f64::from(f32::EPSILON);
-        let target = f64::from(level) / (1.0 - slack);
+        let target = self.proof_target(level);
         let mut sum = 0.0f64;
         for ball in balls {
             let Some((dx2, dy2, false)) = lanes.reach(ball) else {

@@ -1,5 +1,5 @@
 //! `generate` (3D) per kind over 16 fixed seeds, and `generate_2d` end to end, without a texture and with a 256² texture and normal map, over
-//! 16 fixed seeds; the texture pass alone (`texture::render`, 256², the same 16 creatures);
+//! 16 fixed seeds; the texture pass alone (`d2::render_texture`, 256², the same 16 creatures);
 //! and, as the reference in the same run, the texture rendered the seed's way (every ball's
 //! `exp` at every pixel, field sum and colour blend, no culling).
 
@@ -9,15 +9,15 @@ use core::hint::black_box;
 
 use creature::glam::Vec2;
 use creature::metaball::{Ball2, Falloff};
-use creature::{Kind, Params, Params2d, TextureOptions, generate, generate_2d, texture};
+use creature::{d2, d3, generate, generate_2d};
 use criterion::{Criterion, criterion_group, criterion_main};
 
 const SEEDS: u64 = 16;
 
 fn bench(c: &mut Criterion) {
     let mut group = c.benchmark_group("generate_2d");
-    let plain = Params2d::DEFAULT.with_texture(false);
-    let textured = Params2d::DEFAULT;
+    let plain = d2::Params::DEFAULT.with_texture(false);
+    let textured = d2::Params::DEFAULT;
     group.bench_function("no_texture_per_creature", |b| {
         let mut seed = 0;
         b.iter(|| {
@@ -37,7 +37,7 @@ fn bench(c: &mut Criterion) {
     let creatures: Vec<_> = (0..SEEDS)
         .map(|seed| {
             let c = generate_2d(seed, &plain).expect("valid");
-            let options = TextureOptions::DEFAULT.with_noise_seed((seed ^ (seed >> 32)) as u32);
+            let options = d2::TextureOptions::DEFAULT.with_noise_seed((seed ^ (seed >> 32)) as u32);
             (c.balls, c.bounds, options)
         })
         .collect();
@@ -46,7 +46,7 @@ fn bench(c: &mut Criterion) {
         b.iter(|| {
             i = (i + 1) % creatures.len();
             let (balls, bounds, options) = &creatures[i];
-            black_box(texture::render(black_box(balls), *bounds, options).expect("valid"))
+            black_box(d2::render_texture(black_box(balls), *bounds, options).expect("valid"))
         });
     });
     // Reference: the seed's texture pass, every ball at every pixel (value + colour blend),
@@ -84,12 +84,12 @@ fn bench(c: &mut Criterion) {
 fn bench_3d(c: &mut Criterion) {
     let mut group = c.benchmark_group("generate_3d");
     for (name, kind) in [
-        ("walker_per_creature", Kind::Walker),
-        ("flier_per_creature", Kind::Flier),
-        ("swimmer_per_creature", Kind::Swimmer),
+        ("walker_per_creature", d3::Kind::Walker),
+        ("flier_per_creature", d3::Kind::Flier),
+        ("swimmer_per_creature", d3::Kind::Swimmer),
     ] {
         // As the issue defines it: everything but baking the clips.
-        let params = Params::DEFAULT.with_kind(kind).with_clips(false);
+        let params = d3::Params::DEFAULT.with_kind(kind).with_clips(false);
         group.bench_function(name, |b| {
             let mut seed = 0;
             b.iter(|| {
@@ -101,7 +101,9 @@ fn bench_3d(c: &mut Criterion) {
     // Baking 2 s of walk (61 frames after a 1 s warm-up) for walker 7.
     let walker = generate(
         7,
-        &Params::DEFAULT.with_kind(Kind::Walker).with_clips(false),
+        &d3::Params::DEFAULT
+            .with_kind(d3::Kind::Walker)
+            .with_clips(false),
     )
     .expect("valid");
     group.bench_function("bake_walk_2s", |b| {
@@ -109,12 +111,12 @@ fn bench_3d(c: &mut Criterion) {
     });
     // Every clip of a kind (walkers: idle 4 s, looping walk from 4 s, turn 4 s), creature 7.
     for (name, kind) in [
-        ("bake_clips_walker", Kind::Walker),
-        ("bake_clips_flier", Kind::Flier),
-        ("bake_clips_swimmer", Kind::Swimmer),
+        ("bake_clips_walker", d3::Kind::Walker),
+        ("bake_clips_flier", d3::Kind::Flier),
+        ("bake_clips_swimmer", d3::Kind::Swimmer),
     ] {
         let creature =
-            generate(7, &Params::DEFAULT.with_kind(kind).with_clips(false)).expect("valid");
+            generate(7, &d3::Params::DEFAULT.with_kind(kind).with_clips(false)).expect("valid");
         group.bench_function(name, |b| {
             b.iter(|| black_box(black_box(&creature).bake_clips().expect("clips")));
         });

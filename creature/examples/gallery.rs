@@ -9,9 +9,9 @@
 
 use std::process::ExitCode;
 
+use creature::Image;
 use creature::export::{self, PreviewOptions};
-use creature::texture::Image;
-use creature::{Params2d, generate_2d};
+use creature::{d2, generate_2d};
 
 const CELL: u32 = 256;
 const COLUMNS: u32 = 4;
@@ -39,8 +39,8 @@ fn run(path: &str) -> Result<(), String> {
     let options = PreviewOptions::DEFAULT.with_size(CELL);
     for seed in 0..16u32 {
         let creature =
-            generate_2d(u64::from(seed), &Params2d::DEFAULT).map_err(|e| e.to_string())?;
-        let image = export::preview_image(&creature, &options).map_err(|e| e.to_string())?;
+            generate_2d(u64::from(seed), &d2::Params::DEFAULT).map_err(|e| e.to_string())?;
+        let image = export::preview_2d(&creature, &options).map_err(|e| e.to_string())?;
         // Centre the preview in its cell.
         let (cx, cy) = ((seed % COLUMNS) * CELL, (seed / COLUMNS) * CELL);
         let (ox, oy) = (

@@ -1,5 +1,5 @@
 //! Renders a 4×4 gallery of 3D creatures per kind (seeds 0–15; each cell the three views of
-//! `preview_3d`) into one image, walkers on top, then fliers, then swimmers.
+//! `export::preview_3d`) into one image, walkers on top, then fliers, then swimmers.
 //!
 //! ```sh
 //! cargo run --release -p creature --features export --example gallery3d -- creature/gallery3d.png
@@ -9,9 +9,9 @@
 
 use std::process::ExitCode;
 
+use creature::Image;
 use creature::export;
-use creature::texture::Image;
-use creature::{Kind, Params, generate, preview_3d};
+use creature::{d3, generate};
 
 /// Height of one cell (its width is three views).
 const CELL: u32 = 96;
@@ -32,7 +32,7 @@ fn main() -> ExitCode {
 }
 
 fn run(path: &str) -> Result<(), String> {
-    let kinds = [Kind::Walker, Kind::Flier, Kind::Swimmer];
+    let kinds = [d3::Kind::Walker, d3::Kind::Flier, d3::Kind::Swimmer];
     let cell_w = 3 * CELL;
     let width = COLUMNS * cell_w;
     let height = kinds.len() as u32 * ROWS_PER_KIND * CELL;
@@ -43,9 +43,9 @@ fn run(path: &str) -> Result<(), String> {
     };
     for (k, kind) in kinds.into_iter().enumerate() {
         for seed in 0..u64::from(COLUMNS * ROWS_PER_KIND) {
-            let creature = generate(seed, &Params::DEFAULT.with_kind(kind).with_clips(false))
+            let creature = generate(seed, &d3::Params::DEFAULT.with_kind(kind).with_clips(false))
                 .map_err(|e| format!("{kind:?} {seed}: {e}"))?;
-            let image = preview_3d(&creature, CELL).map_err(|e| e.to_string())?;
+            let image = export::preview_3d(&creature, CELL).map_err(|e| e.to_string())?;
             let column = seed as u32 % COLUMNS;
             let row = k as u32 * ROWS_PER_KIND + seed as u32 / COLUMNS;
             for y in 0..image.height {

@@ -27,7 +27,7 @@ use std::time::Instant;
 
 use clap::{CommandFactory, Parser, ValueEnum};
 use creature::export::{self, PreviewOptions};
-use creature::{Kind, Params, Params2d, generate, generate_2d, preview_3d};
+use creature::{d2, d3, generate, generate_2d};
 use indicatif::{ProgressBar, ProgressState, ProgressStyle};
 use rayon::prelude::*;
 
@@ -90,13 +90,13 @@ enum KindArg {
     Random,
 }
 
-impl From<KindArg> for Kind {
+impl From<KindArg> for d3::Kind {
     fn from(kind: KindArg) -> Self {
         match kind {
-            KindArg::Walker => Kind::Walker,
-            KindArg::Flier => Kind::Flier,
-            KindArg::Swimmer => Kind::Swimmer,
-            KindArg::Random => Kind::Random,
+            KindArg::Walker => d3::Kind::Walker,
+            KindArg::Flier => d3::Kind::Flier,
+            KindArg::Swimmer => d3::Kind::Swimmer,
+            KindArg::Random => d3::Kind::Random,
         }
     }
 }
@@ -104,8 +104,8 @@ impl From<KindArg> for Kind {
 /// What every seed of one run shares.
 struct Job<'a> {
     dim: Dim,
-    params: Params,
-    params_2d: Params2d,
+    params: d3::Params,
+    params_2d: d2::Params,
     bones: bool,
     out: &'a Path,
     /// One creature: files are `creature.*`, not named by seed.
@@ -156,8 +156,8 @@ fn run(args: &Args, end: u64) -> Result<bool, String> {
     }
     let job = Job {
         dim: args.dim,
-        params: Params::DEFAULT.with_kind(args.kind.into()),
-        params_2d: Params2d::DEFAULT.with_texture_size(args.texture_size),
+        params: d3::Params::DEFAULT.with_kind(args.kind.into()),
+        params_2d: d2::Params::DEFAULT.with_texture_size(args.texture_size),
         bones: args.bones,
         out: &args.out,
         single: args.count == 1,
@@ -237,7 +237,7 @@ fn make_3d(seed: u64, job: &Job<'_>) -> Result<String, String> {
     let elapsed = start.elapsed();
     let clips = &creature.clips;
     let glb = export::glb_3d(&creature, clips).map_err(err)?;
-    let image = preview_3d(&creature, 256).map_err(err)?;
+    let image = export::preview_3d(&creature, 256).map_err(err)?;
     let png = export::image_png(&image).map_err(err)?;
     let kind = format!("{:?}", creature.kind).to_lowercase();
     let glb_path = write(
@@ -264,10 +264,10 @@ fn make_2d(seed: u64, job: &Job<'_>) -> Result<String, String> {
     let start = Instant::now();
     let creature = generate_2d(seed, &job.params_2d).map_err(err)?;
     let elapsed = start.elapsed();
-    let glb = export::glb(&creature).map_err(err)?;
-    let png = export::preview_png(&creature, &PreviewOptions::DEFAULT.with_bones(job.bones))
+    let glb = export::glb_2d(&creature).map_err(err)?;
+    let png = export::preview_2d_png(&creature, &PreviewOptions::DEFAULT.with_bones(job.bones))
         .map_err(err)?;
-    let svg = export::svg(&creature);
+    let svg = export::svg_2d(&creature);
     let glb_path = write(
         job,
         &job.stem("creature", seed),

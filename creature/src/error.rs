@@ -22,7 +22,7 @@ use creature_skin::SkinError;
 pub enum Error {
     /// A parameter was NaN or infinite.
     NonFinite {
-        /// The [`Params2d`](crate::Params2d) field or skeleton input, e.g. `"spine_thickness"`.
+        /// The [`d2::Params`](crate::d2::Params) field or skeleton input, e.g. `"spine_thickness"`.
         what: &'static str,
     },
     /// A parameter lies outside the range this crate supports for it.
@@ -71,7 +71,7 @@ pub enum Error {
     /// A ball centre lies outside the traced outline: the outline step is too coarse for a
     /// thin part (lower `outline_step`, or raise the thicknesses).
     BallOutside {
-        /// The ball's index in [`Creature2d::balls`](crate::Creature2d::balls).
+        /// The ball's index in [`d2::Creature::balls`](crate::d2::Creature::balls).
         ball: usize,
         /// The bone that owns it.
         bone: usize,
@@ -84,7 +84,7 @@ pub enum Error {
         what: &'static str,
     },
     /// A walking clip was asked of a creature without a gait set-up (fliers and swimmers):
-    /// their clips come from [`Creature::bake_clips`](crate::Creature::bake_clips).
+    /// their clips come from [`Creature::bake_clips`](crate::d3::Creature::bake_clips).
     NoGait,
     /// Encoding an export failed (feature `export`).
     Export {

@@ -21,7 +21,8 @@
 
 use proptest::prelude::*;
 
-use crate::{IntSpan, Kind, Params, Params2d, Span};
+use crate::d3::{Kind, Params};
+use crate::{IntSpan, Span, d2};
 
 /// Any seed.
 pub fn seed() -> impl Strategy<Value = u64> {
@@ -38,13 +39,13 @@ pub fn int_span(lo: u32, hi: u32) -> impl Strategy<Value = IntSpan> {
     (lo..=hi, lo..=hi).prop_map(|(a, b)| IntSpan::new(a.min(b), a.max(b)))
 }
 
-/// Valid 2D parameters: every field drawn inside its documented range (see [`Params2d`]),
+/// Valid 2D parameters: every field drawn inside its documented range (see [`d2::Params`]),
 /// kept to a moderate box so generation stays fast — spine 2 to 8 bones, limbs 2 to 5,
 /// lengths and thicknesses around the seed's, outline step 3 to 8, texture 8 to 64 pixels.
-/// [`connect_sockets`](Params2d::connect_sockets) stays on (off, a detached limb is a
+/// [`connect_sockets`](d2::Params::connect_sockets) stays on (off, a detached limb is a
 /// documented [`Error::Detached`](crate::Error::Detached)). Always passes
-/// [`Params2d::validate`].
-pub fn params_2d() -> impl Strategy<Value = Params2d> {
+/// [`d2::Params::validate`].
+pub fn params_2d() -> impl Strategy<Value = d2::Params> {
     let spine = (
         int_span(2, 8),
         span(5.0, 50.0),
@@ -76,7 +77,7 @@ pub fn params_2d() -> impl Strategy<Value = Params2d> {
             (outline_step, simplify, interior_spacing, clearance, min_angle),
             (texture, texture_size, depth_shading, normal_relief),
         )| {
-            Params2d::DEFAULT
+            d2::Params::DEFAULT
                 .with_spine_bones(spine_bones)
                 .with_spine_thickness(spine_thickness)
                 .with_spine_length(spine_length)
@@ -175,9 +176,9 @@ pub fn non_finite_f32() -> impl Strategy<Value = f32> {
 
 /// Valid [`params_2d`] with exactly one field broken: a range with `min > max`, a NaN or
 /// infinite value, a zero count (spine or limb bones, texture size) or a value out of range
-/// (`simplify` above `outline_step`, a multiplier below 1). [`Params2d::validate`] — and so
+/// (`simplify` above `outline_step`, a multiplier below 1). [`d2::Params::validate`] — and so
 /// [`generate_2d`](crate::generate_2d) — rejects every one.
-pub fn bad_params_2d() -> impl Strategy<Value = Params2d> {
+pub fn bad_params_2d() -> impl Strategy<Value = d2::Params> {
     (params_2d(), non_finite_f32(), 0usize..10).prop_map(|(p, bad, which)| {
         let swap = |s: Span| {
             if s.min < s.max {

@@ -7,17 +7,15 @@
 mod support;
 
 use creature::glam::Vec2;
-use creature::{
-    BoneKind, Error, IntSpan, Params2d, Span, build_2d, generate_2d, skeleton_2d_from_seed,
-};
+use creature::{Error, IntSpan, Span, d2, generate_2d};
 
 #[test]
 fn same_seed_same_creature_bit_for_bit() {
     for seed in [0, 5, 77, 123_456_789] {
-        let a = generate_2d(seed, &Params2d::DEFAULT).unwrap();
-        let b = generate_2d(seed, &Params2d::DEFAULT).unwrap();
+        let a = generate_2d(seed, &d2::Params::DEFAULT).unwrap();
+        let b = generate_2d(seed, &d2::Params::DEFAULT).unwrap();
         assert_eq!(a, b);
-        let bits = |c: &creature::Creature2d| -> Vec<u32> {
+        let bits = |c: &creature::d2::Creature| -> Vec<u32> {
             c.mesh
                 .positions
                 .iter()
@@ -28,15 +26,15 @@ fn same_seed_same_creature_bit_for_bit() {
         assert_eq!(bits(&a), bits(&b));
         assert_eq!(a.seed, seed);
     }
-    let a = generate_2d(1, &Params2d::DEFAULT).unwrap();
-    let b = generate_2d(2, &Params2d::DEFAULT).unwrap();
+    let a = generate_2d(1, &d2::Params::DEFAULT).unwrap();
+    let b = generate_2d(2, &d2::Params::DEFAULT).unwrap();
     assert_ne!(a.mesh.positions, b.mesh.positions);
 }
 
 #[test]
 fn generated_creatures_are_valid() {
     for seed in 0..12 {
-        let c = generate_2d(seed, &Params2d::DEFAULT).unwrap();
+        let c = generate_2d(seed, &d2::Params::DEFAULT).unwrap();
         let problems = support::check(&c);
         assert!(problems.is_empty(), "seed {seed}: {problems:?}");
         assert!(c.quality.max_weight_sum_error <= 1e-6);
@@ -51,7 +49,7 @@ fn generated_creatures_are_valid() {
         let head = c
             .bones
             .iter()
-            .position(|b| b.kind == BoneKind::Head)
+            .position(|b| b.kind == d2::BoneKind::Head)
             .unwrap();
         assert!(c.eyes.iter().all(|e| e.bone == head));
         for (i, _) in c.bones.iter().enumerate() {
@@ -64,7 +62,7 @@ fn generated_creatures_are_valid() {
 
 #[test]
 fn higher_vertices_are_drawn_on_top() {
-    let c = generate_2d(9, &Params2d::DEFAULT.with_texture(false)).unwrap();
+    let c = generate_2d(9, &d2::Params::DEFAULT.with_texture(false)).unwrap();
     let (min, max) = c.bounds;
     for p in &c.mesh.positions {
         let expected = (p.y - min.y) / (max.y - min.y);
@@ -72,7 +70,7 @@ fn higher_vertices_are_drawn_on_top() {
     }
 }
 
-fn expect_err(params: Params2d, what: &str) {
+fn expect_err(params: d2::Params, what: &str) {
     match generate_2d(1, &params) {
         Err(Error::NonFinite { what: w })
         | Err(Error::OutOfRange { what: w, .. })
@@ -83,7 +81,7 @@ fn expect_err(params: Params2d, what: &str) {
 
 #[test]
 fn bad_params_are_errors() {
-    let d = Params2d::DEFAULT;
+    let d = d2::Params::DEFAULT;
     expect_err(
         d.with_spine_thickness(Span::new(-10.0, 40.0)),
         "spine_thickness",
@@ -126,14 +124,14 @@ fn bad_params_are_errors() {
 
 #[test]
 fn bad_skeletons_are_errors() {
-    let params = Params2d::DEFAULT.with_texture(false);
-    let good = skeleton_2d_from_seed(4, &params).unwrap();
-    assert!(build_2d(&good, &params).is_ok());
+    let params = d2::Params::DEFAULT.with_texture(false);
+    let good = d2::skeleton_from_seed(4, &params).unwrap();
+    assert!(d2::build(&good, &params).is_ok());
 
     let mut s = good.clone();
     s.bones[2].parent = Some(5);
     assert_eq!(
-        build_2d(&s, &params),
+        d2::build(&s, &params),
         Err(Error::BadParent {
             bone: 2,
             parent: Some(5)
@@ -142,29 +140,29 @@ fn bad_skeletons_are_errors() {
     let mut s = good.clone();
     s.bones[1].position.x = f32::NAN;
     assert!(matches!(
-        build_2d(&s, &params),
+        d2::build(&s, &params),
         Err(Error::NonFinite { .. })
     ));
     let mut s = good.clone();
     s.bones[1].multiplier = 3.0;
     assert!(matches!(
-        build_2d(&s, &params),
+        d2::build(&s, &params),
         Err(Error::OutOfRange { .. })
     ));
     let mut s = good.clone();
     for b in &mut s.bones {
         b.thickness = 0.0;
     }
-    assert_eq!(build_2d(&s, &params), Err(Error::EmptySkeleton));
+    assert_eq!(d2::build(&s, &params), Err(Error::EmptySkeleton));
     let mut s = good;
     s.bones.clear();
-    assert_eq!(build_2d(&s, &params), Err(Error::EmptySkeleton));
+    assert_eq!(d2::build(&s, &params), Err(Error::EmptySkeleton));
 }
 
 #[test]
 fn a_detached_limb_is_an_error_never_dropped() {
     // Without the socket links, a thin limb far from a thick spine floats free.
-    let params = Params2d::DEFAULT
+    let params = d2::Params::DEFAULT
         .with_texture(false)
         .with_connect_sockets(false)
         .with_limb_probability(1.0)
@@ -183,7 +181,7 @@ fn a_detached_limb_is_an_error_never_dropped() {
 
 #[test]
 fn texture_and_normal_map() {
-    let c = generate_2d(11, &Params2d::DEFAULT.with_texture_size(96)).unwrap();
+    let c = generate_2d(11, &d2::Params::DEFAULT.with_texture_size(96)).unwrap();
     let t = c.texture.as_ref().unwrap();
     let n = c.normal_map.as_ref().unwrap();
     assert_eq!((t.width, t.height, t.rgba.len()), (96, 96, 96 * 96 * 4));
@@ -197,21 +195,21 @@ fn texture_and_normal_map() {
         assert!(z > 0.0);
         assert!(((v.length_squared() + z * z).sqrt() - 1.0).abs() < 0.02);
     }
-    let none = generate_2d(11, &Params2d::DEFAULT.with_texture(false)).unwrap();
+    let none = generate_2d(11, &d2::Params::DEFAULT.with_texture(false)).unwrap();
     assert!(none.texture.is_none() && none.normal_map.is_none());
     assert_eq!(none.mesh, c.mesh);
 }
 
 #[test]
 fn idle_animation_and_pose() {
-    let c = generate_2d(8, &Params2d::DEFAULT.with_texture(false)).unwrap();
+    let c = generate_2d(8, &d2::Params::DEFAULT.with_texture(false)).unwrap();
     let at_zero = c.idle_rotations(0.0);
     assert!(at_zero.iter().all(|&r| r == 0.0));
     let later = c.idle_rotations(3.0);
     assert_eq!(later.len(), c.bones.len());
     for (b, r) in c.bones.iter().zip(&later) {
         assert!(r.abs() <= 1.0);
-        if matches!(b.kind, BoneKind::Root | BoneKind::Head) {
+        if matches!(b.kind, d2::BoneKind::Root | d2::BoneKind::Head) {
             assert_eq!(*r, 0.0);
         }
     }

@@ -3,7 +3,7 @@
 #![allow(clippy::unwrap_used)]
 
 use creature::export::{self, PreviewOptions};
-use creature::{Error, Params2d, generate_2d};
+use creature::{Error, d2, generate_2d};
 
 fn u32_at(bytes: &[u8], at: usize) -> u32 {
     u32::from_le_bytes(bytes[at..at + 4].try_into().unwrap())
@@ -11,8 +11,8 @@ fn u32_at(bytes: &[u8], at: usize) -> u32 {
 
 #[test]
 fn glb_is_a_well_formed_container_with_a_skin() {
-    let c = generate_2d(7, &Params2d::DEFAULT.with_texture_size(64)).unwrap();
-    let glb = export::glb(&c).unwrap();
+    let c = generate_2d(7, &d2::Params::DEFAULT.with_texture_size(64)).unwrap();
+    let glb = export::glb_2d(&c).unwrap();
     assert_eq!(&glb[0..4], b"glTF");
     assert_eq!(u32_at(&glb, 4), 2);
     assert_eq!(u32_at(&glb, 8) as usize, glb.len());
@@ -35,13 +35,13 @@ fn glb_is_a_well_formed_container_with_a_skin() {
     assert_eq!(&glb[bin_at + 4..bin_at + 8], b"BIN\0");
     assert_eq!(u32_at(&glb, bin_at) as usize, glb.len() - bin_at - 8);
     // Deterministic bytes.
-    assert_eq!(glb, export::glb(&c).unwrap());
+    assert_eq!(glb, export::glb_2d(&c).unwrap());
 }
 
 #[test]
 fn previews_and_svg() {
-    let c = generate_2d(3, &Params2d::DEFAULT.with_texture_size(64)).unwrap();
-    let png = export::preview_png(
+    let c = generate_2d(3, &d2::Params::DEFAULT.with_texture_size(64)).unwrap();
+    let png = export::preview_2d_png(
         &c,
         &PreviewOptions::DEFAULT
             .with_size(128)
@@ -50,7 +50,7 @@ fn previews_and_svg() {
     )
     .unwrap();
     assert_eq!(&png[..8], b"\x89PNG\r\n\x1a\n");
-    let image = export::preview_image(&c, &PreviewOptions::DEFAULT.with_size(128)).unwrap();
+    let image = export::preview_2d(&c, &PreviewOptions::DEFAULT.with_size(128)).unwrap();
     assert!(image.width <= 128 && image.height <= 128);
     // Something other than the white background was drawn.
     assert!(
@@ -59,13 +59,13 @@ fn previews_and_svg() {
             .chunks_exact(4)
             .any(|p| p[..3] != [255, 255, 255])
     );
-    let flat = generate_2d(3, &Params2d::DEFAULT.with_texture(false)).unwrap();
-    assert!(export::preview_png(&flat, &PreviewOptions::DEFAULT.with_size(64)).is_ok());
+    let flat = generate_2d(3, &d2::Params::DEFAULT.with_texture(false)).unwrap();
+    assert!(export::preview_2d_png(&flat, &PreviewOptions::DEFAULT.with_size(64)).is_ok());
     assert!(matches!(
-        export::preview_png(&c, &PreviewOptions::DEFAULT.with_size(4)),
+        export::preview_2d_png(&c, &PreviewOptions::DEFAULT.with_size(4)),
         Err(Error::OutOfRange { .. })
     ));
-    let svg = export::svg(&c);
+    let svg = export::svg_2d(&c);
     assert!(svg.starts_with("<svg") && svg.trim_end().ends_with("</svg>"));
     assert_eq!(svg.matches("<circle").count(), 2 * c.eyes.len());
     let texture = export::image_png(c.texture.as_ref().unwrap()).unwrap();
@@ -74,6 +74,6 @@ fn previews_and_svg() {
 
 #[test]
 fn empty_creatures_do_not_export() {
-    let c = creature::Creature2d::default();
-    assert!(matches!(export::glb(&c), Err(Error::Export { .. })));
+    let c = creature::d2::Creature::default();
+    assert!(matches!(export::glb_2d(&c), Err(Error::Export { .. })));
 }

@@ -4,7 +4,7 @@
 #![cfg(feature = "export")]
 #![allow(clippy::unwrap_used)]
 
-use creature::{Kind, Params, export, generate};
+use creature::{d3, export, generate};
 
 fn u32_at(bytes: &[u8], at: usize) -> u32 {
     u32::from_le_bytes(bytes[at..at + 4].try_into().unwrap())
@@ -14,15 +14,15 @@ fn u32_at(bytes: &[u8], at: usize) -> u32 {
 fn glb_3d_is_a_well_formed_skinned_container() {
     let dir = std::env::var_os("CREATURE_GLB_DIR");
     for (name, kind) in [
-        ("walker", Kind::Walker),
-        ("flier", Kind::Flier),
-        ("swimmer", Kind::Swimmer),
+        ("walker", d3::Kind::Walker),
+        ("flier", d3::Kind::Flier),
+        ("swimmer", d3::Kind::Swimmer),
     ] {
         for seed in 0..4 {
-            let c = generate(seed, &Params::DEFAULT.with_kind(kind)).unwrap();
+            let c = generate(seed, &d3::Params::DEFAULT.with_kind(kind)).unwrap();
             let clips = c.clips.clone();
             assert_eq!(clips, c.bake_clips().unwrap());
-            assert_eq!(clips.len(), if kind == Kind::Walker { 3 } else { 2 });
+            assert_eq!(clips.len(), if kind == d3::Kind::Walker { 3 } else { 2 });
             let glb = export::glb_3d(&c, &clips).unwrap();
             assert_eq!(&glb[0..4], b"glTF");
             assert_eq!(u32_at(&glb, 8) as usize, glb.len());

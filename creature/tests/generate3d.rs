@@ -10,12 +10,17 @@ use support::check_3d as check;
 
 use creature::glam::Vec3;
 use creature::limbs::{CreatureKind, LimbKind};
-use creature::{Error, IntSpan, Kind, Params, Span, generate};
+use creature::{Error, IntSpan, Span, d3, generate};
 
 #[test]
 fn same_seed_same_creature() {
-    for kind in [Kind::Walker, Kind::Flier, Kind::Swimmer, Kind::Random] {
-        let params = Params::DEFAULT.with_kind(kind);
+    for kind in [
+        d3::Kind::Walker,
+        d3::Kind::Flier,
+        d3::Kind::Swimmer,
+        d3::Kind::Random,
+    ] {
+        let params = d3::Params::DEFAULT.with_kind(kind);
         let a = generate(11, &params).unwrap();
         let b = generate(11, &params).unwrap();
         assert_eq!(a, b);
@@ -27,14 +32,14 @@ fn same_seed_same_creature() {
 #[test]
 fn kinds_are_honoured_and_random_draws_all_three() {
     assert_eq!(
-        generate(3, &Params::DEFAULT.with_kind(Kind::Flier))
+        generate(3, &d3::Params::DEFAULT.with_kind(d3::Kind::Flier))
             .unwrap()
             .kind,
         CreatureKind::Flier
     );
     let mut seen = [false; 3];
     for seed in 0..30 {
-        let c = generate(seed, &Params::DEFAULT).unwrap();
+        let c = generate(seed, &d3::Params::DEFAULT).unwrap();
         seen[match c.kind {
             CreatureKind::Walker => 0,
             CreatureKind::Flier => 1,
@@ -46,21 +51,21 @@ fn kinds_are_honoured_and_random_draws_all_three() {
 
 #[test]
 fn swimmers_are_rooted_at_the_head_and_unbent() {
-    let c = generate(5, &Params::DEFAULT.with_kind(Kind::Swimmer)).unwrap();
+    let c = generate(5, &d3::Params::DEFAULT.with_kind(d3::Kind::Swimmer)).unwrap();
     assert_eq!(c.rig.root(), Some(c.rig.head));
     assert_eq!(c.quality.bend_degrees, [0.0, 0.0]);
     assert_eq!(c.plan.limbs_of(LimbKind::Tail).count(), 1);
-    let w = generate(5, &Params::DEFAULT.with_kind(Kind::Walker)).unwrap();
+    let w = generate(5, &d3::Params::DEFAULT.with_kind(d3::Kind::Walker)).unwrap();
     assert_ne!(w.rig.root(), Some(w.rig.head));
 }
 
 #[test]
 fn smooth_normals_share_vertices() {
-    let flat = generate(9, &Params::DEFAULT.with_kind(Kind::Walker)).unwrap();
+    let flat = generate(9, &d3::Params::DEFAULT.with_kind(d3::Kind::Walker)).unwrap();
     let smooth = generate(
         9,
-        &Params::DEFAULT
-            .with_kind(Kind::Walker)
+        &d3::Params::DEFAULT
+            .with_kind(d3::Kind::Walker)
             .with_flat_normals(false),
     )
     .unwrap();
@@ -74,7 +79,9 @@ fn smooth_normals_share_vertices() {
 fn no_bend_budget_gives_a_straight_spine() {
     let c = generate(
         4,
-        &Params::DEFAULT.with_kind(Kind::Walker).with_spine_bend(0.0),
+        &d3::Params::DEFAULT
+            .with_kind(d3::Kind::Walker)
+            .with_spine_bend(0.0),
     )
     .unwrap();
     assert_eq!(c.quality.bend_degrees, [0.0, 0.0]);
@@ -83,23 +90,23 @@ fn no_bend_budget_gives_a_straight_spine() {
 #[test]
 fn bad_params_are_errors() {
     let bad = [
-        Params::DEFAULT.with_body_scale(Span::new(2.0, 0.5)),
-        Params::DEFAULT.with_body_scale(Span::new(f32::NAN, 1.0)),
-        Params::DEFAULT.with_speed_factor(Span::new(1.0, f32::INFINITY)),
-        Params::DEFAULT.with_profiles(0),
-        Params::DEFAULT.with_profiles(10),
-        Params::DEFAULT.with_resolution(0, 10),
-        Params::DEFAULT.with_resolution(16, 2),
-        Params::DEFAULT.with_limb_sides(0),
-        Params::DEFAULT.with_spine_bones(IntSpan::new(20, 10)),
-        Params::DEFAULT.with_spine_bend(-1.0),
-        Params::DEFAULT.with_bone_length(0.0),
-        Params::DEFAULT.with_slices(
+        d3::Params::DEFAULT.with_body_scale(Span::new(2.0, 0.5)),
+        d3::Params::DEFAULT.with_body_scale(Span::new(f32::NAN, 1.0)),
+        d3::Params::DEFAULT.with_speed_factor(Span::new(1.0, f32::INFINITY)),
+        d3::Params::DEFAULT.with_profiles(0),
+        d3::Params::DEFAULT.with_profiles(10),
+        d3::Params::DEFAULT.with_resolution(0, 10),
+        d3::Params::DEFAULT.with_resolution(16, 2),
+        d3::Params::DEFAULT.with_limb_sides(0),
+        d3::Params::DEFAULT.with_spine_bones(IntSpan::new(20, 10)),
+        d3::Params::DEFAULT.with_spine_bend(-1.0),
+        d3::Params::DEFAULT.with_bone_length(0.0),
+        d3::Params::DEFAULT.with_slices(
             Span::new(0.0, 1.0),
             Span::new(1.0, 1.0),
             Span::new(1.0, 1.0),
         ),
-        Params::DEFAULT.with_ground_clearance(Span::new(0.5, 0.1)),
+        d3::Params::DEFAULT.with_ground_clearance(Span::new(0.5, 0.1)),
     ];
     for params in bad {
         let e = generate(1, &params).unwrap_err();
@@ -117,8 +124,8 @@ fn bad_params_are_errors() {
 #[test]
 fn rest_pose_skinning_reproduces_the_mesh() {
     use creature::glam::{Mat4, Vec4Swizzles as _};
-    for kind in [Kind::Walker, Kind::Flier, Kind::Swimmer] {
-        let c = generate(21, &Params::DEFAULT.with_kind(kind)).unwrap();
+    for kind in [d3::Kind::Walker, d3::Kind::Flier, d3::Kind::Swimmer] {
+        let c = generate(21, &d3::Params::DEFAULT.with_kind(kind)).unwrap();
         let local = c.skeleton.rest_translations();
         // Global rest transforms from the parent chain (translations only).
         let global: Vec<Mat4> = (0..local.len())
@@ -152,13 +159,12 @@ fn rest_pose_skinning_reproduces_the_mesh() {
 
 #[test]
 fn limbs_are_skinned_to_their_own_joints() {
-    use creature::Part;
-    let c = generate(2, &Params::DEFAULT.with_kind(Kind::Walker)).unwrap();
+    let c = generate(2, &d3::Params::DEFAULT.with_kind(d3::Kind::Walker)).unwrap();
     let limb_joints = c
         .skeleton
         .joints
         .iter()
-        .filter(|j| matches!(j.part, Part::Limb(_)))
+        .filter(|j| matches!(j.part, d3::Part::Limb(_)))
         .count();
     assert!(limb_joints >= 6, "two legs of three joints at least");
     // Some vertices are bound to limb joints only.
@@ -171,22 +177,22 @@ fn limbs_are_skinned_to_their_own_joints() {
             j.iter()
                 .zip(w.iter())
                 .filter(|(_, w)| **w > 0.0)
-                .all(|(&j, _)| matches!(c.skeleton.joints[usize::from(j)].part, Part::Limb(_)))
+                .all(|(&j, _)| matches!(c.skeleton.joints[usize::from(j)].part, d3::Part::Limb(_)))
         })
         .count();
     assert!(limb_only > 0);
     // Limb joints hang from spine joints or from joints of the same limb.
     for joint in &c.skeleton.joints {
-        if let (Part::Limb(l), Some(p)) = (joint.part, joint.parent) {
+        if let (d3::Part::Limb(l), Some(p)) = (joint.part, joint.parent) {
             let parent = c.skeleton.joints[p].part;
-            assert!(parent == Part::Spine || parent == Part::Limb(l));
+            assert!(parent == d3::Part::Spine || parent == d3::Part::Limb(l));
         }
     }
 }
 
 #[test]
 fn the_baked_walk_moves_forward_and_steps() {
-    let c = generate(7, &Params::DEFAULT.with_kind(Kind::Walker)).unwrap();
+    let c = generate(7, &d3::Params::DEFAULT.with_kind(d3::Kind::Walker)).unwrap();
     let clip = c.bake_walk(2.0).unwrap();
     assert!((clip.duration() - 2.0).abs() < 1e-6);
     let travel = clip.root_translation[clip.frames - 1].z - clip.root_translation[0].z;
@@ -206,7 +212,7 @@ fn the_baked_walk_moves_forward_and_steps() {
         }
     }
     // Fliers and swimmers have no walk; bad durations are errors.
-    let flier = generate(7, &Params::DEFAULT.with_kind(Kind::Flier)).unwrap();
+    let flier = generate(7, &d3::Params::DEFAULT.with_kind(d3::Kind::Flier)).unwrap();
     assert_eq!(flier.bake_walk(2.0), Err(Error::NoGait));
     assert!(c.bake_walk(f32::NAN).is_err());
     assert!(c.bake_walk(0.0).is_err());
@@ -215,14 +221,14 @@ fn the_baked_walk_moves_forward_and_steps() {
 #[test]
 fn every_kind_bakes_two_clips_that_loop() {
     let names = |kind| match kind {
-        Kind::Walker => vec!["idle", "walk", "turn"],
-        Kind::Flier => vec!["hover", "fly"],
+        d3::Kind::Walker => vec!["idle", "walk", "turn"],
+        d3::Kind::Flier => vec!["hover", "fly"],
         _ => vec!["idle", "swim"],
     };
     let mut errors = Vec::new();
-    for kind in [Kind::Walker, Kind::Flier, Kind::Swimmer] {
+    for kind in [d3::Kind::Walker, d3::Kind::Flier, d3::Kind::Swimmer] {
         for seed in 0..8 {
-            let c = generate(seed, &Params::DEFAULT.with_kind(kind)).unwrap();
+            let c = generate(seed, &d3::Params::DEFAULT.with_kind(kind)).unwrap();
             let clips = &c.clips;
             let got: Vec<&str> = clips.iter().map(|c| c.name).collect();
             assert_eq!(got, names(kind));

@@ -13,7 +13,7 @@
 use core::fmt::Write as _;
 use std::path::PathBuf;
 
-use creature::{Creature2d, Params2d, generate_2d};
+use creature::{d2, generate_2d};
 
 /// The 3D creatures' golden hashes (`tests/golden/3d.txt`), in this file so that
 /// `cargo xtask bless` regenerates them too.
@@ -43,7 +43,7 @@ impl Fnv {
     }
 }
 
-fn hash(c: &Creature2d) -> u64 {
+fn hash(c: &d2::Creature) -> u64 {
     let mut h = Fnv(0xcbf2_9ce4_8422_2325);
     for b in &c.bones {
         h.u32s([b.parent.map_or(u32::MAX, |p| p as u32)]);
@@ -78,7 +78,7 @@ fn hash(c: &Creature2d) -> u64 {
 fn golden_hashes() {
     let mut text = String::from("# seed hash bones vertices triangles (cargo xtask bless)\n");
     for seed in SEEDS {
-        let c = generate_2d(seed, &Params2d::DEFAULT).unwrap();
+        let c = generate_2d(seed, &d2::Params::DEFAULT).unwrap();
         writeln!(
             text,
             "{seed} {:016x} {} {} {}",

@@ -4,24 +4,24 @@
 #![cfg(feature = "export")]
 #![allow(clippy::unwrap_used)]
 
-use creature::{Kind, PREVIEW_BACKGROUND, Params, generate, preview_3d};
+use creature::{d3, export, generate};
 
 #[test]
 fn every_view_shows_the_creature() {
     let dir = std::env::var_os("CREATURE_PREVIEW_DIR");
     for (name, kind) in [
-        ("walker", Kind::Walker),
-        ("flier", Kind::Flier),
-        ("swimmer", Kind::Swimmer),
+        ("walker", d3::Kind::Walker),
+        ("flier", d3::Kind::Flier),
+        ("swimmer", d3::Kind::Swimmer),
     ] {
         for seed in 0..4 {
-            let c = generate(seed, &Params::DEFAULT.with_kind(kind)).unwrap();
-            let image = preview_3d(&c, 96).unwrap();
+            let c = generate(seed, &d3::Params::DEFAULT.with_kind(kind)).unwrap();
+            let image = export::preview_3d(&c, 96).unwrap();
             assert_eq!((image.width, image.height), (288, 96));
             for view in 0..3 {
                 let drawn = (0..96u32)
                     .flat_map(|y| (view * 96..(view + 1) * 96).map(move |x| (x, y)))
-                    .filter(|&(x, y)| image.pixel(x, y) != Some(PREVIEW_BACKGROUND))
+                    .filter(|&(x, y)| image.pixel(x, y) != Some(export::PREVIEW_BACKGROUND))
                     .count();
                 assert!(drawn > 200, "{name} {seed} view {view}: {drawn} pixels");
             }
@@ -36,7 +36,7 @@ fn every_view_shows_the_creature() {
                 for clip in &c.clips {
                     let mut posed = c.clone();
                     posed.mesh.positions = c.posed_positions(clip, clip.frames / 3).unwrap();
-                    let image = preview_3d(&posed, 96).unwrap();
+                    let image = export::preview_3d(&posed, 96).unwrap();
                     let png = creature::export::image_png(&image).unwrap();
                     let file = format!("{name}-{seed}-{}.png", clip.name);
                     std::fs::write(std::path::Path::new(dir).join(file), png).unwrap();
@@ -44,5 +44,5 @@ fn every_view_shows_the_creature() {
             }
         }
     }
-    assert!(preview_3d(&generate(0, &Params::DEFAULT).unwrap(), 8).is_err());
+    assert!(export::preview_3d(&generate(0, &d3::Params::DEFAULT).unwrap(), 8).is_err());
 }

@@ -7,10 +7,7 @@ mod support;
 
 use creature::glam::Vec2;
 use creature::march::Ring;
-use creature::{
-    Creature, Creature2d, Error, IntSpan, Kind, Params, Params2d, Span, generate, generate_2d,
-    strategies,
-};
+use creature::{Error, IntSpan, Span, d2, d3, generate, generate_2d, strategies};
 use proptest::prelude::*;
 use proptest::test_runner::FileFailurePersistence;
 
@@ -46,13 +43,13 @@ fn distance_to_outline(outline: &[Vec<Vec2>], q: Vec2) -> f32 {
 /// The problems of a 2D creature made with `params`: those of `support::check`, adjusted for
 /// parameters the shared check takes at their defaults:
 /// - the angle bound is not checked (the shared check's 20° is the default
-///   [`Params2d::min_angle`]; refinement cannot lift angles the outline itself makes, so
+///   [`d2::Params::min_angle`]; refinement cannot lift angles the outline itself makes, so
 ///   only a positive, finite smallest angle is required);
-/// - `Creature2d::outline` is the traced outline, while the mesh is built on it simplified by
-///   [`Params2d::simplify`] (documented: points within that distance of their neighbours'
+/// - `d2::Creature::outline` is the traced outline, while the mesh is built on it simplified by
+///   [`d2::Params::simplify`] (documented: points within that distance of their neighbours'
 ///   line are dropped), so a triangle may poke out of the traced outline — by at most
 ///   `simplify`.
-fn problems_2d(c: &Creature2d, params: &Params2d) -> Vec<String> {
+fn problems_2d(c: &d2::Creature, params: &d2::Params) -> Vec<String> {
     let mut p: Vec<String> = support::check(c)
         .into_iter()
         .filter(|s| !s.starts_with("min angle") && !s.ends_with("triangles outside"))
@@ -93,8 +90,8 @@ fn problems_2d(c: &Creature2d, params: &Params2d) -> Vec<String> {
 
 /// The problems of a 3D creature made with `params`: those of `support::check_3d`, which
 /// checks the baked walk and turn of walkers — absent, as documented, when
-/// [`Params::clips`] is off (then no clip at all may be baked).
-fn problems_3d(c: &Creature, params: &Params) -> Vec<String> {
+/// [`d3::Params::clips`] is off (then no clip at all may be baked).
+fn problems_3d(c: &d3::Creature, params: &d3::Params) -> Vec<String> {
     let mut p = support::check_3d(c);
     if !params.clips {
         p.retain(|s| !s.contains("without its walk and turn clips"));
@@ -106,7 +103,7 @@ fn problems_3d(c: &Creature, params: &Params) -> Vec<String> {
 }
 
 /// Bit patterns of every float of a 3D mesh, so NaN-free equality is checked bit for bit.
-fn mesh_bits(c: &Creature) -> Vec<u32> {
+fn mesh_bits(c: &d3::Creature) -> Vec<u32> {
     let m = &c.mesh;
     m.positions
         .iter()
@@ -126,7 +123,7 @@ proptest! {
         params in strategies::params_2d(),
     ) {
         prop_assert_eq!(params.validate(), Ok(()));
-        // Thin parts under a coarse outline step may be lost by the trace: `build_2d`
+        // Thin parts under a coarse outline step may be lost by the trace: `d2::build`
         // documents `Detached` and `BallOutside` for that; no other error may happen.
         let c = match generate_2d(seed, &params) {
             Ok(c) => c,
@@ -150,7 +147,7 @@ proptest! {
         let a = generate_2d(seed, &params);
         let b = generate_2d(seed, &params);
         if let (Ok(a), Ok(b)) = (&a, &b) {
-            let bits = |c: &Creature2d| -> Vec<u32> {
+            let bits = |c: &d2::Creature| -> Vec<u32> {
                 c.mesh.positions.iter().flat_map(|v| v.to_array()).map(f32::to_bits).collect()
             };
             prop_assert_eq!(bits(a), bits(b));
@@ -172,9 +169,9 @@ proptest! {
         // "minimal failing input" after shrinking is not always.
         prop_assert!(problems.is_empty(), "seed {seed}: {problems:?} with {params:?}");
         let expected = match params.kind {
-            Kind::Walker => Some(creature::limbs::CreatureKind::Walker),
-            Kind::Flier => Some(creature::limbs::CreatureKind::Flier),
-            Kind::Swimmer => Some(creature::limbs::CreatureKind::Swimmer),
+            d3::Kind::Walker => Some(creature::limbs::CreatureKind::Walker),
+            d3::Kind::Flier => Some(creature::limbs::CreatureKind::Flier),
+            d3::Kind::Swimmer => Some(creature::limbs::CreatureKind::Swimmer),
             _ => None,
         };
         if let Some(kind) = expected {
@@ -223,8 +220,8 @@ proptest! {
 
 #[test]
 fn walker_without_clips_is_valid() {
-    let params = Params::DEFAULT
-        .with_kind(Kind::Walker)
+    let params = d3::Params::DEFAULT
+        .with_kind(d3::Kind::Walker)
         .with_profiles(1)
         .with_resolution(4, 3)
         .with_limb_sides(3)
@@ -249,7 +246,7 @@ fn walker_without_clips_is_valid() {
 
 #[test]
 fn strong_simplification_stays_within_its_distance_of_the_outline() {
-    let params = Params2d::DEFAULT
+    let params = d2::Params::DEFAULT
         .with_spine_bones(IntSpan::new(2, 2))
         .with_spine_thickness(Span::new(42.685_61, 43.751_526))
         .with_spine_length(Span::new(48.332_703, 110.941_6))
@@ -283,7 +280,7 @@ fn strong_simplification_stays_within_its_distance_of_the_outline() {
 /// is inside) never has alpha 0, so no part of the creature vanishes from its texture.
 #[test]
 fn regression_a_creature_thinner_than_a_texel_is_not_lost_from_its_texture() {
-    let params = Params2d::DEFAULT
+    let params = d2::Params::DEFAULT
         .with_spine_thickness(Span::new(5.0, 5.0))
         .with_limb_thickness(Span::new(5.0, 5.0))
         .with_spine_length(Span::new(100.0, 100.0))
@@ -312,7 +309,7 @@ fn regression_a_creature_thinner_than_a_texel_is_not_lost_from_its_texture() {
 /// equal, 80 zero-area triangles). The head now takes the widest socket around that bone.
 #[test]
 fn regression_head_sphere_on_a_three_segment_body() {
-    let params = Params::DEFAULT
+    let params = d3::Params::DEFAULT
         .with_profiles(9)
         .with_resolution(13, 3)
         .with_limb_sides(3)
@@ -347,7 +344,7 @@ fn regression_head_sphere_on_a_three_segment_body() {
 /// reaction back (its `regression_a_long_body_turning_in_place_never_overstretches`).
 #[test]
 fn regression_baked_turn_of_a_long_walker_does_not_skate() {
-    let params = Params::DEFAULT
+    let params = d3::Params::DEFAULT
         .with_profiles(2)
         .with_resolution(12, 7)
         .with_limb_sides(3)
@@ -432,9 +429,9 @@ fn regression_a_walker_touching_the_ground_stays_above_it_when_animated() {
 
 /// The shared part of the walkers the property found at the edges of the valid params: three
 /// sides to a limb, smooth normals, the slowest speed and no ground clearance.
-fn thin_walker_on_the_ground() -> Params {
-    Params::DEFAULT
-        .with_kind(Kind::Walker)
+fn thin_walker_on_the_ground() -> d3::Params {
+    d3::Params::DEFAULT
+        .with_kind(d3::Kind::Walker)
         .with_limb_sides(3)
         .with_flat_normals(false)
         .with_swimmer_slices(
@@ -484,8 +481,8 @@ fn regression_a_walk_without_steps_does_not_slide_its_feet() {
 /// an arc that is exact for small angles.
 #[test]
 fn regression_long_legs_follow_small_bends_exactly() {
-    let params = Params::DEFAULT
-        .with_kind(Kind::Random)
+    let params = d3::Params::DEFAULT
+        .with_kind(d3::Kind::Random)
         .with_profiles(6)
         .with_resolution(18, 9)
         .with_limb_sides(3)
@@ -521,8 +518,8 @@ fn regression_long_legs_follow_small_bends_exactly() {
 /// feet allow.
 #[test]
 fn regression_a_long_walker_leans_less_rather_than_into_the_floor() {
-    let params = Params::DEFAULT
-        .with_kind(Kind::Random)
+    let params = d3::Params::DEFAULT
+        .with_kind(d3::Kind::Random)
         .with_profiles(8)
         .with_resolution(8, 7)
         .with_limb_sides(7)
@@ -559,8 +556,8 @@ fn regression_a_long_walker_leans_less_rather_than_into_the_floor() {
 /// count now.
 #[test]
 fn regression_a_lagging_arm_does_not_hide_an_overstretched_leg() {
-    let params = Params::DEFAULT
-        .with_kind(Kind::Walker)
+    let params = d3::Params::DEFAULT
+        .with_kind(d3::Kind::Walker)
         .with_profiles(2)
         .with_resolution(15, 6)
         .with_limb_sides(5)
@@ -594,8 +591,8 @@ fn regression_a_lagging_arm_does_not_hide_an_overstretched_leg() {
 /// about the hip–foot axis, as little as needed, to stay above the ground.
 #[test]
 fn regression_a_knee_never_bends_through_the_floor() {
-    let params = Params::DEFAULT
-        .with_kind(Kind::Walker)
+    let params = d3::Params::DEFAULT
+        .with_kind(d3::Kind::Walker)
         .with_profiles(1)
         .with_resolution(14, 5)
         .with_limb_sides(3)
@@ -625,7 +622,7 @@ fn regression_a_knee_never_bends_through_the_floor() {
 }
 
 /// Every frame of `clip`, skinned, stays above `floor` (a small negative tolerance).
-fn assert_above_the_floor(c: &Creature, clip: &creature::Clip, floor: f32) {
+fn assert_above_the_floor(c: &d3::Creature, clip: &creature::d3::Clip, floor: f32) {
     for frame in 0..clip.frames {
         let posed = c.posed_positions(clip, frame);
         assert!(posed.is_ok(), "{} frame {frame}: {posed:?}", clip.name);

@@ -9,7 +9,7 @@ extern crate alloc;
 
 mod support;
 
-use creature::{Kind, Params, Params2d, generate, generate_2d};
+use creature::{d2, d3, generate, generate_2d};
 
 #[test]
 fn sweep() {
@@ -17,7 +17,7 @@ fn sweep() {
         .ok()
         .and_then(|s| s.parse().ok())
         .unwrap_or(60);
-    let params = Params2d::DEFAULT.with_texture_size(64);
+    let params = d2::Params::DEFAULT.with_texture_size(64);
     let mut stats = support::SweepStats::default();
     let mut failures = Vec::new();
     for seed in 0..seeds {
@@ -44,12 +44,12 @@ fn sweep() {
     );
 }
 
-fn sweep_3d(kind: Kind) {
+fn sweep_3d(kind: d3::Kind) {
     let seeds: u64 = std::env::var("CREATURE_SWEEP_SEEDS")
         .ok()
         .and_then(|s| s.parse().ok())
         .unwrap_or(60);
-    let params = Params::DEFAULT.with_kind(kind);
+    let params = d3::Params::DEFAULT.with_kind(kind);
     let mut failures = Vec::new();
     let (mut vertices, mut joints, mut pairs) = (0usize, 0usize, 0usize);
     // Clips whose loop closes (loop error under 1e-3), and all clips, by name.
@@ -98,15 +98,15 @@ fn sweep_3d(kind: Kind) {
 
 #[test]
 fn sweep_walkers() {
-    sweep_3d(Kind::Walker);
+    sweep_3d(d3::Kind::Walker);
 }
 
 #[test]
 fn sweep_fliers() {
-    sweep_3d(Kind::Flier);
+    sweep_3d(d3::Kind::Flier);
 }
 
 #[test]
 fn sweep_swimmers() {
-    sweep_3d(Kind::Swimmer);
+    sweep_3d(d3::Kind::Swimmer);
 }

@@ -7,11 +7,11 @@
 //! promise. The hashes are of exact bits with the `std` float backend on x86_64.
 
 use core::fmt::Write as _;
-use creature::{Creature, Kind, Params, generate};
+use creature::{d3, generate};
 
 use super::{Fnv, SEEDS, check_or_bless};
 
-fn hash(c: &Creature) -> u64 {
+fn hash(c: &d3::Creature) -> u64 {
     let mut h = Fnv(0xcbf2_9ce4_8422_2325);
     let m = &c.mesh;
     for attribute in [&m.positions, &m.normals, &m.colours] {
@@ -50,12 +50,12 @@ fn golden_hashes() {
     let mut text =
         String::from("# kind seed hash vertices triangles joints limbs (cargo xtask bless)\n");
     for (name, kind) in [
-        ("walker", Kind::Walker),
-        ("flier", Kind::Flier),
-        ("swimmer", Kind::Swimmer),
+        ("walker", d3::Kind::Walker),
+        ("flier", d3::Kind::Flier),
+        ("swimmer", d3::Kind::Swimmer),
     ] {
         for seed in SEEDS {
-            let c = generate(seed, &Params::DEFAULT.with_kind(kind)).unwrap();
+            let c = generate(seed, &d3::Params::DEFAULT.with_kind(kind)).unwrap();
             writeln!(
                 text,
                 "{name} {seed} {:016x} {} {} {} {}",

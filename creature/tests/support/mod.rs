@@ -8,12 +8,12 @@ use creature::gait::{Plane, Pose};
 use creature::glam::{Vec2, Vec3};
 use creature::limbs::{CreatureKind, LimbKind};
 use creature::march::{Ring, validate_rings};
-use creature::{Creature, Creature2d, Error};
+use creature::{Error, d2, d3};
 
 /// Every problem of `c`, empty when it is valid: finite data, a closed simple outline, every
 /// ball centre and every triangle inside it, minimum angle ≥ 20°, weights summing to 1 with at
 /// most 4 influences on valid joints, and a non-empty texture when there is one.
-pub fn check(c: &Creature2d) -> Vec<String> {
+pub fn check(c: &d2::Creature) -> Vec<String> {
     let mut p = Vec::new();
     let m = &c.mesh;
     let n = m.positions.len();
@@ -105,7 +105,7 @@ pub struct SweepStats {
 }
 
 impl SweepStats {
-    pub fn add(&mut self, c: &Creature2d) {
+    pub fn add(&mut self, c: &d2::Creature) {
         if self.creatures == 0 {
             self.min_angle = f32::MAX;
         }
@@ -160,7 +160,7 @@ impl fmt::Display for SweepStats {
 // --- 3D creatures ---
 
 /// Every problem of `c`, empty when it is valid.
-pub fn check_3d(c: &Creature) -> Vec<String> {
+pub fn check_3d(c: &d3::Creature) -> Vec<String> {
     let mut p = Vec::new();
     let m = &c.mesh;
     let n = m.positions.len();
@@ -305,7 +305,7 @@ pub fn check_3d(c: &Creature) -> Vec<String> {
 
 /// Walks `c` forward at its speed for 2 s at 30 fps on flat ground; the worst foot skate and
 /// overstretch seen.
-pub fn walk(c: &Creature) -> Result<(f32, f32), Error> {
+pub fn walk(c: &d3::Creature) -> Result<(f32, f32), Error> {
     let setup = c.gait.as_ref().ok_or(Error::Degenerate {
         what: "gait set-up",
     })?;
@@ -332,7 +332,7 @@ pub fn walk(c: &Creature) -> Result<(f32, f32), Error> {
 /// Measures, by forward kinematics of the walker's `walk` and `turn` clips, the largest
 /// distance a foot joint moves between two frames in which it is planted; also checks the
 /// clips' data.
-pub fn baked_skate(c: &Creature) -> Result<f32, Error> {
+pub fn baked_skate(c: &d3::Creature) -> Result<f32, Error> {
     let mut skate = 0.0f32;
     let mut baked = 0;
     for clip in c
@@ -351,7 +351,7 @@ pub fn baked_skate(c: &Creature) -> Result<f32, Error> {
     Ok(skate)
 }
 
-pub fn skate_of(c: &Creature, clip: &creature::Clip) -> Result<f32, Error> {
+pub fn skate_of(c: &d3::Creature, clip: &creature::d3::Clip) -> Result<f32, Error> {
     let setup = c.gait.as_ref().ok_or(Error::Degenerate { what: "gait" })?;
     assert_eq!(clip.root_translation.len(), clip.frames);
     assert_eq!(clip.contacts.len(), clip.frames);

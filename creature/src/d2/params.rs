@@ -1,100 +1,7 @@
 //! Parameters of the 2D generator, with the seed's values as defaults.
 
 use crate::Error;
-
-/// A float range `[min, max)` a value is drawn from uniformly (`min + U·(max − min)`, `U` in
-/// `[0, 1)`); `min == max` gives that value.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Span {
-    /// Lower end (inclusive).
-    pub min: f32,
-    /// Upper end (exclusive, unless equal to `min`).
-    pub max: f32,
-}
-
-impl Span {
-    /// A range from `min` to `max`.
-    #[must_use]
-    pub const fn new(min: f32, max: f32) -> Self {
-        Self { min, max }
-    }
-
-    /// `min + u·(max − min)`.
-    #[must_use]
-    pub(crate) fn at(&self, u: f32) -> f32 {
-        self.min + u * (self.max - self.min)
-    }
-
-    pub(crate) fn check(&self, what: &'static str, lo: f32, hi: f32) -> Result<(), Error> {
-        if !self.min.is_finite() || !self.max.is_finite() {
-            return Err(Error::NonFinite { what });
-        }
-        for value in [self.min, self.max] {
-            if !(value >= lo && value <= hi) {
-                return Err(Error::OutOfRange {
-                    what,
-                    value,
-                    min: lo,
-                    max: hi,
-                });
-            }
-        }
-        if self.min > self.max {
-            return Err(Error::EmptyRange {
-                what,
-                min: self.min,
-                max: self.max,
-            });
-        }
-        Ok(())
-    }
-}
-
-/// An integer range `min..=max`, drawn the seed's way: `round(min + U·(max − min))`, so the
-/// two ends are half as likely as the values between them (3..=6 gives 1/6, 1/3, 1/3, 1/6).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct IntSpan {
-    /// Smallest value.
-    pub min: u32,
-    /// Largest value.
-    pub max: u32,
-}
-
-impl IntSpan {
-    /// A range from `min` to `max`, both included.
-    #[must_use]
-    pub const fn new(min: u32, max: u32) -> Self {
-        Self { min, max }
-    }
-
-    /// `round(min + u·(max − min))`, clamped into the range.
-    #[must_use]
-    pub(crate) fn at(&self, u: f32) -> u32 {
-        let span = self.max.saturating_sub(self.min) as f32;
-        (self.min + crate::math::round_non_negative(u * span)).min(self.max)
-    }
-
-    pub(crate) fn check(&self, what: &'static str, lo: u32, hi: u32) -> Result<(), Error> {
-        for value in [self.min, self.max] {
-            if value < lo || value > hi {
-                return Err(Error::OutOfRange {
-                    what,
-                    value: value as f32,
-                    min: lo as f32,
-                    max: hi as f32,
-                });
-            }
-        }
-        if self.min > self.max {
-            return Err(Error::EmptyRange {
-                what,
-                min: self.min as f32,
-                max: self.max as f32,
-            });
-        }
-        Ok(())
-    }
-}
+use crate::span::{IntSpan, Span, scalar};
 
 /// Parameters of [`generate_2d`](crate::generate_2d): the skeleton's random ranges (the 2D
 /// seed's, reference §2.3, as defaults), the outline, mesh and texture settings.
@@ -103,18 +10,19 @@ impl IntSpan {
 /// about 200–500 units across.
 ///
 /// ```
-/// use creature::{Params2d, Span};
+/// use creature::Span;
+/// use creature::d2::Params;
 ///
-/// let params = Params2d::DEFAULT
+/// let params = Params::DEFAULT
 ///     .with_spine_thickness(Span::new(20.0, 30.0))
 ///     .with_texture_size(128);
 /// params.validate()?;
-/// assert!(Params2d::DEFAULT.with_texture_size(0).validate().is_err());
+/// assert!(Params::DEFAULT.with_texture_size(0).validate().is_err());
 /// # Ok::<(), creature::Error>(())
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[non_exhaustive]
-pub struct Params2d {
+pub struct Params {
     /// Spine bones, the root (the tail tip, no thickness) included; the last is the head.
     /// From 2 to 64. Default 3..=6 (the seed's: 2 to 5 visible segments).
     pub spine_bones: IntSpan,
@@ -180,7 +88,7 @@ pub struct Params2d {
     pub normal_relief: f32,
 }
 
-impl Params2d {
+impl Params {
     /// The seed's values; see each field.
     pub const DEFAULT: Self = Self {
         spine_bones: IntSpan::new(3, 6),
@@ -217,19 +125,19 @@ impl Params2d {
         self.spine_thickness.check("spine_thickness", 1.0, 1000.0)?;
         self.spine_length.check("spine_length", 1.0, 10_000.0)?;
         self.spine_multiplier.check("spine_multiplier", 1.0, 1.6)?;
-        check("limb_probability", self.limb_probability, 0.0, 1.0)?;
+        scalar("limb_probability", self.limb_probability, 0.0, 1.0)?;
         self.limb_bones.check("limb_bones", 2, 16)?;
         self.limb_length.check("limb_length", 1.0, 10_000.0)?;
         self.limb_thickness.check("limb_thickness", 1.0, 1000.0)?;
         self.limb_multiplier.check("limb_multiplier", 1.0, 1.6)?;
-        check("socket_offset", self.socket_offset, 0.0, 4.0)?;
+        scalar("socket_offset", self.socket_offset, 0.0, 4.0)?;
         self.eye_count.check("eye_count", 0, 32)?;
         self.eye_size.check("eye_size", 0.0, 1.0)?;
-        check("outline_step", self.outline_step, 0.5, 100.0)?;
-        check("simplify", self.simplify, 0.0, self.outline_step)?;
-        check("interior_spacing", self.interior_spacing, 1.0, 1000.0)?;
-        check("interior_clearance", self.interior_clearance, 0.0, 2.0)?;
-        check("min_angle", self.min_angle, 0.0, 33.0)?;
+        scalar("outline_step", self.outline_step, 0.5, 100.0)?;
+        scalar("simplify", self.simplify, 0.0, self.outline_step)?;
+        scalar("interior_spacing", self.interior_spacing, 1.0, 1000.0)?;
+        scalar("interior_clearance", self.interior_clearance, 0.0, 2.0)?;
+        scalar("min_angle", self.min_angle, 0.0, 33.0)?;
         if self.texture_size == 0 || self.texture_size > 4096 {
             return Err(Error::OutOfRange {
                 what: "texture_size",
@@ -238,8 +146,8 @@ impl Params2d {
                 max: 4096.0,
             });
         }
-        check("depth_shading", self.depth_shading, 0.0, 4.0)?;
-        check("normal_relief", self.normal_relief, 0.0, 1000.0)?;
+        scalar("depth_shading", self.depth_shading, 0.0, 4.0)?;
+        scalar("normal_relief", self.normal_relief, 0.0, 1000.0)?;
         Ok(())
     }
 
@@ -378,25 +286,10 @@ impl Params2d {
     }
 }
 
-impl Default for Params2d {
+impl Default for Params {
     fn default() -> Self {
         Self::DEFAULT
     }
-}
-
-fn check(what: &'static str, value: f32, min: f32, max: f32) -> Result<(), Error> {
-    if !value.is_finite() {
-        return Err(Error::NonFinite { what });
-    }
-    if !(value >= min && value <= max) {
-        return Err(Error::OutOfRange {
-            what,
-            value,
-            min,
-            max,
-        });
-    }
-    Ok(())
 }
 
 #[cfg(test)]
@@ -405,7 +298,7 @@ mod tests {
 
     #[test]
     fn defaults_are_valid() {
-        assert_eq!(Params2d::default().validate(), Ok(()));
+        assert_eq!(Params::default().validate(), Ok(()));
     }
 
     #[test]
@@ -420,7 +313,7 @@ mod tests {
 
     #[test]
     fn bad_spans_are_named() {
-        let p = Params2d::DEFAULT.with_spine_length(Span::new(90.0, 50.0));
+        let p = Params::DEFAULT.with_spine_length(Span::new(90.0, 50.0));
         assert!(matches!(
             p.validate(),
             Err(Error::EmptyRange {
@@ -428,7 +321,7 @@ mod tests {
                 ..
             })
         ));
-        let p = Params2d::DEFAULT.with_limb_thickness(Span::new(f32::NAN, 5.0));
+        let p = Params::DEFAULT.with_limb_thickness(Span::new(f32::NAN, 5.0));
         assert_eq!(
             p.validate(),
             Err(Error::NonFinite {

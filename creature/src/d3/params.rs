@@ -3,7 +3,7 @@
 use creature_limbs::PlanOptions;
 
 use crate::Error;
-use crate::params::{IntSpan, Span};
+use crate::span::{IntSpan, Span, count, scalar};
 
 /// Which kind of creature [`generate`](crate::generate) makes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
@@ -27,7 +27,8 @@ pub enum Kind {
 /// body scale. Every range is drawn uniformly (`min + U·(max − min)`).
 ///
 /// ```
-/// use creature::{Kind, Params, Span};
+/// use creature::Span;
+/// use creature::d3::{Kind, Params};
 ///
 /// let params = Params::DEFAULT
 ///     .with_kind(Kind::Walker)
@@ -93,8 +94,8 @@ pub struct Params {
     /// Options of the limb planner (`creature_limbs::plan`). Default
     /// [`PlanOptions::DEFAULT`].
     pub limbs: PlanOptions,
-    /// Bake the kind's animation clips into [`Creature::clips`](crate::Creature::clips)
-    /// (see [`Creature::bake_clips`](crate::Creature::bake_clips)). Default `true`; turn off
+    /// Bake the kind's animation clips into [`Creature::clips`](crate::d3::Creature::clips)
+    /// (see [`Creature::bake_clips`](crate::d3::Creature::bake_clips)). Default `true`; turn off
     /// to generate faster and bake later, or never.
     pub clips: bool,
 }
@@ -281,33 +282,6 @@ impl Default for Params {
     fn default() -> Self {
         Self::DEFAULT
     }
-}
-
-fn count(what: &'static str, value: u32, min: u32, max: u32) -> Result<(), Error> {
-    if value < min || value > max {
-        return Err(Error::OutOfRange {
-            what,
-            value: value as f32,
-            min: min as f32,
-            max: max as f32,
-        });
-    }
-    Ok(())
-}
-
-fn scalar(what: &'static str, value: f32, min: f32, max: f32) -> Result<(), Error> {
-    if !value.is_finite() {
-        return Err(Error::NonFinite { what });
-    }
-    if !(min..=max).contains(&value) {
-        return Err(Error::OutOfRange {
-            what,
-            value,
-            min,
-            max,
-        });
-    }
-    Ok(())
 }
 
 #[cfg(test)]

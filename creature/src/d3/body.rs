@@ -8,7 +8,7 @@ use glam::Vec3;
 use rand_core::Rng;
 
 use crate::math::{cos, sin, sqrt};
-use crate::skeleton::uniform;
+use crate::rng::uniform;
 
 /// Radius of the base pill before the profile's factors, in metres.
 pub(crate) const BASE_RADIUS: f32 = 0.35;
@@ -172,7 +172,7 @@ pub(crate) fn base_body(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::skeleton::rng_for;
+    use crate::rng::rng_for;
 
     fn signed_volume(p: &[Vec3], tris: &[[u32; 3]]) -> f32 {
         tris.iter()

@@ -6,8 +6,8 @@ use alloc::vec;
 use glam::{Vec2, Vec3};
 
 use crate::Error;
-use crate::texture::Image;
-use crate::types3d::Creature;
+use crate::d3::Creature;
+use crate::image::Image;
 
 /// Background colour of [`preview_3d`] images.
 pub const PREVIEW_BACKGROUND: [u8; 4] = [236, 236, 232, 255];
@@ -20,7 +20,8 @@ const GROUND: [u8; 4] = [120, 110, 100, 255];
 /// `export`).
 ///
 /// ```
-/// use creature::{generate, preview_3d, Kind, Params, PREVIEW_BACKGROUND};
+/// use creature::d3::{generate, Kind, Params};
+/// use creature::export::{preview_3d, PREVIEW_BACKGROUND};
 ///
 /// let walker = generate(7, &Params::DEFAULT.with_kind(Kind::Walker))?;
 /// let image = preview_3d(&walker, 64)?;

@@ -12,12 +12,13 @@ use creature_gait::{GaitOptions, Leg, LimbKind as GaitLimb};
 use creature_limbs::{Body, CreatureKind, HeadEnd, SpineBone, plan};
 use creature_skin::{Blend, nearest_k, skin_positions};
 
-use crate::body3d::{BASE_RADIUS, base_body, pill_triangles};
-use crate::limbs3d::{Bind, LimbStyle, MeshBuilder, Mount, add_limb, socket_point};
+use super::body::{BASE_RADIUS, base_body, pill_triangles};
+use super::limbs::{Bind, LimbStyle, MeshBuilder, Mount, add_limb, socket_point};
+use super::{GaitSetup, Kind, Params};
+use crate::Error;
+use crate::d3::{Creature, Joint, Mesh, Part, Quality, Skeleton};
 use crate::math::{cos, sin};
-use crate::skeleton::{rng_for, uniform};
-use crate::types3d::{Creature, Joint3d, Mesh3d, Part, Quality3d, Skeleton3d};
-use crate::{Error, GaitSetup, Kind, Params};
+use crate::rng::{rng_for, uniform};
 
 /// FFD lattice divisions: 3×3 control points per slice, 11 slices along the body (the seed's).
 const DIVISIONS: [usize; 3] = [2, 2, 10];
@@ -35,7 +36,7 @@ const HEAD_RES: (usize, usize) = (5, 8);
 /// Same seed and params, same creature, bit for bit.
 ///
 /// ```
-/// use creature::{generate, Kind, Params};
+/// use creature::d3::{generate, Kind, Params};
 ///
 /// let walker = generate(7, &Params::DEFAULT.with_kind(Kind::Walker))?;
 /// assert!(walker.quality.stability_margin.unwrap_or(-1.0) > 0.0);
@@ -162,10 +163,10 @@ pub fn generate(seed: u64, params: &Params) -> Result<Creature, Error> {
     let limb_body = Body::new(bones, length, HeadEnd::Last);
     let limb_plan = plan(&limb_body, kind, &params.limbs, rng)?;
 
-    let mut joints: Vec<Joint3d> = body_rig
+    let mut joints: Vec<Joint> = body_rig
         .joints
         .iter()
-        .map(|j| Joint3d {
+        .map(|j| Joint {
             position: j.position,
             parent: j.parent,
             part: Part::Spine,
@@ -299,7 +300,7 @@ pub fn generate(seed: u64, params: &Params) -> Result<Creature, Error> {
     let mut creature = Creature {
         kind,
         mesh,
-        skeleton: Skeleton3d { joints },
+        skeleton: Skeleton { joints },
         rig: body_rig,
         plan: limb_plan,
         ground_offset: offset,
@@ -502,13 +503,13 @@ fn limb_body(body: &creature_autorig::Rig, positions: &[Vec3], ground: f32) -> V
 }
 
 /// Normals (flat: every triangle its own vertices), into the public mesh.
-fn finish_mesh(b: MeshBuilder, flat: bool) -> Mesh3d {
+fn finish_mesh(b: MeshBuilder, flat: bool) -> Mesh {
     let face_normal = |t: &[u32; 3]| {
         let [a, c, d] = t.map(|i| b.positions.get(i as usize).copied().unwrap_or(Vec3::ZERO));
         (c - a).cross(d - a)
     };
     if flat {
-        let mut m = Mesh3d::default();
+        let mut m = Mesh::default();
         for t in &b.indices {
             let n = face_normal(t).normalize_or(Vec3::Y);
             let base = m.positions.len() as u32;
@@ -536,7 +537,7 @@ fn finish_mesh(b: MeshBuilder, flat: bool) -> Mesh3d {
                 }
             }
         }
-        Mesh3d {
+        Mesh {
             normals: normals.iter().map(|n| n.normalize_or(Vec3::Y)).collect(),
             positions: b.positions,
             colours: b.colours,
@@ -548,12 +549,12 @@ fn finish_mesh(b: MeshBuilder, flat: bool) -> Mesh3d {
 }
 
 fn measure(
-    mesh: &Mesh3d,
+    mesh: &Mesh,
     limb_plan: &creature_limbs::Plan,
     ffd_min_determinant: f32,
     length: f32,
     bend_degrees: [f32; 2],
-) -> Quality3d {
+) -> Quality {
     let max_weight_sum_error = mesh
         .weights
         .iter()
@@ -578,7 +579,7 @@ fn measure(
             0.5 * (b - a).cross(c - a).length() / scale
         })
         .fold(f32::INFINITY, f32::min);
-    Quality3d {
+    Quality {
         stability_margin: limb_plan.stability_margin,
         ffd_min_determinant,
         max_weight_sum_error,

@@ -10,7 +10,7 @@ use crate::Error;
 /// space at rest, the ground at `y = 0`), with the gait options, ready for a [`Controller`].
 ///
 /// ```
-/// use creature::{generate, Kind, Params};
+/// use creature::d3::{generate, Kind, Params};
 /// use creature::gait::{Plane, Pose, glam::Vec3};
 ///
 /// let walker = generate(7, &Params::DEFAULT.with_kind(Kind::Walker))?;

@@ -15,36 +15,37 @@ use creature_metaball::{
 };
 use creature_skin::{Influences, from_contributions, report};
 
-use crate::skeleton::skeleton_2d_from_seed;
-use crate::texture::{self, TextureOptions};
-use crate::types::{Ball2d, Creature2d, Mesh2d, Quality2d, Skeleton2d};
-use crate::{Error, Params2d};
+use super::Params;
+use super::skeleton_from_seed;
+use super::texture::{self, TextureOptions};
+use crate::Error;
+use crate::d2::{Ball, Creature, Mesh, Quality, Skeleton};
 
 /// The most bones a skeleton may have (glTF joints are indexed with 16 bits; far beyond any
 /// generated creature).
 pub const MAX_BONES: usize = 4096;
 
-/// Generates a 2D creature from `seed`: the seed's skeleton generator ([`skeleton_2d`](crate::skeleton_2d),
-/// fed by `Pcg64Mcg::seed_from_u64(seed)`), then [`build_2d`]. Same seed and params, same
+/// Generates a 2D creature from `seed`: the seed's skeleton generator ([`skeleton`](crate::d2::skeleton),
+/// fed by `Pcg64Mcg::seed_from_u64(seed)`), then [`build`]. Same seed and params, same
 /// creature, bit for bit.
 ///
 /// ```
-/// use creature::{generate_2d, Params2d};
+/// use creature::d2::{generate, Params};
 ///
-/// let creature = generate_2d(7, &Params2d::DEFAULT)?;
+/// let creature = generate(7, &Params::DEFAULT)?;
 /// assert!(creature.mesh.indices.len() > 50);
 /// assert!(creature.quality.min_angle >= 20.0);
-/// assert_eq!(creature, generate_2d(7, &Params2d::DEFAULT)?); // deterministic
+/// assert_eq!(creature, generate(7, &Params::DEFAULT)?); // deterministic
 /// let texture = creature.texture.as_ref().map(|t| t.width);
 /// assert_eq!(texture, Some(256));
 /// # Ok::<(), creature::Error>(())
 /// ```
 ///
 /// # Errors
-/// As [`build_2d`], and the errors of [`Params2d::validate`].
-pub fn generate_2d(seed: u64, params: &Params2d) -> Result<Creature2d, Error> {
-    let skeleton = skeleton_2d_from_seed(seed, params)?;
-    let mut creature = build(&skeleton, params, seed)?;
+/// As [`build`], and the errors of [`Params::validate`].
+pub fn generate(seed: u64, params: &Params) -> Result<Creature, Error> {
+    let skeleton = skeleton_from_seed(seed, params)?;
+    let mut creature = build_with_seed(&skeleton, params, seed)?;
     creature.seed = seed;
     Ok(creature)
 }
@@ -100,43 +101,43 @@ impl TileField for TiledField<'_> {
 ///    [`cover_segment_with`] (ids = the parent: the segment moves with it); the last ball stops
 ///    half a step short of a parent that has its own balls (the seed's last-ball rule); colours
 ///    are lerped from the bone's to the parent's along the segment. With
-///    [`Params2d::connect_sockets`], the link from a thickness-0 socket bone to its parent is
+///    [`Params::connect_sockets`], the link from a thickness-0 socket bone to its parent is
 ///    covered with its first child's thickness, so limbs stay attached.
 /// 2. **Outline** — [`trace_field`] of the culled field with every ball centre as a hint, at
-///    [`Params2d::outline_step`], the grid sampled 8 × 8 nodes at a time
+///    [`Params::outline_step`], the grid sampled 8 × 8 nodes at a time
 ///    ([`Field2::sample_block`]). It must be one piece ([`Error::Detached`] otherwise) that
 ///    holds every ball centre ([`Error::BallOutside`] otherwise).
 /// 3. **Mesh** — [`triangulate`] with interior points and refinement to
-///    [`Params2d::min_angle`]; UVs from the outline's box, `z = (y − min_y) / height`.
+///    [`Params::min_angle`]; UVs from the outline's box, `z = (y − min_y) / height`.
 /// 4. **Skin weights** — the field's top-4 bone shares at each vertex, through
 ///    [`from_contributions`].
-/// 5. **Texture and normal map** — [`texture::render`] when [`Params2d::texture`] is set.
+/// 5. **Texture and normal map** — [`render_texture`](super::render_texture) when [`Params::texture`] is set.
 ///
 /// ```
-/// use creature::{build_2d, skeleton_2d_from_seed, Params2d};
+/// use creature::d2::{build, skeleton_from_seed, Params};
 ///
-/// let params = Params2d::DEFAULT.with_texture(false);
-/// let mut skeleton = skeleton_2d_from_seed(3, &params)?;
+/// let params = Params::DEFAULT.with_texture(false);
+/// let mut skeleton = skeleton_from_seed(3, &params)?;
 /// for bone in &mut skeleton.bones {
 ///     bone.thickness *= 1.2; // a chunkier variant of creature 3
 /// }
-/// let creature = build_2d(&skeleton, &params)?;
+/// let creature = build(&skeleton, &params)?;
 /// assert!(creature.texture.is_none());
 /// assert!(creature.quality.max_weight_sum_error <= 1e-6);
 /// # Ok::<(), creature::Error>(())
 /// ```
 ///
 /// # Errors
-/// - the errors of [`Params2d::validate`];
+/// - the errors of [`Params::validate`];
 /// - [`Error::BadParent`], [`Error::NonFinite`], [`Error::OutOfRange`],
 ///   [`Error::TooManyBones`] or [`Error::EmptySkeleton`] for a bad skeleton;
 /// - [`Error::Detached`] or [`Error::BallOutside`] when the outline does not hold every ball;
 /// - the wrapped errors of the metaball, march and skin stages.
-pub fn build_2d(skeleton: &Skeleton2d, params: &Params2d) -> Result<Creature2d, Error> {
-    build(skeleton, params, 0)
+pub fn build(skeleton: &Skeleton, params: &Params) -> Result<Creature, Error> {
+    build_with_seed(skeleton, params, 0)
 }
 
-fn build(skeleton: &Skeleton2d, params: &Params2d, seed: u64) -> Result<Creature2d, Error> {
+fn build_with_seed(skeleton: &Skeleton, params: &Params, seed: u64) -> Result<Creature, Error> {
     params.validate()?;
     validate_skeleton(skeleton)?;
     let balls = cover(skeleton, params)?;
@@ -234,20 +235,20 @@ fn build(skeleton: &Skeleton2d, params: &Params2d, seed: u64) -> Result<Creature
             .with_depth_shading(params.depth_shading)
             .with_normal_relief(params.normal_relief)
             .with_noise_seed((seed ^ (seed >> 32)) as u32);
-        let (t, n) = texture::render(&balls, (min, max), &options)?;
+        let (t, n) = texture::render_texture(&balls, (min, max), &options)?;
         (Some(t), Some(n))
     } else {
         (None, None)
     };
 
-    Ok(Creature2d {
+    Ok(Creature {
         seed: 0,
         bones: skeleton.bones.clone(),
         eyes: skeleton.eyes.clone(),
         balls,
         outline: rings.into_iter().map(|r| r.points).collect(),
         bounds: (min, max),
-        mesh: Mesh2d {
+        mesh: Mesh {
             positions,
             uvs,
             indices: mesh.triangles,
@@ -257,7 +258,7 @@ fn build(skeleton: &Skeleton2d, params: &Params2d, seed: u64) -> Result<Creature
         },
         texture,
         normal_map,
-        quality: Quality2d {
+        quality: Quality {
             min_angle: mesh.quality.min_angle,
             triangles_below_limit: mesh.quality.below_limit,
             refinement_complete: mesh.quality.refinement_complete,
@@ -279,7 +280,7 @@ fn nearest_bone(balls: &[Ball2], p: Vec2) -> u16 {
     u16::try_from(best.1).unwrap_or(0)
 }
 
-fn validate_skeleton(skeleton: &Skeleton2d) -> Result<(), Error> {
+fn validate_skeleton(skeleton: &Skeleton) -> Result<(), Error> {
     let bones = &skeleton.bones;
     if bones.is_empty() {
         return Err(Error::EmptySkeleton);
@@ -341,10 +342,10 @@ fn validate_skeleton(skeleton: &Skeleton2d) -> Result<(), Error> {
     Ok(())
 }
 
-/// Covers every bone with balls (see [`build_2d`]).
-fn cover(skeleton: &Skeleton2d, params: &Params2d) -> Result<Vec<Ball2d>, Error> {
+/// Covers every bone with balls (see [`build`]).
+fn cover(skeleton: &Skeleton, params: &Params) -> Result<Vec<Ball>, Error> {
     let bones = &skeleton.bones;
-    let mut out: Vec<Ball2d> = Vec::new();
+    let mut out: Vec<Ball> = Vec::new();
     for (i, bone) in bones.iter().enumerate() {
         let Some(p) = bone.parent else { continue };
         let Some(parent) = bones.get(p) else { continue };
@@ -391,7 +392,7 @@ fn cover(skeleton: &Skeleton2d, params: &Params2d) -> Result<Vec<Ball2d>, Error>
                 Some(pc) => colour.lerp(pc, alpha),
                 None => colour,
             };
-            out.push(Ball2d {
+            out.push(Ball {
                 ball,
                 colour,
                 texture_weights: bone.texture_weights,

@@ -4,7 +4,7 @@ use alloc::vec::Vec;
 
 use glam::{Vec2, Vec3};
 
-use crate::texture::Image;
+use crate::image::Image;
 
 /// What a bone is for; decides whether it animates and how the pipeline covers it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -27,7 +27,7 @@ pub enum BoneKind {
 /// A bone's thickness, multiplier, colour and texture weight describe the segment from its
 /// parent to itself; the balls covering that segment belong to the parent (they move with it).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Bone2 {
+pub struct Bone {
     /// The parent's index (always smaller than this bone's), `None` for the root.
     pub parent: Option<usize>,
     /// Rest position relative to the parent's, in the parent's frame (world units).
@@ -49,8 +49,8 @@ pub struct Bone2 {
     pub kind: BoneKind,
 }
 
-impl Bone2 {
-    /// Whether [`Creature2d::idle_rotations`] moves this bone (every bone but the root and the
+impl Bone {
+    /// Whether [`Creature::idle_rotations`] moves this bone (every bone but the root and the
     /// head, as in the seed).
     #[must_use]
     pub fn animated(&self) -> bool {
@@ -69,18 +69,18 @@ pub struct Eye {
     pub bone: usize,
 }
 
-/// A skeleton plus its eyes: the input of [`build_2d`](crate::build_2d).
+/// A skeleton plus its eyes: the input of [`build`](crate::d2::build).
 #[derive(Debug, Clone, PartialEq, Default)]
-pub struct Skeleton2d {
+pub struct Skeleton {
     /// Bones, parents first; index 0 is the root.
-    pub bones: Vec<Bone2>,
+    pub bones: Vec<Bone>,
     /// Eyes on the head.
     pub eyes: Vec<Eye>,
 }
 
 /// One metaball of a creature, with the attributes the texture blends.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Ball2d {
+pub struct Ball {
     /// The ball (centre, radius, owning bone as `id`).
     pub ball: creature_metaball::Ball2,
     /// Linear RGB colour.
@@ -91,12 +91,12 @@ pub struct Ball2d {
 
 /// A skinned 2D triangle mesh, glTF-ready.
 #[derive(Debug, Clone, PartialEq, Default)]
-pub struct Mesh2d {
+pub struct Mesh {
     /// Vertex positions: `x, y` in the creature's frame and `z = (y − min_y) / height` of the
     /// outline's box, in `[0, 1]`, so higher parts draw on top.
     pub positions: Vec<Vec3>,
     /// Texture coordinates in the outline's box, glTF convention: `u = (x − min_x) / width`,
-    /// `v = (max_y − y) / height` (row 0 of [`Creature2d::texture`] is the top).
+    /// `v = (max_y − y) / height` (row 0 of [`Creature::texture`] is the top).
     pub uvs: Vec<Vec2>,
     /// Triangles, counter-clockwise seen from +z.
     pub indices: Vec<[u32; 3]>,
@@ -111,10 +111,10 @@ pub struct Mesh2d {
 /// Measured quality of a creature.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 #[non_exhaustive]
-pub struct Quality2d {
+pub struct Quality {
     /// Smallest triangle angle, degrees.
     pub min_angle: f32,
-    /// Triangles below [`Params2d::min_angle`](crate::Params2d::min_angle).
+    /// Triangles below [`Params::min_angle`](crate::d2::Params::min_angle).
     pub triangles_below_limit: usize,
     /// Whether Delaunay refinement reached the angle limit everywhere.
     pub refinement_complete: bool,
@@ -129,37 +129,37 @@ pub struct Quality2d {
 
 /// A generated 2D creature: plain data, ready to draw, skin or export.
 #[derive(Debug, Clone, PartialEq, Default)]
-pub struct Creature2d {
-    /// The seed it was generated from (0 for [`build_2d`](crate::build_2d)).
+pub struct Creature {
+    /// The seed it was generated from (0 for [`build`](crate::d2::build)).
     pub seed: u64,
     /// Bones, parents first; joint `i` of the mesh is bone `i`.
-    pub bones: Vec<Bone2>,
+    pub bones: Vec<Bone>,
     /// Eyes on the head.
     pub eyes: Vec<Eye>,
     /// The metaballs the shape, weights and texture come from.
-    pub balls: Vec<Ball2d>,
+    pub balls: Vec<Ball>,
     /// The outline: outer ring first (counter-clockwise), then holes (clockwise).
     pub outline: Vec<Vec<Vec2>>,
     /// The outline's bounding box `(min, max)`: the UV and texture frame.
     pub bounds: (Vec2, Vec2),
     /// The skinned mesh.
-    pub mesh: Mesh2d,
-    /// Albedo texture (RGBA8, row 0 at the top), if [`Params2d::texture`](crate::Params2d::texture).
+    pub mesh: Mesh,
+    /// Albedo texture (RGBA8, row 0 at the top), if [`Params::texture`](crate::d2::Params::texture).
     pub texture: Option<Image>,
     /// Tangent-space normal map (`n · 0.5 + 0.5`), same size as the texture.
     pub normal_map: Option<Image>,
     /// Measured quality.
-    pub quality: Quality2d,
+    pub quality: Quality,
 }
 
-impl Creature2d {
+impl Creature {
     /// The seed's idle wiggle: each bone's rotation (radians, relative to its rest rotation)
     /// at time `t` seconds: `sin(t (i / 0.23 + 1) / 10)` for bone `i`, 0 for the root and the
     /// head.
     ///
     /// ```
     /// # fn main() -> Result<(), creature::Error> {
-    /// let creature = creature::generate_2d(7, &creature::Params2d::DEFAULT.with_texture(false))?;
+    /// let creature = creature::generate_2d(7, &creature::d2::Params::DEFAULT.with_texture(false))?;
     /// let pose = creature.idle_rotations(1.5);
     /// assert_eq!(pose.len(), creature.bones.len());
     /// assert_eq!(pose[0], 0.0);
@@ -191,9 +191,9 @@ impl Creature2d {
     }
 }
 
-/// The seed's idle wiggle for any bone list (see [`Creature2d::idle_rotations`]).
+/// The seed's idle wiggle for any bone list (see [`Creature::idle_rotations`]).
 #[must_use]
-pub(crate) fn idle_rotations(bones: &[Bone2], t: f32) -> Vec<f32> {
+pub(crate) fn idle_rotations(bones: &[Bone], t: f32) -> Vec<f32> {
     bones
         .iter()
         .enumerate()

@@ -23,38 +23,16 @@ use glam::Vec2;
 
 use creature_metaball::{DEFAULT_EPSILON, Falloff, SEED_BLOBBINESS};
 
+use super::noise;
+use crate::d2::Ball;
+use crate::image::Image;
 use crate::math::{max, min};
-use crate::types::Ball2d;
-use crate::{Error, math, noise};
+use crate::{Error, math};
 
-/// An RGBA8 image, rows top to bottom, 4 bytes per pixel.
-#[derive(Debug, Clone, PartialEq, Eq, Default)]
-pub struct Image {
-    /// Width in pixels.
-    pub width: u32,
-    /// Height in pixels.
-    pub height: u32,
-    /// `width × height × 4` bytes, row-major, row 0 at the top.
-    pub rgba: Vec<u8>,
-}
-
-impl Image {
-    /// The pixel at `(x, y)` (row `y` from the top), `None` outside the image.
-    #[must_use]
-    pub fn pixel(&self, x: u32, y: u32) -> Option<[u8; 4]> {
-        if x >= self.width || y >= self.height {
-            return None;
-        }
-        let i = (y as usize * self.width as usize + x as usize) * 4;
-        let p = self.rgba.get(i..i + 4)?;
-        Some([p[0], p[1], p[2], p[3]])
-    }
-}
-
-/// Options of [`render`].
+/// Options of [`render_texture`].
 ///
 /// ```
-/// use creature::TextureOptions;
+/// use creature::d2::TextureOptions;
 ///
 /// let options = TextureOptions::DEFAULT.with_size(128);
 /// assert_eq!(options.depth_shading, 0.75);
@@ -166,15 +144,15 @@ impl Default for TextureOptions {
 /// ```
 /// use creature::glam::{Vec2, Vec3};
 /// use creature::metaball::Ball2;
-/// use creature::{texture, Ball2d, TextureOptions};
+/// use creature::d2::{render_texture, Ball, TextureOptions};
 ///
-/// let ball = Ball2d {
+/// let ball = Ball {
 ///     ball: Ball2::new(Vec2::ZERO, 10.0, 0),
 ///     colour: Vec3::new(0.9, 0.5, 0.2),
 ///     texture_weights: Vec2::new(1.0, 0.0),
 /// };
 /// let bounds = (Vec2::splat(-12.0), Vec2::splat(12.0));
-/// let (albedo, normals) = texture::render(&[ball], bounds, &TextureOptions::DEFAULT.with_size(32))?;
+/// let (albedo, normals) = render_texture(&[ball], bounds, &TextureOptions::DEFAULT.with_size(32))?;
 /// assert_eq!(albedo.pixel(16, 16).map(|p| p[3]), Some(255)); // the centre is inside
 /// assert_eq!(albedo.pixel(0, 0).map(|p| p[3]), Some(0)); // a corner is not
 /// assert!(normals.pixel(2, 16).is_some_and(|n| n[0] < 128)); // left rim leans left
@@ -184,8 +162,8 @@ impl Default for TextureOptions {
 /// # Errors
 /// Invalid options; [`Error::NonFinite`] or [`Error::Degenerate`] for a non-finite or empty
 /// box; [`Error::Metaball`] for an invalid ball.
-pub fn render(
-    balls: &[Ball2d],
+pub fn render_texture(
+    balls: &[Ball],
     bounds: (Vec2, Vec2),
     options: &TextureOptions,
 ) -> Result<(Image, Image), Error> {
@@ -287,7 +265,7 @@ impl Footprints {
     // Out of line (like `splat`, `Planes::clear` and `Finisher::rows`) so that profiles name
     // the stages; each runs once per render or band.
     #[inline(never)]
-    fn new(balls: &[Ball2d], (min, max): (Vec2, Vec2), texel: Vec2, n: usize) -> Self {
+    fn new(balls: &[Ball], (min, max): (Vec2, Vec2), texel: Vec2, n: usize) -> Self {
         // Room for every footprint's columns and rows at once (at most the box of the cutoff
         // circle each), so the tables do not grow step by step.
         let (columns, rows) = balls.iter().fold((0, 0), |(columns, rows), b| {
@@ -960,8 +938,8 @@ mod tests {
     use creature_metaball::Ball2;
     use glam::Vec3;
 
-    fn ball(x: f32, y: f32, r: f32, colour: Vec3) -> Ball2d {
-        Ball2d {
+    fn ball(x: f32, y: f32, r: f32, colour: Vec3) -> Ball {
+        Ball {
             ball: Ball2::new(Vec2::new(x, y), r, 0),
             colour,
             texture_weights: Vec2::new(0.5, 0.5),
@@ -991,7 +969,8 @@ mod tests {
         use creature_metaball::Field2;
         let balls = [ball(0.0, 0.0, 10.0, Vec3::X), ball(14.0, 3.0, 7.0, Vec3::Y)];
         let bounds = (Vec2::new(-15.0, -12.0), Vec2::new(25.0, 14.0));
-        let (albedo, _) = render(&balls, bounds, &TextureOptions::DEFAULT.with_size(40)).unwrap();
+        let (albedo, _) =
+            render_texture(&balls, bounds, &TextureOptions::DEFAULT.with_size(40)).unwrap();
         let plain: Vec<Ball2> = balls.iter().map(|b| b.ball).collect();
         let field = Field2::new(&plain, Falloff::SEED).unwrap();
         let texel = (bounds.1 - bounds.0) / 40.0;
@@ -1028,7 +1007,7 @@ mod tests {
         ];
         let bounds = (Vec2::new(-20.0, -10.0), Vec2::new(20.0, 10.0));
         let options = TextureOptions::DEFAULT.with_size(40);
-        let (albedo, normals) = render(&balls, bounds, &options).unwrap();
+        let (albedo, normals) = render_texture(&balls, bounds, &options).unwrap();
         let left = albedo.pixel(10, 20).unwrap();
         let right = albedo.pixel(30, 20).unwrap();
         assert!(left[0] > left[2] && right[2] > right[0]);
@@ -1050,7 +1029,8 @@ mod tests {
         // cutoff circle (4.4), the nearest, (5, 5), is 5.7 away.
         let tiny = [ball(9.0, 1.0, 1.0, Vec3::ONE)];
         let bounds = (Vec2::ZERO, Vec2::splat(40.0));
-        let (albedo, _) = render(&tiny, bounds, &TextureOptions::DEFAULT.with_size(4)).unwrap();
+        let (albedo, _) =
+            render_texture(&tiny, bounds, &TextureOptions::DEFAULT.with_size(4)).unwrap();
         // Row 3 from the top holds y in [0, 10]; column 0 holds x in [0, 10].
         let alpha = |x, y| albedo.pixel(x, y).unwrap()[3];
         // A quarter disk of radius 1 in a 10 × 10 texel: 0.79% of it, 2 of 255.
@@ -1063,7 +1043,8 @@ mod tests {
         );
         // A ball as wide as the texel: a quarter of a disk of radius 5, 20% of it.
         let wide = [ball(9.0, 1.0, 5.0, Vec3::ONE)];
-        let (albedo, _) = render(&wide, bounds, &TextureOptions::DEFAULT.with_size(4)).unwrap();
+        let (albedo, _) =
+            render_texture(&wide, bounds, &TextureOptions::DEFAULT.with_size(4)).unwrap();
         assert!(albedo.pixel(0, 3).unwrap()[3] >= 50);
     }
 
@@ -1074,13 +1055,13 @@ mod tests {
         let huge = [ball(0.3, -0.2, 1e6, Vec3::ONE)];
         let bounds = (Vec2::splat(-1.0), Vec2::splat(1.0));
         let (albedo, normals) =
-            render(&huge, bounds, &TextureOptions::DEFAULT.with_size(64)).unwrap();
+            render_texture(&huge, bounds, &TextureOptions::DEFAULT.with_size(64)).unwrap();
         assert!(albedo.rgba.chunks_exact(4).all(|p| p[3] == 255));
         assert!(normals.rgba.chunks_exact(4).all(|p| p[2] >= 254));
         // A ball whose cutoff circle misses the box: transparent, flat.
         let far = [ball(100.0, 0.0, 5.0, Vec3::ONE)];
         let (albedo, normals) =
-            render(&far, bounds, &TextureOptions::DEFAULT.with_size(16)).unwrap();
+            render_texture(&far, bounds, &TextureOptions::DEFAULT.with_size(16)).unwrap();
         assert!(albedo.rgba.iter().all(|&b| b == 0));
         assert!(
             normals
@@ -1094,10 +1075,10 @@ mod tests {
     fn bad_input_is_an_error() {
         let balls = [ball(0.0, 0.0, 5.0, Vec3::ONE)];
         let bounds = (Vec2::ZERO, Vec2::ONE);
-        assert!(render(&balls, bounds, &TextureOptions::DEFAULT.with_size(0)).is_err());
-        assert!(render(&balls, (Vec2::ONE, Vec2::ONE), &TextureOptions::DEFAULT).is_err());
+        assert!(render_texture(&balls, bounds, &TextureOptions::DEFAULT.with_size(0)).is_err());
+        assert!(render_texture(&balls, (Vec2::ONE, Vec2::ONE), &TextureOptions::DEFAULT).is_err());
         assert!(
-            render(
+            render_texture(
                 &balls,
                 (Vec2::ZERO, Vec2::splat(f32::NAN)),
                 &TextureOptions::DEFAULT
@@ -1105,6 +1086,6 @@ mod tests {
             .is_err()
         );
         let bad = [ball(0.0, 0.0, -5.0, Vec3::ONE)];
-        assert!(render(&bad, bounds, &TextureOptions::DEFAULT).is_err());
+        assert!(render_texture(&bad, bounds, &TextureOptions::DEFAULT).is_err());
     }
 }

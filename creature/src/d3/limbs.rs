@@ -10,8 +10,8 @@ use glam::Vec3;
 use creature_gait::solve_two_bone;
 use creature_limbs::{Knee, Limb, LimbKind, Side, Socket};
 
+use crate::d3::{Joint, Part};
 use crate::math::{cos, sin};
-use crate::types3d::{Joint3d, Part};
 
 /// A growing skinned mesh: positions, colours, triangles, four joints and weights per vertex.
 #[derive(Debug, Default)]
@@ -219,7 +219,7 @@ pub(crate) struct LegChain {
 /// `joints`, with the limb's index in the plan in their part. Legs and arms return their chain.
 pub(crate) fn add_limb(
     mesh: &mut MeshBuilder,
-    joints: &mut Vec<Joint3d>,
+    joints: &mut Vec<Joint>,
     limb_index: usize,
     limb: &Limb,
     mount: Mount,
@@ -243,7 +243,7 @@ pub(crate) fn add_limb(
     let base = joints.len();
     let mut push_joint = |position: Vec3, parent: usize| -> u16 {
         let index = joints.len();
-        joints.push(Joint3d {
+        joints.push(Joint {
             position,
             parent: Some(parent),
             part: Part::Limb(limb_index),
@@ -423,9 +423,9 @@ mod tests {
         }
     }
 
-    fn build(limb: &Limb, point: Vec3) -> (MeshBuilder, Vec<Joint3d>) {
+    fn build(limb: &Limb, point: Vec3) -> (MeshBuilder, Vec<Joint>) {
         let mut mesh = MeshBuilder::default();
-        let mut joints = alloc::vec![Joint3d {
+        let mut joints = alloc::vec![Joint {
             position: Vec3::ZERO,
             parent: None,
             part: Part::Spine,

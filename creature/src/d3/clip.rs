@@ -11,7 +11,7 @@ use creature_gait::{
 use creature_limbs::{CreatureKind, LimbKind};
 
 use crate::Error;
-use crate::types3d::{Creature, Part};
+use crate::d3::{Creature, Part};
 
 /// Frames per second of baked clips.
 pub const CLIP_FPS: f32 = 30.0;
@@ -22,7 +22,7 @@ const WARM_UP: f32 = 1.0;
 /// One joint's animated local transform, one value per frame of its [`Clip`].
 #[derive(Debug, Clone, PartialEq)]
 pub struct Track {
-    /// The joint (index into [`Skeleton3d::joints`](crate::Skeleton3d::joints)).
+    /// The joint (index into [`Skeleton::joints`](crate::d3::Skeleton::joints)).
     pub joint: usize,
     /// Local translation per frame (relative to the parent, in its frame); `None` keeps the
     /// rest translation.
@@ -47,7 +47,7 @@ pub struct Clip {
     pub root_rotation: Vec<Quat>,
     /// The other animated joints.
     pub tracks: Vec<Track>,
-    /// Per frame, per leg of the [`GaitSetup`](crate::GaitSetup): whether the foot is planted
+    /// Per frame, per leg of the [`GaitSetup`](crate::d3::GaitSetup): whether the foot is planted
     /// (empty for fliers and swimmers).
     pub contacts: Vec<Vec<bool>>,
     /// How far the last frame is from the first, measured: the largest of the angles
@@ -78,7 +78,7 @@ impl Creature {
     /// level (turned with the body's heading only), and the feet's contacts.
     ///
     /// ```
-    /// use creature::{generate, Kind, Params};
+    /// use creature::d3::{generate, Kind, Params};
     ///
     /// let walker = generate(7, &Params::DEFAULT.with_kind(Kind::Walker))?;
     /// let walk = walker.bake_walk(2.0)?;
@@ -107,7 +107,7 @@ impl Creature {
     /// cut, and its `loop_error` says how far it is from looping.
     ///
     /// ```
-    /// use creature::{generate, Kind, Params};
+    /// use creature::d3::{generate, Kind, Params};
     ///
     /// let walker = generate(7, &Params::DEFAULT.with_kind(Kind::Walker))?;
     /// let walk = walker.bake_walk_loop()?;
@@ -153,7 +153,7 @@ impl Creature {
     /// [`bake_walk_loop`](Self::bake_walk_loop).
     ///
     /// ```
-    /// use creature::{generate, Kind, Params};
+    /// use creature::d3::{generate, Kind, Params};
     ///
     /// let walker = generate(7, &Params::DEFAULT.with_kind(Kind::Walker))?;
     /// let turn = walker.bake_turn()?;
@@ -904,7 +904,7 @@ impl Creature {
     /// The mesh's positions skinned (linear blend) with the pose at frame `frame` of `clip`.
     ///
     /// ```
-    /// use creature::{generate, Kind, Params};
+    /// use creature::d3::{generate, Kind, Params};
     ///
     /// let fish = generate(4, &Params::DEFAULT.with_kind(Kind::Swimmer))?;
     /// let swim = &fish.bake_clips()?[1];
@@ -973,7 +973,7 @@ impl Creature {
     /// its motion's periods.
     ///
     /// ```
-    /// use creature::{generate, Kind, Params};
+    /// use creature::d3::{generate, Kind, Params};
     ///
     /// for kind in [Kind::Walker, Kind::Flier, Kind::Swimmer] {
     ///     let c = generate(3, &Params::DEFAULT.with_kind(kind))?;
@@ -1344,7 +1344,7 @@ fn side_sign(side: creature_limbs::Side) -> f32 {
 
 /// Model-space transforms from local ones, parents resolved by walking up each chain (parents
 /// may come after children in the list).
-fn forward_kinematics(joints: &[crate::Joint3d], local: &[Affine3A]) -> Vec<Affine3A> {
+fn forward_kinematics(joints: &[crate::d3::Joint], local: &[Affine3A]) -> Vec<Affine3A> {
     let n = joints.len();
     let mut global: Vec<Option<Affine3A>> = alloc::vec![None; n];
     for start in 0..n {

@@ -3,17 +3,13 @@
 use alloc::vec::Vec;
 use core::f32::consts::{FRAC_PI_2, TAU};
 
+use crate::rng::{rng_for, uniform};
 use glam::{Vec2, Vec3};
-use rand_core::{Rng, SeedableRng};
-use rand_pcg::Pcg64Mcg;
+use rand_core::Rng;
 
-use crate::types::{Bone2, BoneKind, Eye, Skeleton2d};
-use crate::{Error, Params2d};
-
-/// A uniform draw in `[0, 1)` with 24 random bits (exact in `f32`).
-pub(crate) fn uniform(rng: &mut impl Rng) -> f32 {
-    (rng.next_u32() >> 8) as f32 * (1.0 / 16_777_216.0)
-}
+use super::Params;
+use crate::Error;
+use crate::d2::{Bone, BoneKind, Eye, Skeleton};
 
 fn colour(rng: &mut impl Rng) -> Vec3 {
     let r = uniform(rng);
@@ -22,28 +18,21 @@ fn colour(rng: &mut impl Rng) -> Vec3 {
     Vec3::new(r, g, b)
 }
 
-/// The generator [`generate_2d`](crate::generate_2d) uses for `seed`: `Pcg64Mcg` seeded with
-/// `rand_core`'s `seed_from_u64`.
-#[must_use]
-pub(crate) fn rng_for(seed: u64) -> Pcg64Mcg {
-    Pcg64Mcg::seed_from_u64(seed)
-}
-
-/// [`skeleton_2d`] with the generator [`generate_2d`](crate::generate_2d) uses for `seed`.
+/// [`skeleton`] with the generator [`generate_2d`](crate::generate_2d) uses for `seed`.
 ///
 /// # Errors
-/// As [`skeleton_2d`].
-pub fn skeleton_2d_from_seed(seed: u64, params: &Params2d) -> Result<Skeleton2d, Error> {
-    skeleton_2d(&mut rng_for(seed), params)
+/// As [`skeleton`].
+pub fn skeleton_from_seed(seed: u64, params: &Params) -> Result<Skeleton, Error> {
+    skeleton(&mut rng_for(seed), params)
 }
 
 /// Draws a skeleton the 2D seed's way (reference §2.3, thesis §4.1):
 ///
 /// - a straight spine along +y from the root (the tail tip, at the origin, no thickness):
-///   [`Params2d::spine_bones`] bones, each segment with its thickness, length, colour, texture
+///   [`Params::spine_bones`] bones, each segment with its thickness, length, colour, texture
 ///   weights `(a, 1 − a)` and multiplier; the last bone is the head;
 /// - eyes on a circle inside the head;
-/// - for every spine bone (the root included), with [`Params2d::limb_probability`], a
+/// - for every spine bone (the root included), with [`Params::limb_probability`], a
 ///   mirrored limb pair: a socket joint at `±socket_offset × max(T_i, T_i+1)` along x, then
 ///   straight segments along ±x, each side with its own colours.
 ///
@@ -51,12 +40,12 @@ pub fn skeleton_2d_from_seed(seed: u64, params: &Params2d) -> Result<Skeleton2d,
 /// the left limb's bones (−x), then the right limb's.
 ///
 /// ```
-/// use creature::{skeleton_2d, BoneKind, Params2d};
+/// use creature::d2::{skeleton, BoneKind, Params};
 /// use creature::rand_pcg::Pcg64Mcg;
 /// use creature::rand_core::SeedableRng;
 ///
 /// let mut rng = Pcg64Mcg::seed_from_u64(42);
-/// let skeleton = skeleton_2d(&mut rng, &Params2d::DEFAULT)?;
+/// let skeleton = skeleton(&mut rng, &Params::DEFAULT)?;
 /// assert_eq!(skeleton.bones[0].kind, BoneKind::Root);
 /// assert!(skeleton.bones.iter().any(|b| b.kind == BoneKind::Head));
 /// assert!(!skeleton.eyes.is_empty());
@@ -64,12 +53,12 @@ pub fn skeleton_2d_from_seed(seed: u64, params: &Params2d) -> Result<Skeleton2d,
 /// ```
 ///
 /// # Errors
-/// The errors of [`Params2d::validate`].
-pub fn skeleton_2d(rng: &mut impl Rng, params: &Params2d) -> Result<Skeleton2d, Error> {
+/// The errors of [`Params::validate`].
+pub fn skeleton(rng: &mut impl Rng, params: &Params) -> Result<Skeleton, Error> {
     params.validate()?;
     let n = params.spine_bones.at(uniform(rng)).max(2) as usize;
-    let mut bones: Vec<Bone2> = Vec::with_capacity(n * 8);
-    bones.push(Bone2 {
+    let mut bones: Vec<Bone> = Vec::with_capacity(n * 8);
+    bones.push(Bone {
         parent: None,
         offset: Vec2::ZERO,
         position: Vec2::ZERO,
@@ -88,7 +77,7 @@ pub fn skeleton_2d(rng: &mut impl Rng, params: &Params2d) -> Result<Skeleton2d, 
         let multiplier = params.spine_multiplier.at(uniform(rng));
         let offset = Vec2::new(0.0, length);
         let position = bones[i - 1].position + offset;
-        bones.push(Bone2 {
+        bones.push(Bone {
             parent: Some(i - 1),
             offset,
             position,
@@ -158,7 +147,7 @@ pub fn skeleton_2d(rng: &mut impl Rng, params: &Params2d) -> Result<Skeleton2d, 
                     )
                 };
                 let position = bones[parent].position + offset;
-                bones.push(Bone2 {
+                bones.push(Bone {
                     parent: Some(parent),
                     offset,
                     position,
@@ -172,7 +161,7 @@ pub fn skeleton_2d(rng: &mut impl Rng, params: &Params2d) -> Result<Skeleton2d, 
             }
         }
     }
-    Ok(Skeleton2d { bones, eyes })
+    Ok(Skeleton { bones, eyes })
 }
 
 #[cfg(test)]
@@ -191,7 +180,7 @@ mod tests {
     #[test]
     fn skeletons_follow_the_seed_layout() {
         for seed in 0..200 {
-            let s = skeleton_2d_from_seed(seed, &Params2d::DEFAULT).unwrap();
+            let s = skeleton_from_seed(seed, &Params::DEFAULT).unwrap();
             let spine = s
                 .bones
                 .iter()
@@ -221,12 +210,12 @@ mod tests {
 
     #[test]
     fn limb_probability_zero_and_one() {
-        let none = Params2d::DEFAULT.with_limb_probability(0.0);
-        let all = Params2d::DEFAULT.with_limb_probability(1.0);
+        let none = Params::DEFAULT.with_limb_probability(0.0);
+        let all = Params::DEFAULT.with_limb_probability(1.0);
         for seed in 0..20 {
-            let s = skeleton_2d_from_seed(seed, &none).unwrap();
+            let s = skeleton_from_seed(seed, &none).unwrap();
             assert!(s.bones.iter().all(|b| b.kind != BoneKind::Socket));
-            let s = skeleton_2d_from_seed(seed, &all).unwrap();
+            let s = skeleton_from_seed(seed, &all).unwrap();
             let spine = s
                 .bones
                 .iter()

@@ -8,10 +8,11 @@ use alloc::vec::Vec;
 use gltf_json as json;
 use json::validation::{Checked, USize64};
 
+use super::export_error;
+use super::gltf::{Bin, accessor, f32_bytes};
 use crate::Error;
-use crate::clip3d::Clip;
-use crate::export::{Bin, accessor, export_error, f32_bytes};
-use crate::types3d::Creature;
+use crate::d3::Clip;
+use crate::d3::Creature;
 
 /// A 3D creature as a glTF 2.0 binary (`.glb`): one skinned mesh (positions, unit normals,
 /// `COLOR_0` vertex colours, `JOINTS_0` as unsigned shorts, `WEIGHTS_0` as normalised unsigned
@@ -23,7 +24,8 @@ use crate::types3d::Creature;
 /// translations and rotations.
 ///
 /// ```
-/// use creature::{export, generate, Kind, Params};
+/// use creature::d3::{generate, Kind, Params};
+/// use creature::export;
 ///
 /// let walker = generate(7, &Params::DEFAULT.with_kind(Kind::Walker))?;
 /// let walk = walker.bake_walk(2.0)?;

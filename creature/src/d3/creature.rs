@@ -12,16 +12,16 @@ use creature_limbs::{CreatureKind, Plan};
 /// Right-handed, +Y up, the creature facing +Z (its left is +X), in metres, the ground at
 /// `y = 0`. Triangles are counter-clockwise seen from outside.
 #[derive(Debug, Clone, PartialEq, Default)]
-pub struct Mesh3d {
+pub struct Mesh {
     /// Vertex positions.
     pub positions: Vec<Vec3>,
-    /// Unit vertex normals (per face when [`Params::flat_normals`](crate::Params) is on).
+    /// Unit vertex normals (per face when [`Params::flat_normals`](crate::d3::Params::flat_normals) is on).
     pub normals: Vec<Vec3>,
     /// Linear RGB vertex colours in `[0, 1]`.
     pub colours: Vec<Vec3>,
     /// Triangles as vertex indices.
     pub indices: Vec<[u32; 3]>,
-    /// Up to four joints per vertex (indices into [`Skeleton3d::joints`]).
+    /// Up to four joints per vertex (indices into [`Skeleton::joints`]).
     pub joints: Vec<[u16; 4]>,
     /// Their weights, summing to 1; unused slots have weight 0.
     pub weights: Vec<[f32; 4]>,
@@ -39,7 +39,7 @@ pub enum Part {
 
 /// One joint of the skeleton, in its rest pose.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Joint3d {
+pub struct Joint {
     /// Rest position in model space.
     pub position: Vec3,
     /// Parent joint, `None` for the root.
@@ -52,12 +52,12 @@ pub struct Joint3d {
 /// first), then each limb's joints. Rest rotations are the identity, so a joint's rest
 /// transform is a translation.
 #[derive(Debug, Clone, PartialEq, Default)]
-pub struct Skeleton3d {
+pub struct Skeleton {
     /// The joints.
-    pub joints: Vec<Joint3d>,
+    pub joints: Vec<Joint>,
 }
 
-impl Skeleton3d {
+impl Skeleton {
     /// The rest translation of each joint relative to its parent (model space for the root).
     #[must_use]
     pub fn rest_translations(&self) -> Vec<Vec3> {
@@ -87,7 +87,7 @@ impl Skeleton3d {
 /// Measured quality of a 3D creature: tests assert on these.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[non_exhaustive]
-pub struct Quality3d {
+pub struct Quality {
     /// For walkers, the signed distance from the centre of mass to the edge of the support
     /// region (positive: statically stable), from the limb plan; `None` otherwise.
     pub stability_margin: Option<f32>,
@@ -107,12 +107,12 @@ pub struct Quality3d {
 /// A generated 3D creature: plain data.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Creature {
-    /// The kind it was generated as (a [`Kind::Random`](crate::Kind::Random) resolved).
+    /// The kind it was generated as (a [`Kind::Random`](crate::d3::Kind::Random) resolved).
     pub kind: CreatureKind,
     /// The skinned mesh.
-    pub mesh: Mesh3d,
+    pub mesh: Mesh,
     /// The skeleton: spine joints, then limb joints.
-    pub skeleton: Skeleton3d,
+    pub skeleton: Skeleton,
     /// The spine rig (bent and grounded) whose joints are the skeleton's first joints.
     pub rig: Rig,
     /// The limb plan (in the body frame before grounding: add [`Creature::ground_offset`] to
@@ -127,12 +127,12 @@ pub struct Creature {
     /// Movement speed in m/s (the body scale times a random factor).
     pub speed: f32,
     /// Walkers' legs and arms registered for `creature-gait`; `None` for fliers and swimmers.
-    pub gait: Option<crate::GaitSetup>,
+    pub gait: Option<crate::d3::GaitSetup>,
     /// The kind's baked clips (walkers `idle`, `walk`, `turn`; fliers `hover`, `fly`;
-    /// swimmers `idle`, `swim`), empty when [`Params::clips`](crate::Params::clips) is off.
-    pub clips: Vec<crate::Clip>,
+    /// swimmers `idle`, `swim`), empty when [`Params::clips`](crate::d3::Params::clips) is off.
+    pub clips: Vec<crate::d3::Clip>,
     /// Body length (the spine's length), in metres.
     pub length: f32,
     /// Quality figures.
-    pub quality: Quality3d,
+    pub quality: Quality,
 }

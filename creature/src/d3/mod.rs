@@ -1,0 +1,28 @@
+//! 3D creatures, the 3D seed's way: walkers, fliers and swimmers with a skinned low-poly mesh,
+//! a skeleton, limbs and baked gait clips.
+//!
+//! [`generate`] runs the pipeline from a seed as a short sequence of stages (see
+//! `ARCHITECTURE.md` for the crates each uses): body (blended pill profiles, FFD), rig and
+//! skin, spine bend, head, limbs, ground, gait set-up, and the [`Clip`]s a [`Creature`] bakes.
+//!
+//! ```
+//! use creature::d3;
+//!
+//! let walker = d3::generate(7, &d3::Params::DEFAULT.with_kind(d3::Kind::Walker))?;
+//! assert!(!walker.clips.is_empty());
+//! # Ok::<(), creature::Error>(())
+//! ```
+
+mod body;
+mod clip;
+mod creature;
+mod gait;
+mod generate;
+mod limbs;
+mod params;
+
+pub use clip::{CLIP_FPS, Clip, Track};
+pub use creature::{Creature, Joint, Mesh, Part, Quality, Skeleton};
+pub use gait::GaitSetup;
+pub use generate::generate;
+pub use params::{Kind, Params};

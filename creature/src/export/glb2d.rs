@@ -1,0 +1,328 @@
+//! The 2D creature as a skinned glTF 2.0 binary.
+
+use alloc::collections::BTreeMap;
+use alloc::format;
+use alloc::vec;
+use alloc::vec::Vec;
+
+use glam::Mat4;
+use gltf_json as json;
+use json::validation::{Checked, USize64};
+
+use super::gltf::{Bin, accessor, f32_bytes};
+use super::{export_error, image_png};
+use crate::Error;
+use crate::image::Image;
+
+/// The creature as a glTF 2.0 binary (`.glb`): one skinned mesh (positions with the depth z,
+/// normals +z, tangents +x, UVs, `JOINTS_0` as unsigned shorts, `WEIGHTS_0` as normalised
+/// unsigned bytes summing to exactly 255), a joint node per bone (translations from the rest
+/// offsets) with inverse bind matrices, and a material with the texture and normal map
+/// embedded as PNG (metallic 0, roughness 0.9, as the seed). Written with `gltf-json`; checked
+/// with the Khronos glTF-Validator by `cargo xtask verify-gltf`.
+///
+/// # Errors
+/// [`Error::Export`] when the mesh is empty or too large, or encoding fails.
+pub fn glb_2d(creature: &crate::d2::Creature) -> Result<Vec<u8>, Error> {
+    let m = &creature.mesh;
+    let n = m.positions.len();
+    if n == 0
+        || m.indices.is_empty()
+        || m.uvs.len() != n
+        || m.joints.len() != n
+        || m.weights.len() != n
+    {
+        return Err(export_error(
+            "glb",
+            "the mesh is empty or its attributes disagree",
+        ));
+    }
+    if creature.bones.is_empty() || creature.bones.len() > usize::from(u16::MAX) {
+        return Err(export_error("glb", "the skeleton is empty or too large"));
+    }
+    if m.indices.iter().flatten().any(|&i| i as usize >= n) {
+        return Err(export_error("glb", "a triangle index is out of range"));
+    }
+    use json::accessor::{ComponentType as C, Type as T};
+    use json::buffer::Target;
+    let mut bin = Bin {
+        data: Vec::new(),
+        views: Vec::new(),
+    };
+    let mut root = json::Root {
+        asset: json::Asset {
+            generator: Some(format!("creature {}", env!("CARGO_PKG_VERSION"))),
+            ..json::Asset::default()
+        },
+        ..json::Root::default()
+    };
+
+    // Vertex attributes.
+    let mut lo = [f32::MAX; 3];
+    let mut hi = [f32::MIN; 3];
+    for p in &m.positions {
+        for (k, v) in p.to_array().into_iter().enumerate() {
+            lo[k] = lo[k].min(v);
+            hi[k] = hi[k].max(v);
+        }
+    }
+    let view = bin.push(
+        &f32_bytes(m.positions.iter().flat_map(|p| p.to_array())),
+        Some(Target::ArrayBuffer),
+    );
+    let positions = root.push(accessor(
+        view,
+        n,
+        C::F32,
+        T::Vec3,
+        false,
+        Some((lo.to_vec(), hi.to_vec())),
+    ));
+    let view = bin.push(
+        &f32_bytes((0..n).flat_map(|_| [0.0, 0.0, 1.0])),
+        Some(Target::ArrayBuffer),
+    );
+    let normals = root.push(accessor(view, n, C::F32, T::Vec3, false, None));
+    let view = bin.push(
+        &f32_bytes((0..n).flat_map(|_| [1.0, 0.0, 0.0, 1.0])),
+        Some(Target::ArrayBuffer),
+    );
+    let tangents = root.push(accessor(view, n, C::F32, T::Vec4, false, None));
+    let view = bin.push(
+        &f32_bytes(m.uvs.iter().flat_map(|p| p.to_array())),
+        Some(Target::ArrayBuffer),
+    );
+    let uvs = root.push(accessor(view, n, C::F32, T::Vec2, false, None));
+    let mut joint_bytes = Vec::with_capacity(n * 8);
+    let mut weight_bytes = Vec::with_capacity(n * 4);
+    for (joints, weights) in m.joints.iter().zip(&m.weights) {
+        let inf = creature_skin::Influences {
+            joints: *joints,
+            weights: *weights,
+        };
+        let q = inf.quantize_u8();
+        for (j, w) in joints.iter().zip(q) {
+            // A joint whose weight rounds to 0 is reset to 0 (glTF: unused slots are 0).
+            let j = if w == 0 { 0 } else { *j };
+            joint_bytes.extend_from_slice(&j.to_le_bytes());
+            weight_bytes.push(w);
+        }
+    }
+    let view = bin.push(&joint_bytes, Some(Target::ArrayBuffer));
+    let joints = root.push(accessor(view, n, C::U16, T::Vec4, false, None));
+    let view = bin.push(&weight_bytes, Some(Target::ArrayBuffer));
+    let weights = root.push(accessor(view, n, C::U8, T::Vec4, true, None));
+    let index_bytes: Vec<u8> = m
+        .indices
+        .iter()
+        .flatten()
+        .flat_map(|i| i.to_le_bytes())
+        .collect();
+    let view = bin.push(&index_bytes, Some(Target::ElementArrayBuffer));
+    let indices = root.push(accessor(
+        view,
+        m.indices.len() * 3,
+        C::U32,
+        T::Scalar,
+        false,
+        None,
+    ));
+
+    // Material with the embedded textures.
+    let sampler = root.push(json::texture::Sampler {
+        mag_filter: Some(Checked::Valid(json::texture::MagFilter::Linear)),
+        min_filter: Some(Checked::Valid(json::texture::MinFilter::Linear)),
+        wrap_s: Checked::Valid(json::texture::WrappingMode::ClampToEdge),
+        wrap_t: Checked::Valid(json::texture::WrappingMode::ClampToEdge),
+        ..Default::default()
+    });
+    let texture_index = |root: &mut json::Root,
+                         bin: &mut Bin,
+                         image: &Image,
+                         name: &str|
+     -> Result<json::Index<json::Texture>, Error> {
+        let png = image_png(image)?;
+        let view = bin.push(&png, None);
+        let image = root.push(json::Image {
+            buffer_view: Some(view),
+            mime_type: Some(json::image::MimeType("image/png".into())),
+            name: Some(name.into()),
+            uri: None,
+            extensions: None,
+            extras: Default::default(),
+        });
+        Ok(root.push(json::Texture {
+            name: Some(name.into()),
+            sampler: Some(sampler),
+            source: image,
+            extensions: None,
+            extras: Default::default(),
+        }))
+    };
+    let mut material = json::Material {
+        name: Some("creature".into()),
+        double_sided: true,
+        ..Default::default()
+    };
+    material.pbr_metallic_roughness.metallic_factor = json::material::StrengthFactor(0.0);
+    material.pbr_metallic_roughness.roughness_factor = json::material::StrengthFactor(0.9);
+    if let Some(t) = &creature.texture {
+        let index = texture_index(&mut root, &mut bin, t, "albedo")?;
+        material.pbr_metallic_roughness.base_color_texture = Some(json::texture::Info {
+            index,
+            tex_coord: 0,
+            extensions: None,
+            extras: Default::default(),
+        });
+    }
+    if let Some(t) = &creature.normal_map {
+        let index = texture_index(&mut root, &mut bin, t, "normals")?;
+        material.normal_texture = Some(json::material::NormalTexture {
+            index,
+            scale: 1.0,
+            tex_coord: 0,
+            extensions: None,
+            extras: Default::default(),
+        });
+    }
+    let material = root.push(material);
+
+    let mut attributes = BTreeMap::new();
+    for (semantic, index) in [
+        (json::mesh::Semantic::Positions, positions),
+        (json::mesh::Semantic::Normals, normals),
+        (json::mesh::Semantic::Tangents, tangents),
+        (json::mesh::Semantic::TexCoords(0), uvs),
+        (json::mesh::Semantic::Joints(0), joints),
+        (json::mesh::Semantic::Weights(0), weights),
+    ] {
+        attributes.insert(Checked::Valid(semantic), index);
+    }
+    let mesh = root.push(json::Mesh {
+        name: Some("creature".into()),
+        primitives: vec![json::mesh::Primitive {
+            attributes,
+            indices: Some(indices),
+            material: Some(material),
+            mode: Checked::Valid(json::mesh::Mode::Triangles),
+            targets: None,
+            extensions: None,
+            extras: Default::default(),
+        }],
+        weights: None,
+        extensions: None,
+        extras: Default::default(),
+    });
+
+    // Joints: one node per bone, children listed on their parents.
+    let first_joint = root.nodes.len() as u32;
+    let mut children: Vec<Vec<json::Index<json::Node>>> = vec![Vec::new(); creature.bones.len()];
+    for (i, bone) in creature.bones.iter().enumerate() {
+        if let Some(list) = bone.parent.and_then(|p| children.get_mut(p)) {
+            list.push(json::Index::new(first_joint + i as u32));
+        }
+    }
+    let mut inverse_bind = Vec::with_capacity(creature.bones.len() * 64);
+    for (i, bone) in creature.bones.iter().enumerate() {
+        let list = core::mem::take(&mut children[i]);
+        let rotation = (bone.rotation != 0.0).then(|| {
+            let q = glam::Quat::from_rotation_z(bone.rotation);
+            json::scene::UnitQuaternion(q.to_array())
+        });
+        root.push(json::Node {
+            children: (!list.is_empty()).then_some(list),
+            name: Some(format!("bone{i}")),
+            translation: Some([bone.offset.x, bone.offset.y, 0.0]),
+            rotation,
+            ..Default::default()
+        });
+        // The rest skeleton is a pure translation when no bone is rotated; in general the
+        // inverse of the bone's rest world transform.
+        let world = rest_world(creature, i);
+        inverse_bind.extend(f32_bytes(world.inverse().to_cols_array()));
+    }
+    let view = bin.push(&inverse_bind, None);
+    let ibm = root.push(accessor(
+        view,
+        creature.bones.len(),
+        C::F32,
+        T::Mat4,
+        false,
+        None,
+    ));
+    let skin = root.push(json::Skin {
+        inverse_bind_matrices: Some(ibm),
+        joints: (0..creature.bones.len() as u32)
+            .map(|i| json::Index::new(first_joint + i))
+            .collect(),
+        skeleton: Some(json::Index::new(first_joint)),
+        name: Some("skeleton".into()),
+        extensions: None,
+        extras: Default::default(),
+    });
+    let mesh_node = root.push(json::Node {
+        mesh: Some(mesh),
+        skin: Some(skin),
+        name: Some("creature".into()),
+        ..Default::default()
+    });
+    let scene = root.push(json::Scene {
+        name: Some("creature".into()),
+        nodes: vec![json::Index::new(first_joint), mesh_node],
+        extensions: None,
+        extras: Default::default(),
+    });
+    root.scene = Some(scene);
+
+    while !bin.data.len().is_multiple_of(4) {
+        bin.data.push(0);
+    }
+    root.buffers.push(json::Buffer {
+        byte_length: USize64::from(bin.data.len()),
+        name: None,
+        uri: None,
+        extensions: None,
+        extras: Default::default(),
+    });
+    root.buffer_views = bin.views;
+
+    let mut text = serde_json::to_vec(&root).map_err(|e| export_error("glb", e))?;
+    while !text.len().is_multiple_of(4) {
+        text.push(b' ');
+    }
+    let total = 12 + 8 + text.len() + 8 + bin.data.len();
+    let total = u32::try_from(total).map_err(|_| export_error("glb", "file over 4 GiB"))?;
+    let mut out = Vec::with_capacity(total as usize);
+    out.extend_from_slice(b"glTF");
+    out.extend_from_slice(&2u32.to_le_bytes());
+    out.extend_from_slice(&total.to_le_bytes());
+    out.extend_from_slice(&(text.len() as u32).to_le_bytes());
+    out.extend_from_slice(b"JSON");
+    out.extend_from_slice(&text);
+    out.extend_from_slice(&(bin.data.len() as u32).to_le_bytes());
+    out.extend_from_slice(b"BIN\0");
+    out.extend_from_slice(&bin.data);
+    Ok(out)
+}
+
+/// A bone's rest world transform (translation and z rotation down the chain).
+fn rest_world(creature: &crate::d2::Creature, bone: usize) -> Mat4 {
+    let mut chain = Vec::new();
+    let mut at = Some(bone);
+    while let Some(i) = at {
+        if chain.len() > creature.bones.len() {
+            break;
+        }
+        chain.push(i);
+        at = creature.bones.get(i).and_then(|b| b.parent);
+    }
+    let mut world = Mat4::IDENTITY;
+    for &i in chain.iter().rev() {
+        if let Some(b) = creature.bones.get(i) {
+            world = world
+                * Mat4::from_translation(b.offset.extend(0.0))
+                * Mat4::from_rotation_z(b.rotation);
+        }
+    }
+    world
+}

@@ -9,16 +9,20 @@ use rand_core::Rng;
 use creature_autorig::{RigOptions, RootAt, rig};
 use creature_ffd::{Axis, Lattice};
 use creature_gait::{GaitOptions, Leg, LimbKind as GaitLimb};
-use creature_limbs::{Body, CreatureKind, HeadEnd, SpineBone, plan};
+use creature_limbs::{Body, CreatureKind, HeadEnd, LimbKind, SpineBone, plan};
 use creature_skin::{Blend, nearest_k, skin_positions};
 
 use super::body::{BASE_RADIUS, base_body, pill_triangles};
-use super::limbs::{Bind, LimbStyle, MeshBuilder, Mount, add_limb, socket_point};
+use super::limbs::{
+    Bind, LegChain, LimbStyle, MeshBuilder, Mount, add_limb, limb_shape, socket_point,
+};
 use super::{GaitSetup, Kind, Params};
 use crate::Error;
 use crate::d3::{Creature, Joint, Mesh, Part, Quality, Skeleton};
 use crate::math::{cos, sin};
 use crate::rng::{rng_for, uniform};
+use crate::span::Span;
+use rand_pcg::Pcg64Mcg;
 
 /// FFD lattice divisions: 3×3 control points per slice, 11 slices along the body (the seed's).
 const DIVISIONS: [usize; 3] = [2, 2, 10];
@@ -54,34 +58,172 @@ const HEAD_RES: (usize, usize) = (5, 8);
 pub fn generate(seed: u64, params: &Params) -> Result<Creature, Error> {
     params.validate()?;
     let mut rng = rng_for(seed);
-    let rng = &mut rng;
-    let kind = match params.kind {
-        Kind::Walker => CreatureKind::Walker,
-        Kind::Flier => CreatureKind::Flier,
-        Kind::Swimmer => CreatureKind::Swimmer,
-        Kind::Random => match (uniform(rng) * 3.0) as u32 {
-            0 => CreatureKind::Walker,
-            1 => CreatureKind::Flier,
-            _ => CreatureKind::Swimmer,
-        },
-    };
-    let swimmer = kind == CreatureKind::Swimmer;
+    let spec = KindSpec::of(params.kind, &mut rng);
+    generate_kind(&mut rng, params, spec)
+}
 
-    // 1. Base body: blended profiles on one pill topology.
+/// What a creature kind changes in the pipeline: one entry of [`KINDS`] per kind, so a new
+/// kind is mostly one new entry (plus its limbs in `creature-limbs` and its clips).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct KindSpec {
+    /// The limb planner's kind (which limbs, where), also the creature's [`Creature::kind`].
+    pub(crate) limbs: CreatureKind,
+    /// Where the rig's root joint goes: the body's centre, or the head for a swimmer, whose
+    /// body bends from the head back.
+    pub(crate) root: RootAt,
+    /// The FFD slices' random ranges (width, height, step) from the parameters.
+    pub(crate) slices: fn(&Params) -> [Span; 3],
+    /// Whether the neck and tail are bent at random, and a head sphere put on the neck tip.
+    pub(crate) neck_and_head: bool,
+    /// Whether the limbs are registered with the gait controller (walkers).
+    pub(crate) walks: bool,
+}
+
+/// The shared slice ranges of walkers and fliers.
+fn body_slices(p: &Params) -> [Span; 3] {
+    [p.slice_width, p.slice_height, p.slice_step]
+}
+
+/// The swimmers' own slice ranges (long, flat bodies).
+fn swimmer_slices(p: &Params) -> [Span; 3] {
+    [
+        p.swimmer_slice_width,
+        p.swimmer_slice_height,
+        p.swimmer_slice_step,
+    ]
+}
+
+/// Every kind [`Kind::Random`] draws from, in the order it draws them.
+pub(crate) const KINDS: [KindSpec; 3] = [
+    KindSpec {
+        limbs: CreatureKind::Walker,
+        root: RootAt::Centre,
+        slices: body_slices,
+        neck_and_head: true,
+        walks: true,
+    },
+    KindSpec {
+        limbs: CreatureKind::Flier,
+        root: RootAt::Centre,
+        slices: body_slices,
+        neck_and_head: true,
+        walks: false,
+    },
+    KindSpec {
+        limbs: CreatureKind::Swimmer,
+        root: RootAt::Head,
+        slices: swimmer_slices,
+        neck_and_head: false,
+        walks: false,
+    },
+];
+
+impl KindSpec {
+    /// The entry of `kind`; [`Kind::Random`] draws one of [`KINDS`] uniformly.
+    fn of(kind: Kind, rng: &mut impl Rng) -> &'static Self {
+        match kind {
+            Kind::Walker => &KINDS[0],
+            Kind::Flier => &KINDS[1],
+            Kind::Swimmer => &KINDS[2],
+            Kind::Random => {
+                let pick = (uniform(rng) * KINDS.len() as f32) as usize;
+                &KINDS[pick.min(KINDS.len() - 1)]
+            }
+        }
+    }
+}
+
+/// The pipeline for one kind, stage by stage. The stages draw from `rng` in this order, so
+/// the order is part of the output (the goldens pin it).
+fn generate_kind(rng: &mut Pcg64Mcg, params: &Params, spec: &KindSpec) -> Result<Creature, Error> {
+    let body = shape_body(rng, params, spec)?;
+    let mut rigged = rig_and_bend(rng, params, spec, body)?;
+    let body_colour = Vec3::new(
+        0.25 + 0.6 * uniform(rng),
+        0.25 + 0.6 * uniform(rng),
+        0.25 + 0.6 * uniform(rng),
+    );
+    let mut mesh = skin_body(&rigged, body_colour);
+    let head_size = params.head_size.at(uniform(rng));
+    if spec.neck_and_head {
+        add_head(&mut mesh, &rigged.rig, head_size, body_colour)?;
+    }
+    let ground = ground_under(
+        &mesh,
+        params.ground_clearance.at(uniform(rng)) * rigged.length,
+    );
+    let mut limbs = add_limbs(rng, params, spec, &rigged, &mut mesh, ground, body_colour)?;
+    let offset = stand_on_ground(
+        &mut mesh,
+        &mut rigged.rig,
+        &mut limbs.joints,
+        ground,
+        &limbs.plan,
+    );
+    let gait = if spec.walks {
+        Some(gait_setup(
+            &limbs.chains,
+            Vec3::Y * offset,
+            rigged.speed_factor,
+        )?)
+    } else {
+        None
+    };
+    let joints = limbs.joints;
+    if joints.len() > usize::from(u16::MAX) {
+        return Err(Error::TooManyBones {
+            bones: joints.len(),
+            max: usize::from(u16::MAX),
+        });
+    }
+    let mesh = finish_mesh(mesh, params.flat_normals);
+    let quality = measure(
+        &mesh,
+        &limbs.plan,
+        rigged.fold_min_determinant,
+        rigged.length,
+        rigged.bend_degrees,
+    );
+    let mut creature = Creature {
+        kind: spec.limbs,
+        mesh,
+        skeleton: Skeleton { joints },
+        rig: rigged.rig,
+        plan: limbs.plan,
+        ground_offset: offset,
+        profiles: rigged.profiles,
+        body_scale: rigged.body_scale,
+        speed: rigged.body_scale * rigged.speed_factor,
+        gait,
+        clips: Vec::new(),
+        length: rigged.length,
+        quality,
+    };
+    if params.clips {
+        creature.clips = creature.bake_clips()?;
+    }
+    Ok(creature)
+}
+
+/// The body before rigging: blended profiles on one pill topology, deformed by the FFD
+/// lattice and scaled.
+struct ShapedBody {
+    positions: Vec<Vec3>,
+    triangles: Vec<[u32; 3]>,
+    profiles: Vec<(usize, f32)>,
+    fold_min_determinant: f32,
+    body_scale: f32,
+    speed_factor: f32,
+}
+
+/// Stages 1–3: base body (blended profiles on one pill), FFD (slices scaled at random across,
+/// placed at monotonic steps along the body), body scale and speed.
+fn shape_body(rng: &mut Pcg64Mcg, params: &Params, spec: &KindSpec) -> Result<ShapedBody, Error> {
     let (rings, segments) = (params.rings as usize, params.segments as usize);
     let (mut positions, profiles) = base_body(rng, params.profiles as usize, rings, segments);
     let triangles = pill_triangles(rings, segments);
 
-    // 2. FFD: slices scaled at random across, placed at monotonic steps along the body.
-    let (width, height, step) = if swimmer {
-        (
-            params.swimmer_slice_width,
-            params.swimmer_slice_height,
-            params.swimmer_slice_step,
-        )
-    } else {
-        (params.slice_width, params.slice_height, params.slice_step)
-    };
+    let [width, height, step] = (spec.slices)(params);
     let mut lattice = Lattice::around(&positions, DIVISIONS, 0.05 * BASE_RADIUS)?;
     let slices = lattice.slice_count(Axis::U);
     for k in 0..slices {
@@ -101,67 +243,123 @@ pub fn generate(seed: u64, params: &Params) -> Result<Creature, Error> {
     }
     lattice.try_deform_in_place(&mut positions)?;
 
-    // 3. Body scale and speed.
     let body_scale = params.body_scale.at(uniform(rng));
     let speed_factor = params.speed_factor.at(uniform(rng));
-    let speed = body_scale * speed_factor;
     for p in &mut positions {
         *p *= body_scale;
     }
+    Ok(ShapedBody {
+        positions,
+        triangles,
+        profiles,
+        fold_min_determinant: fold.min_determinant,
+        body_scale,
+        speed_factor,
+    })
+}
 
-    // 4. Rig and skin.
-    let root = if swimmer {
-        RootAt::Head
-    } else {
-        RootAt::Centre
-    };
+/// The rigged body: the auto-rig (bent), its skin weights, and what the later stages measure.
+struct RiggedBody {
+    rig: creature_autorig::Rig,
+    positions: Vec<Vec3>,
+    triangles: Vec<[u32; 3]>,
+    influences: Vec<creature_skin::Influences>,
+    length: f32,
+    bend_degrees: [f32; 2],
+    profiles: Vec<(usize, f32)>,
+    fold_min_determinant: f32,
+    body_scale: f32,
+    speed_factor: f32,
+}
+
+/// Stages 4–5: the auto-rig (root by kind), the neck and tail bent where the kind has them,
+/// and nearest-4-bone skin weights on the bent body.
+fn rig_and_bend(
+    rng: &mut Pcg64Mcg,
+    params: &Params,
+    spec: &KindSpec,
+    body: ShapedBody,
+) -> Result<RiggedBody, Error> {
+    let ShapedBody {
+        mut positions,
+        triangles,
+        profiles,
+        fold_min_determinant,
+        body_scale,
+        speed_factor,
+    } = body;
     let options = RigOptions::DEFAULT
-        .with_root(root)
+        .with_root(spec.root)
         .with_bone_length(params.bone_length * body_scale)
         .with_bone_count(
             params.spine_bones.min as usize,
             params.spine_bones.max as usize,
         );
     let mut body_rig = rig(&positions, &triangles, &options)?;
-
-    // 5. Spine bend (walkers and fliers): neck up, tail up or down, per bone within budget.
     let mut bend_degrees = [0.0f32; 2];
-    if !swimmer {
+    if spec.neck_and_head {
         bend_degrees = bend_spine(rng, params, &mut body_rig, &mut positions)?;
     }
-    let segments_now = body_rig.bone_segments();
-    let influences = nearest_k(&positions, &segments_now, 4)?;
+    let influences = nearest_k(&positions, &body_rig.bone_segments(), 4)?;
     let length = body_rig.spine_length();
+    Ok(RiggedBody {
+        rig: body_rig,
+        positions,
+        triangles,
+        influences,
+        length,
+        bend_degrees,
+        profiles,
+        fold_min_determinant,
+        body_scale,
+        speed_factor,
+    })
+}
 
-    // 6. Head sphere on the neck tip (walkers and fliers), scaled by the second neck bone's
-    //    width.
-    let body_colour = Vec3::new(
-        0.25 + 0.6 * uniform(rng),
-        0.25 + 0.6 * uniform(rng),
-        0.25 + 0.6 * uniform(rng),
-    );
+/// Stage 6: the body's vertices, coloured and bound by their skin weights, into the mesh.
+fn skin_body(body: &RiggedBody, colour: Vec3) -> MeshBuilder {
     let mut mesh = MeshBuilder::default();
-    for (p, inf) in positions.iter().zip(&influences) {
-        mesh.vertex(*p, body_colour, Bind::from_arrays(inf.joints, inf.weights));
+    for (p, inf) in body.positions.iter().zip(&body.influences) {
+        mesh.vertex(*p, colour, Bind::from_arrays(inf.joints, inf.weights));
     }
-    mesh.indices.extend_from_slice(&triangles);
-    let head_size = params.head_size.at(uniform(rng));
-    if !swimmer {
-        add_head(&mut mesh, &body_rig, head_size, body_colour);
-    }
+    mesh.indices.extend_from_slice(&body.triangles);
+    mesh
+}
 
-    // 7. Ground under the body (and head), the seed's random capsule height below it.
+/// Stage 7: the ground, `clearance` below the lowest vertex of the body (and head).
+fn ground_under(mesh: &MeshBuilder, clearance: f32) -> f32 {
     let body_min_y = mesh
         .positions
         .iter()
         .map(|p| p.y)
         .fold(f32::INFINITY, f32::min);
-    let ground = body_min_y - params.ground_clearance.at(uniform(rng)) * length;
+    body_min_y - clearance
+}
 
-    // 8. Limbs planned on the sockets.
-    let bones = limb_body(&body_rig, &positions, ground);
-    let limb_body = Body::new(bones, length, HeadEnd::Last);
-    let limb_plan = plan(&limb_body, kind, &params.limbs, rng)?;
+/// The limbs as built: the plan, the whole skeleton (spine then limb joints), and the legs'
+/// and arms' chains (plan index, kind, chain).
+struct BuiltLimbs {
+    plan: creature_limbs::Plan,
+    joints: Vec<Joint>,
+    chains: Vec<(usize, LimbKind, LegChain)>,
+}
+
+/// Stage 8: limbs planned on the rig's sockets, each built as joints and a mesh skinned to
+/// them.
+fn add_limbs(
+    rng: &mut Pcg64Mcg,
+    params: &Params,
+    spec: &KindSpec,
+    body: &RiggedBody,
+    mesh: &mut MeshBuilder,
+    ground: f32,
+    body_colour: Vec3,
+) -> Result<BuiltLimbs, Error> {
+    let body_rig = &body.rig;
+    let positions = &body.positions;
+    let bones = limb_body(body_rig, positions, ground);
+    let limb_body = Body::new(bones, body.length, HeadEnd::Last);
+    let limb_plan = plan(&limb_body, spec.limbs, &params.limbs, rng)?;
 
     let mut joints: Vec<Joint> = body_rig
         .joints
@@ -172,49 +370,46 @@ pub fn generate(seed: u64, params: &Params) -> Result<Creature, Error> {
             part: Part::Spine,
         })
         .collect();
-    let tail_tip = body_rig
-        .joints
-        .get(body_rig.tail)
-        .map_or(Vec3::ZERO, |j| j.position);
-    let tail_joint = body_rig
-        .joints
-        .get(body_rig.tail)
-        .and_then(|j| j.parent)
-        .unwrap_or(0);
+    let tail = &body_rig.joints[body_rig.tail];
     let limb_colour = body_colour * 0.8;
     let membrane_colour = body_colour * 0.5 + Vec3::splat(0.45);
     let mut chains = Vec::new();
     for (index, limb) in limb_plan.limbs.iter().enumerate() {
-        let Some(socket) = body_rig.sockets.get(limb.bone) else {
-            continue;
-        };
-        let get = |v: u32| positions.get(v as usize).copied().unwrap_or(Vec3::ZERO);
+        // The planner places limbs on the sockets it was given, one per body bone.
+        let socket = &body_rig.sockets[limb.bone];
         let point = socket_point(
             limb.socket,
-            get(socket.left_vertex),
-            get(socket.right_vertex),
-            get(socket.top_vertex),
-            tail_tip,
+            positions[socket.left_vertex as usize],
+            positions[socket.right_vertex as usize],
+            positions[socket.top_vertex as usize],
+            tail.position,
         );
         let joint = if limb.socket == creature_limbs::Socket::Tip {
-            tail_joint
+            // A tail fin hangs on the joint before the tail tip (the rig roots at the centre
+            // or the head, so the tip always has one).
+            tail.parent.ok_or(Error::Degenerate {
+                what: "rig (its tail tip is the root, so a tail limb has no joint to hang on)",
+            })?
         } else {
             socket.joint
         };
-        let colour = match limb.kind {
-            creature_limbs::LimbKind::Leg | creature_limbs::LimbKind::Arm => limb_colour,
-            _ => membrane_colour,
+        let shape = limb_shape(limb.kind)?;
+        let colour = if shape.membrane_colour {
+            membrane_colour
+        } else {
+            limb_colour
         };
         let chain = add_limb(
-            &mut mesh,
+            mesh,
             &mut joints,
             index,
             limb,
+            shape,
             Mount {
                 point,
                 joint,
-                width: body_width(&body_rig, socket.bone),
-                centre: body_rig.joints.get(joint).map_or(point, |j| j.position),
+                width: body_width(body_rig, socket.bone),
+                centre: body_rig.joints[joint].position,
             },
             LimbStyle {
                 knee: limb_plan.knee,
@@ -226,8 +421,22 @@ pub fn generate(seed: u64, params: &Params) -> Result<Creature, Error> {
             chains.push((index, limb.kind, chain));
         }
     }
+    Ok(BuiltLimbs {
+        plan: limb_plan,
+        joints,
+        chains,
+    })
+}
 
-    // 9. Ground clearance: the ground to y = 0 (the plan's lift applied), and nothing under it.
+/// Stage 9: the ground to `y = 0` (the plan's lift applied) and nothing under it; moves the
+/// mesh, the skeleton and the rig. Returns the vertical offset applied.
+fn stand_on_ground(
+    mesh: &mut MeshBuilder,
+    body_rig: &mut creature_autorig::Rig,
+    joints: &mut [Joint],
+    ground: f32,
+    limb_plan: &creature_limbs::Plan,
+) -> f32 {
     let mut offset = -(ground - limb_plan.lift);
     let lowest = mesh
         .positions
@@ -241,7 +450,7 @@ pub fn generate(seed: u64, params: &Params) -> Result<Creature, Error> {
     for p in &mut mesh.positions {
         *p += shift;
     }
-    for j in &mut joints {
+    for j in joints {
         j.position += shift;
     }
     for j in &mut body_rig.joints {
@@ -252,70 +461,42 @@ pub fn generate(seed: u64, params: &Params) -> Result<Creature, Error> {
         s.right += shift;
         s.top += shift;
     }
+    offset
+}
 
-    let gait = (kind == CreatureKind::Walker).then(|| {
-        let mut legs = Vec::with_capacity(chains.len());
-        let mut limbs = Vec::with_capacity(chains.len());
-        let mut hip_joints = Vec::with_capacity(chains.len());
-        for (index, limb_kind, c) in &chains {
-            let gait_kind = if *limb_kind == creature_limbs::LimbKind::Arm {
-                GaitLimb::Arm
-            } else {
-                GaitLimb::Leg
-            };
-            legs.push(
-                Leg::new(c.hip + shift, c.end + shift, c.upper, c.lower)
-                    .with_pole(c.pole)
-                    .with_size(c.hip.distance(c.end).max(1e-3))
-                    .with_kind(gait_kind),
-            );
-            limbs.push(*index);
-            hip_joints.push(c.hip_joint);
-        }
-        GaitSetup {
-            legs,
-            limbs,
-            hip_joints,
-            options: GaitOptions::DEFAULT.with_speed_multiplier(speed_factor),
-        }
-    });
-    if let Some(setup) = &gait {
-        // Validate now, so a creature never carries a set-up the controller rejects.
-        setup.controller()?;
+/// Stage 10 (walkers): the legs and arms registered for the gait controller, checked by
+/// building one, so a creature never carries a set-up the controller rejects.
+fn gait_setup(
+    chains: &[(usize, LimbKind, LegChain)],
+    shift: Vec3,
+    speed_factor: f32,
+) -> Result<GaitSetup, Error> {
+    let mut legs = Vec::with_capacity(chains.len());
+    let mut limbs = Vec::with_capacity(chains.len());
+    let mut hip_joints = Vec::with_capacity(chains.len());
+    for (index, limb_kind, c) in chains {
+        let gait_kind = if *limb_kind == LimbKind::Arm {
+            GaitLimb::Arm
+        } else {
+            GaitLimb::Leg
+        };
+        legs.push(
+            Leg::new(c.hip + shift, c.end + shift, c.upper, c.lower)
+                .with_pole(c.pole)
+                .with_size(c.hip.distance(c.end).max(1e-3))
+                .with_kind(gait_kind),
+        );
+        limbs.push(*index);
+        hip_joints.push(c.hip_joint);
     }
-    if joints.len() > usize::from(u16::MAX) {
-        return Err(Error::TooManyBones {
-            bones: joints.len(),
-            max: usize::from(u16::MAX),
-        });
-    }
-    let mesh = finish_mesh(mesh, params.flat_normals);
-    let quality = measure(
-        &mesh,
-        &limb_plan,
-        fold.min_determinant,
-        length,
-        bend_degrees,
-    );
-    let mut creature = Creature {
-        kind,
-        mesh,
-        skeleton: Skeleton { joints },
-        rig: body_rig,
-        plan: limb_plan,
-        ground_offset: offset,
-        profiles,
-        body_scale,
-        speed,
-        gait,
-        clips: Vec::new(),
-        length,
-        quality,
+    let setup = GaitSetup {
+        legs,
+        limbs,
+        hip_joints,
+        options: GaitOptions::DEFAULT.with_speed_multiplier(speed_factor),
     };
-    if params.clips {
-        creature.clips = creature.bake_clips()?;
-    }
-    Ok(creature)
+    setup.controller()?;
+    Ok(setup)
 }
 
 /// Bends the neck and the tail of a centre-rooted rig: each bone by the same random angle, at
@@ -330,12 +511,13 @@ fn bend_spine(
 ) -> Result<[f32; 2], Error> {
     let spine = body.spine.clone();
     let bones = spine.len().saturating_sub(1);
-    let Some(root) = body.root() else {
-        return Ok([0.0; 2]);
-    };
-    let Some(c) = spine.iter().position(|&j| j == root) else {
-        return Ok([0.0; 2]);
-    };
+    // The rig roots on its spine (at the centre, for the kinds that bend).
+    let c = body
+        .root()
+        .and_then(|root| spine.iter().position(|&j| j == root))
+        .ok_or(Error::Degenerate {
+            what: "rig (its root is not on the spine)",
+        })?;
     if bones == 0 {
         return Ok([0.0; 2]);
     }
@@ -365,27 +547,18 @@ fn bend_spine(
     // Neck: head up is a rotation of −angle about X.
     let mut previous = Affine3A::IDENTITY;
     for &j in spine.iter().take(bones).skip(c + 1) {
-        let pivot = rest.get(j).copied().unwrap_or(Vec3::ZERO);
-        previous *= rotate_about(pivot, -neck_angle);
-        if let Some(t) = transforms.get_mut(j) {
-            *t = previous;
-        }
+        previous *= rotate_about(rest[j], -neck_angle);
+        transforms[j] = previous;
     }
     previous = Affine3A::IDENTITY;
     for &j in spine.iter().take(c).skip(1).rev() {
-        let pivot = rest.get(j).copied().unwrap_or(Vec3::ZERO);
-        previous *= rotate_about(pivot, tail_sign * tail_angle);
-        if let Some(t) = transforms.get_mut(j) {
-            *t = previous;
-        }
+        previous *= rotate_about(rest[j], tail_sign * tail_angle);
+        transforms[j] = previous;
     }
     // Vertices by linear blend skinning on the straight rig's weights.
     let influences = nearest_k(positions, &body.bone_segments(), 4)?;
     let bone_joints: Vec<usize> = body.bones().into_iter().map(|(j, _)| j).collect();
-    let per_segment: Vec<Affine3A> = bone_joints
-        .iter()
-        .map(|&j| transforms.get(j).copied().unwrap_or(Affine3A::IDENTITY))
-        .collect();
+    let per_segment: Vec<Affine3A> = bone_joints.iter().map(|&j| transforms[j]).collect();
     let rest_positions = positions.to_vec();
     skin_positions(
         &rest_positions,
@@ -397,22 +570,19 @@ fn bend_spine(
     // Joints: moved by their parent's transform.
     for (i, joint) in body.joints.iter_mut().enumerate() {
         if let Some(p) = joint.parent {
-            let t = transforms.get(p).copied().unwrap_or(Affine3A::IDENTITY);
-            if let Some(&r) = rest.get(i) {
-                joint.position = t.transform_point3(r);
-            }
+            joint.position = transforms[p].transform_point3(rest[i]);
         }
     }
+    // Socket vertices index the rigged mesh's positions.
     for s in &mut body.sockets {
-        let get = |v: u32| positions.get(v as usize).copied();
-        if let (Some(l), Some(r), Some(t)) =
-            (get(s.left_vertex), get(s.right_vertex), get(s.top_vertex))
-        {
-            s.left = l;
-            s.right = r;
-            s.top = t;
-            s.width = l.distance(r);
-        }
+        let (l, r) = (
+            positions[s.left_vertex as usize],
+            positions[s.right_vertex as usize],
+        );
+        s.left = l;
+        s.right = r;
+        s.top = positions[s.top_vertex as usize];
+        s.width = l.distance(r);
     }
     Ok([
         neck_angle * neck_joints as f32,
@@ -440,19 +610,26 @@ fn body_width(body: &creature_autorig::Rig, bone: usize) -> f32 {
 }
 
 /// A low-poly sphere on the neck tip, bound to the last neck bone's joint.
-fn add_head(mesh: &mut MeshBuilder, body: &creature_autorig::Rig, size: f32, colour: Vec3) {
+fn add_head(
+    mesh: &mut MeshBuilder,
+    body: &creature_autorig::Rig,
+    size: f32,
+    colour: Vec3,
+) -> Result<(), Error> {
     let spine = &body.spine;
     let n = spine.len();
     if n < 2 {
-        return;
+        return Ok(());
     }
-    let pos = |j: usize| body.joints.get(j).map_or(Vec3::ZERO, |j| j.position);
+    let pos = |j: usize| body.joints[j].position;
     let tip = pos(spine[n - 1]);
     let carrier = spine[n - 2];
     let centre_index = body
         .root()
         .and_then(|r| spine.iter().position(|&j| j == r))
-        .unwrap_or(0);
+        .ok_or(Error::Degenerate {
+            what: "rig (its root is not on the spine)",
+        })?;
     // The body's width at the second neck bone counted from the root.
     let width = body_width(body, centre_index + 1);
     let radius = 0.5 * width * size;
@@ -474,6 +651,7 @@ fn add_head(mesh: &mut MeshBuilder, body: &creature_autorig::Rig, size: f32, col
     for t in pill_triangles(rings, segments) {
         mesh.indices.push(t.map(|i| i + first));
     }
+    Ok(())
 }
 
 /// The planner's view of the body: one bone per socket, `along` the arc length at the bone's
@@ -490,12 +668,10 @@ fn limb_body(body: &creature_autorig::Rig, positions: &[Vec3], ground: f32) -> V
     body.sockets
         .iter()
         .map(|s| {
-            let get =
-                |v: u32, fallback: Vec3| positions.get(v as usize).copied().unwrap_or(fallback);
-            let left = get(s.left_vertex, s.left);
-            let right = get(s.right_vertex, s.right);
-            let top = get(s.top_vertex, s.top);
-            let along = arc.get(s.bone).copied().unwrap_or(0.0);
+            let left = positions[s.left_vertex as usize];
+            let right = positions[s.right_vertex as usize];
+            let top = positions[s.top_vertex as usize];
+            let along = arc[s.bone];
             let clearance = (left.y.min(right.y) - ground).max(0.0);
             SpineBone::from_sockets(along, left, right, top, clearance)
         })
@@ -505,7 +681,7 @@ fn limb_body(body: &creature_autorig::Rig, positions: &[Vec3], ground: f32) -> V
 /// Normals (flat: every triangle its own vertices), into the public mesh.
 fn finish_mesh(b: MeshBuilder, flat: bool) -> Mesh {
     let face_normal = |t: &[u32; 3]| {
-        let [a, c, d] = t.map(|i| b.positions.get(i as usize).copied().unwrap_or(Vec3::ZERO));
+        let [a, c, d] = t.map(|i| b.positions[i as usize]);
         (c - a).cross(d - a)
     };
     if flat {
@@ -515,13 +691,10 @@ fn finish_mesh(b: MeshBuilder, flat: bool) -> Mesh {
             let base = m.positions.len() as u32;
             for &i in t {
                 let i = i as usize;
-                m.positions
-                    .push(b.positions.get(i).copied().unwrap_or(Vec3::ZERO));
-                m.colours
-                    .push(b.colours.get(i).copied().unwrap_or(Vec3::ONE));
-                m.joints.push(b.joints.get(i).copied().unwrap_or([0; 4]));
-                m.weights
-                    .push(b.weights.get(i).copied().unwrap_or([1.0, 0.0, 0.0, 0.0]));
+                m.positions.push(b.positions[i]);
+                m.colours.push(b.colours[i]);
+                m.joints.push(b.joints[i]);
+                m.weights.push(b.weights[i]);
                 m.normals.push(n);
             }
             m.indices.push([base, base + 1, base + 2]);
@@ -532,9 +705,7 @@ fn finish_mesh(b: MeshBuilder, flat: bool) -> Mesh {
         for t in &b.indices {
             let n = face_normal(t);
             for &i in t {
-                if let Some(v) = normals.get_mut(i as usize) {
-                    *v += n;
-                }
+                normals[i as usize] += n;
             }
         }
         Mesh {
@@ -570,12 +741,7 @@ fn measure(
         .indices
         .iter()
         .map(|t| {
-            let [a, b, c] = t.map(|i| {
-                mesh.positions
-                    .get(i as usize)
-                    .copied()
-                    .unwrap_or(Vec3::ZERO)
-            });
+            let [a, b, c] = t.map(|i| mesh.positions[i as usize]);
             0.5 * (b - a).cross(c - a).length() / scale
         })
         .fold(f32::INFINITY, f32::min);
@@ -586,5 +752,56 @@ fn measure(
         min_height,
         min_triangle_area,
         bend_degrees,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A new kind is one entry: here a swimmer's body, fins and tail with a walker's neck and
+    /// head (rooted at the centre, neck and tail bent), made by nothing but this table entry.
+    const HEADED_SWIMMER: KindSpec = KindSpec {
+        limbs: CreatureKind::Swimmer,
+        root: RootAt::Centre,
+        slices: swimmer_slices,
+        neck_and_head: true,
+        walks: false,
+    };
+
+    #[test]
+    fn a_new_kind_is_one_table_entry() {
+        let mut bent = false;
+        for seed in 0..6 {
+            let headed = generate_kind(&mut rng_for(seed), &Params::DEFAULT, &HEADED_SWIMMER)
+                .expect("a valid kind entry generates");
+            assert_eq!(headed.kind, CreatureKind::Swimmer);
+            assert!(headed.gait.is_none());
+            assert!(headed.quality.min_height >= 0.0);
+            assert!(headed.mesh.positions.iter().all(|p| p.is_finite()));
+            assert!(headed.clips.iter().any(|c| c.name == "swim"));
+            // Rooted at the centre, where the plain swimmer roots at its head.
+            let head_tip = |c: &Creature| c.rig.spine.last().copied();
+            let plain = generate_kind(&mut rng_for(seed), &Params::DEFAULT, &KINDS[2])
+                .expect("swimmers generate");
+            assert_eq!(plain.rig.root(), head_tip(&plain));
+            assert_ne!(headed.rig.root(), head_tip(&headed));
+            bent |= headed.quality.bend_degrees[0] > 0.0;
+        }
+        assert!(bent, "the entry's neck_and_head bends the neck");
+    }
+
+    #[test]
+    fn random_draws_every_kind_of_the_table() {
+        let mut seen = [false; KINDS.len()];
+        for seed in 0..64 {
+            let spec = KindSpec::of(Kind::Random, &mut rng_for(seed));
+            let i = KINDS
+                .iter()
+                .position(|k| k.limbs == spec.limbs)
+                .expect("drawn from the table");
+            seen[i] = true;
+        }
+        assert_eq!(seen, [true; KINDS.len()]);
     }
 }

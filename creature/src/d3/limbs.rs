@@ -10,6 +10,7 @@ use glam::Vec3;
 use creature_gait::solve_two_bone;
 use creature_limbs::{Knee, Limb, LimbKind, Side, Socket};
 
+use crate::Error;
 use crate::d3::{Joint, Part};
 use crate::math::{cos, sin};
 
@@ -215,6 +216,151 @@ pub(crate) struct LegChain {
     pub(crate) pole: Vec3,
 }
 
+/// How one limb type is built: a row of [`LIMB_SHAPES`].
+#[derive(Clone, Copy)]
+pub(crate) struct LimbShape {
+    pub(crate) kind: LimbKind,
+    /// Drawn in the limb colour (legs, arms) or the lighter membrane colour (wings, fins).
+    pub(crate) membrane_colour: bool,
+    build: Build,
+}
+
+/// The two ways a limb is built.
+#[derive(Clone, Copy)]
+enum Build {
+    /// Hip, knee and foot (or hand) solved by two-bone IK, skinned as a tapered tube; the
+    /// gait drives it.
+    TwoBone(TwoBone),
+    /// A chain of joints carrying a flat membrane (wings, fins, tails).
+    Membrane(MembraneShape),
+}
+
+/// A two-bone limb's rest pose.
+#[derive(Clone, Copy)]
+struct TwoBone {
+    /// Whether the end goes to the plan's foot point when the plan has one (legs that stand).
+    to_foot: bool,
+    /// The unit direction from the hip to the rest end otherwise, from the outward sign.
+    rest_direction: fn(f32) -> Vec3,
+    /// The knee's pole, from the plan's knee direction and the outward sign.
+    pole: fn(Option<Knee>, f32) -> Vec3,
+}
+
+/// A membrane limb's shape.
+#[derive(Clone, Copy)]
+struct MembraneShape {
+    /// The unit direction of the chain, from the outward sign.
+    along: fn(f32) -> Vec3,
+    /// The membrane's second direction, made square to `along` (`across_fallback` when the two
+    /// are parallel).
+    across: Vec3,
+    across_fallback: Vec3,
+    /// Its width, from the limb and its length.
+    width: fn(&Limb, f32) -> f32,
+    /// Joints along the chain.
+    bones: usize,
+}
+
+/// A leg's knee: backward or sideways as the plan says, else forward.
+fn leg_pole(knee: Option<Knee>, out: f32) -> Vec3 {
+    match knee {
+        Some(Knee::Backward) => Vec3::NEG_Z,
+        Some(Knee::Sideways) if out != 0.0 => Vec3::X * out,
+        _ => Vec3::Z,
+    }
+}
+
+/// One row per limb type: a new type is one more row (and its place in the planner).
+pub(crate) const LIMB_SHAPES: [LimbShape; 7] = [
+    LimbShape {
+        kind: LimbKind::Leg,
+        membrane_colour: false,
+        build: Build::TwoBone(TwoBone {
+            to_foot: true,
+            // A flier's dangling leg: down and a little back.
+            rest_direction: |out| Vec3::new(0.15 * out, -1.0, -0.35).normalize(),
+            pole: leg_pole,
+        }),
+    },
+    LimbShape {
+        kind: LimbKind::Arm,
+        membrane_colour: false,
+        build: Build::TwoBone(TwoBone {
+            to_foot: false,
+            rest_direction: |out| Vec3::new(0.2 * out, -0.5, 1.0).normalize(),
+            pole: |_, _| Vec3::new(0.0, -1.0, -0.3),
+        }),
+    },
+    LimbShape {
+        kind: LimbKind::BuzzingWing,
+        membrane_colour: true,
+        build: Build::Membrane(MembraneShape {
+            along: |out| Vec3::new(out, 0.35, -0.25).normalize_or(Vec3::X),
+            across: Vec3::Z,
+            across_fallback: Vec3::Z,
+            width: |limb, length| 0.5 * limb.scale.z.max(0.2 * length),
+            bones: 2,
+        }),
+    },
+    LimbShape {
+        kind: LimbKind::FlappingWing,
+        membrane_colour: true,
+        build: Build::Membrane(MembraneShape {
+            along: |out| Vec3::new(out, 0.05, 0.0).normalize_or(Vec3::X),
+            across: Vec3::Z,
+            across_fallback: Vec3::Z,
+            width: |_, length| 0.45 * length,
+            bones: 4,
+        }),
+    },
+    LimbShape {
+        kind: LimbKind::DorsalFin,
+        membrane_colour: true,
+        build: Build::Membrane(MembraneShape {
+            along: |_| Vec3::new(0.0, 1.0, -0.5).normalize(),
+            across: Vec3::Z,
+            across_fallback: Vec3::Y,
+            width: |limb, length| 0.8 * limb.scale.z.max(0.3 * length),
+            bones: 3,
+        }),
+    },
+    LimbShape {
+        kind: LimbKind::PectoralFin,
+        membrane_colour: true,
+        build: Build::Membrane(MembraneShape {
+            along: |out| Vec3::new(out, -0.3, -0.3).normalize_or(Vec3::NEG_Y),
+            across: Vec3::Z,
+            across_fallback: Vec3::Y,
+            width: |limb, length| 0.6 * limb.scale.z.max(0.3 * length),
+            bones: 3,
+        }),
+    },
+    LimbShape {
+        kind: LimbKind::Tail,
+        membrane_colour: true,
+        build: Build::Membrane(MembraneShape {
+            along: |_| Vec3::NEG_Z,
+            across: Vec3::Y,
+            across_fallback: Vec3::Y,
+            width: |limb, length| 0.9 * limb.scale.y.max(0.3 * length),
+            bones: 4,
+        }),
+    },
+];
+
+/// The row of `kind` in [`LIMB_SHAPES`].
+///
+/// # Errors
+/// [`Error::Degenerate`] for a limb type the table has no row for.
+pub(crate) fn limb_shape(kind: LimbKind) -> Result<&'static LimbShape, Error> {
+    LIMB_SHAPES
+        .iter()
+        .find(|s| s.kind == kind)
+        .ok_or(Error::Degenerate {
+            what: "limb (its type has no row in the facade's limb shapes)",
+        })
+}
+
 /// Adds one limb's joints (parent: the mount's joint) and its mesh; joints are appended to
 /// `joints`, with the limb's index in the plan in their part. Legs and arms return their chain.
 pub(crate) fn add_limb(
@@ -222,6 +368,7 @@ pub(crate) fn add_limb(
     joints: &mut Vec<Joint>,
     limb_index: usize,
     limb: &Limb,
+    shape: &LimbShape,
     mount: Mount,
     style: LimbStyle,
 ) -> Option<LegChain> {
@@ -250,23 +397,14 @@ pub(crate) fn add_limb(
         });
         index as u16
     };
-    match limb.kind {
-        LimbKind::Leg | LimbKind::Arm => {
+    match shape.build {
+        Build::TwoBone(bone) => {
             let hip = mount.point;
-            let end = match (limb.kind, limb.foot) {
-                (LimbKind::Leg, Some(foot)) => foot,
-                (LimbKind::Leg, None) => {
-                    // A flier's dangling leg: down and a little back.
-                    hip + Vec3::new(0.15 * out, -1.0, -0.35).normalize() * length
-                }
-                _ => hip + Vec3::new(0.2 * out, -0.5, 1.0).normalize() * length,
+            let end = match (bone.to_foot, limb.foot) {
+                (true, Some(foot)) => foot,
+                _ => hip + (bone.rest_direction)(out) * length,
             };
-            let pole = match (limb.kind, knee) {
-                (LimbKind::Arm, _) => Vec3::new(0.0, -1.0, -0.3),
-                (_, Some(Knee::Backward)) => Vec3::NEG_Z,
-                (_, Some(Knee::Sideways)) if out != 0.0 => Vec3::X * out,
-                _ => Vec3::Z,
-            };
+            let pole = (bone.pole)(knee, out);
             let reach = hip.distance(end);
             let segment = KNEE_SLACK * 0.5 * reach.max(1e-4);
             let ik = solve_two_bone(hip, end, segment, segment, pole);
@@ -296,58 +434,11 @@ pub(crate) fn add_limb(
                 pole,
             })
         }
-        LimbKind::BuzzingWing | LimbKind::FlappingWing => {
-            let (along, bones, width) = if limb.kind == LimbKind::BuzzingWing {
-                (
-                    Vec3::new(out, 0.35, -0.25).normalize_or(Vec3::X),
-                    2,
-                    0.5 * limb.scale.z.max(0.2 * length),
-                )
-            } else {
-                (
-                    Vec3::new(out, 0.05, 0.0).normalize_or(Vec3::X),
-                    4,
-                    0.45 * length,
-                )
-            };
-            let across = (Vec3::Z - along * along.z).normalize_or(Vec3::Z);
-            let chain = chain_joints(&mut push_joint, mount, along, length, bones, base);
-            mesh.membrane(
-                Membrane {
-                    origin: mount.point,
-                    along,
-                    across,
-                    length,
-                    width,
-                },
-                &chain,
-                colour,
-            );
-            None
-        }
-        LimbKind::DorsalFin | LimbKind::PectoralFin | LimbKind::Tail => {
-            let (along, across, width, bones) = match limb.kind {
-                LimbKind::DorsalFin => (
-                    Vec3::new(0.0, 1.0, -0.5).normalize(),
-                    Vec3::Z,
-                    0.8 * limb.scale.z.max(0.3 * length),
-                    3,
-                ),
-                LimbKind::PectoralFin => (
-                    Vec3::new(out, -0.3, -0.3).normalize_or(Vec3::NEG_Y),
-                    Vec3::Z,
-                    0.6 * limb.scale.z.max(0.3 * length),
-                    3,
-                ),
-                _ => (
-                    Vec3::NEG_Z,
-                    Vec3::Y,
-                    0.9 * limb.scale.y.max(0.3 * length),
-                    4,
-                ),
-            };
-            let across = (across - along * along.dot(across)).normalize_or(Vec3::Y);
-            let chain = chain_joints(&mut push_joint, mount, along, length, bones, base);
+        Build::Membrane(m) => {
+            let along = (m.along)(out);
+            let across = (m.across - along * along.dot(m.across)).normalize_or(m.across_fallback);
+            let width = (m.width)(limb, length);
+            let chain = chain_joints(&mut push_joint, mount, along, length, m.bones, base);
             mesh.membrane(
                 Membrane {
                     origin: mount.point,
@@ -399,6 +490,23 @@ mod tests {
     use super::*;
     use creature_limbs::Span;
 
+    #[test]
+    fn every_limb_type_the_planner_makes_has_one_row() {
+        for kind in [
+            LimbKind::Leg,
+            LimbKind::Arm,
+            LimbKind::BuzzingWing,
+            LimbKind::FlappingWing,
+            LimbKind::DorsalFin,
+            LimbKind::PectoralFin,
+            LimbKind::Tail,
+        ] {
+            let rows = LIMB_SHAPES.iter().filter(|s| s.kind == kind).count();
+            assert_eq!(rows, 1, "{kind:?}");
+            assert!(limb_shape(kind).is_ok());
+        }
+    }
+
     fn wing(side: Side) -> Limb {
         Limb {
             kind: LimbKind::FlappingWing,
@@ -441,7 +549,8 @@ mod tests {
             sides: 5,
             colour: Vec3::ONE,
         };
-        let chain = add_limb(&mut mesh, &mut joints, 0, limb, mount, style);
+        let shape = limb_shape(limb.kind).expect("every planner limb type has a row");
+        let chain = add_limb(&mut mesh, &mut joints, 0, limb, shape, mount, style);
         assert!(chain.is_none(), "wings have no leg chain");
         (mesh, joints)
     }

@@ -87,7 +87,9 @@ impl TileField for TiledField<'_> {
     fn tile_inside(&self, first: [i32; 2], step: f32, iso: f32) -> bool {
         let size = creature_march::TILE_SIZE;
         let origin = creature_march::node_point(first, step);
-        // Through the sampler: the bound comes from the factors its tiles share.
+        // Through the sampler: the bound comes from the factors its tiles share. A block the
+        // sampler cannot prove (an error) is simply not proven inside: the trace then samples
+        // its nodes one by one, so the answer is conservative, not a lost error.
         self.0
             .borrow_mut()
             .block_is_at_least(origin, step, size, size, iso)
@@ -277,7 +279,9 @@ fn nearest_bone(balls: &[Ball2], p: Vec2) -> u16 {
             best = (d, b.id);
         }
     }
-    u16::try_from(best.1).unwrap_or(0)
+    // Ball ids are bone indices, and `validate_skeleton` caps the bones at `MAX_BONES`.
+    debug_assert!(best.1 < MAX_BONES as u32);
+    best.1 as u16
 }
 
 fn validate_skeleton(skeleton: &Skeleton) -> Result<(), Error> {
@@ -348,8 +352,9 @@ fn cover(skeleton: &Skeleton, params: &Params) -> Result<Vec<Ball>, Error> {
     let mut out: Vec<Ball> = Vec::new();
     for (i, bone) in bones.iter().enumerate() {
         let Some(p) = bone.parent else { continue };
-        let Some(parent) = bones.get(p) else { continue };
-        let id = u32::try_from(p).unwrap_or(u32::MAX);
+        // `validate_skeleton`: parents come first, and there are at most `MAX_BONES` bones.
+        let parent = &bones[p];
+        let id = p as u32;
         let (thickness, multiplier, colour, interior, parent_colour) = if bone.thickness > 0.0 {
             let parent_has_balls = parent.parent.is_some() && parent.thickness > 0.0;
             (

@@ -7,10 +7,10 @@ use alloc::vec::Vec;
 
 use glam::Mat4;
 use gltf_json as json;
-use json::validation::{Checked, USize64};
+use json::validation::Checked;
 
-use super::gltf::{Bin, accessor, f32_bytes};
-use super::{export_error, image_png};
+use super::gltf::{Bin, accessor, check_skinned_mesh, f32_bytes, new_root};
+use super::image_png;
 use crate::Error;
 use crate::image::Image;
 
@@ -26,107 +26,30 @@ use crate::image::Image;
 pub fn glb_2d(creature: &crate::d2::Creature) -> Result<Vec<u8>, Error> {
     let m = &creature.mesh;
     let n = m.positions.len();
-    if n == 0
-        || m.indices.is_empty()
-        || m.uvs.len() != n
-        || m.joints.len() != n
-        || m.weights.len() != n
-    {
-        return Err(export_error(
-            "glb",
-            "the mesh is empty or its attributes disagree",
-        ));
-    }
-    if creature.bones.is_empty() || creature.bones.len() > usize::from(u16::MAX) {
-        return Err(export_error("glb", "the skeleton is empty or too large"));
-    }
-    if m.indices.iter().flatten().any(|&i| i as usize >= n) {
-        return Err(export_error("glb", "a triangle index is out of range"));
-    }
+    let agree = m.uvs.len() == n && m.joints.len() == n && m.weights.len() == n;
+    check_skinned_mesh(n, agree, &m.indices, creature.bones.len())?;
     use json::accessor::{ComponentType as C, Type as T};
-    use json::buffer::Target;
-    let mut bin = Bin {
-        data: Vec::new(),
-        views: Vec::new(),
-    };
-    let mut root = json::Root {
-        asset: json::Asset {
-            generator: Some(format!("creature {}", env!("CARGO_PKG_VERSION"))),
-            ..json::Asset::default()
-        },
-        ..json::Root::default()
-    };
+    
+    let mut bin = Bin::new();
+    let mut root = new_root();
 
     // Vertex attributes.
-    let mut lo = [f32::MAX; 3];
-    let mut hi = [f32::MIN; 3];
-    for p in &m.positions {
-        for (k, v) in p.to_array().into_iter().enumerate() {
-            lo[k] = lo[k].min(v);
-            hi[k] = hi[k].max(v);
-        }
-    }
-    let view = bin.push(
-        &f32_bytes(m.positions.iter().flat_map(|p| p.to_array())),
-        Some(Target::ArrayBuffer),
-    );
-    let positions = root.push(accessor(
-        view,
+    let positions = bin.positions(&mut root, &m.positions);
+    let normals = bin.floats(&mut root, (0..n).flat_map(|_| [0.0, 0.0, 1.0]), n, T::Vec3);
+    let tangents = bin.floats(
+        &mut root,
+        (0..n).flat_map(|_| [1.0, 0.0, 0.0, 1.0]),
         n,
-        C::F32,
-        T::Vec3,
-        false,
-        Some((lo.to_vec(), hi.to_vec())),
-    ));
-    let view = bin.push(
-        &f32_bytes((0..n).flat_map(|_| [0.0, 0.0, 1.0])),
-        Some(Target::ArrayBuffer),
+        T::Vec4,
     );
-    let normals = root.push(accessor(view, n, C::F32, T::Vec3, false, None));
-    let view = bin.push(
-        &f32_bytes((0..n).flat_map(|_| [1.0, 0.0, 0.0, 1.0])),
-        Some(Target::ArrayBuffer),
+    let uvs = bin.floats(
+        &mut root,
+        m.uvs.iter().flat_map(|p| p.to_array()),
+        n,
+        T::Vec2,
     );
-    let tangents = root.push(accessor(view, n, C::F32, T::Vec4, false, None));
-    let view = bin.push(
-        &f32_bytes(m.uvs.iter().flat_map(|p| p.to_array())),
-        Some(Target::ArrayBuffer),
-    );
-    let uvs = root.push(accessor(view, n, C::F32, T::Vec2, false, None));
-    let mut joint_bytes = Vec::with_capacity(n * 8);
-    let mut weight_bytes = Vec::with_capacity(n * 4);
-    for (joints, weights) in m.joints.iter().zip(&m.weights) {
-        let inf = creature_skin::Influences {
-            joints: *joints,
-            weights: *weights,
-        };
-        let q = inf.quantize_u8();
-        for (j, w) in joints.iter().zip(q) {
-            // A joint whose weight rounds to 0 is reset to 0 (glTF: unused slots are 0).
-            let j = if w == 0 { 0 } else { *j };
-            joint_bytes.extend_from_slice(&j.to_le_bytes());
-            weight_bytes.push(w);
-        }
-    }
-    let view = bin.push(&joint_bytes, Some(Target::ArrayBuffer));
-    let joints = root.push(accessor(view, n, C::U16, T::Vec4, false, None));
-    let view = bin.push(&weight_bytes, Some(Target::ArrayBuffer));
-    let weights = root.push(accessor(view, n, C::U8, T::Vec4, true, None));
-    let index_bytes: Vec<u8> = m
-        .indices
-        .iter()
-        .flatten()
-        .flat_map(|i| i.to_le_bytes())
-        .collect();
-    let view = bin.push(&index_bytes, Some(Target::ElementArrayBuffer));
-    let indices = root.push(accessor(
-        view,
-        m.indices.len() * 3,
-        C::U32,
-        T::Scalar,
-        false,
-        None,
-    ));
+    let (joints, weights) = bin.skin(&mut root, &m.joints, &m.weights);
+    let indices = bin.indices(&mut root, &m.indices);
 
     // Material with the embedded textures.
     let sampler = root.push(json::texture::Sampler {
@@ -274,35 +197,7 @@ pub fn glb_2d(creature: &crate::d2::Creature) -> Result<Vec<u8>, Error> {
     });
     root.scene = Some(scene);
 
-    while !bin.data.len().is_multiple_of(4) {
-        bin.data.push(0);
-    }
-    root.buffers.push(json::Buffer {
-        byte_length: USize64::from(bin.data.len()),
-        name: None,
-        uri: None,
-        extensions: None,
-        extras: Default::default(),
-    });
-    root.buffer_views = bin.views;
-
-    let mut text = serde_json::to_vec(&root).map_err(|e| export_error("glb", e))?;
-    while !text.len().is_multiple_of(4) {
-        text.push(b' ');
-    }
-    let total = 12 + 8 + text.len() + 8 + bin.data.len();
-    let total = u32::try_from(total).map_err(|_| export_error("glb", "file over 4 GiB"))?;
-    let mut out = Vec::with_capacity(total as usize);
-    out.extend_from_slice(b"glTF");
-    out.extend_from_slice(&2u32.to_le_bytes());
-    out.extend_from_slice(&total.to_le_bytes());
-    out.extend_from_slice(&(text.len() as u32).to_le_bytes());
-    out.extend_from_slice(b"JSON");
-    out.extend_from_slice(&text);
-    out.extend_from_slice(&(bin.data.len() as u32).to_le_bytes());
-    out.extend_from_slice(b"BIN\0");
-    out.extend_from_slice(&bin.data);
-    Ok(out)
+    bin.into_glb(root)
 }
 
 /// A bone's rest world transform (translation and z rotation down the chain).

@@ -6,10 +6,10 @@ use alloc::vec;
 use alloc::vec::Vec;
 
 use gltf_json as json;
-use json::validation::{Checked, USize64};
+use json::validation::Checked;
 
 use super::export_error;
-use super::gltf::{Bin, accessor, f32_bytes};
+use super::gltf::{Bin, accessor, check_skinned_mesh, f32_bytes, new_root};
 use crate::Error;
 use crate::d3::Clip;
 use crate::d3::Creature;
@@ -41,24 +41,9 @@ pub fn glb_3d(creature: &Creature, clips: &[Clip]) -> Result<Vec<u8>, Error> {
     let m = &creature.mesh;
     let n = m.positions.len();
     let joint_count = creature.skeleton.joints.len();
-    if n == 0
-        || m.indices.is_empty()
-        || m.normals.len() != n
-        || m.colours.len() != n
-        || m.joints.len() != n
-        || m.weights.len() != n
-    {
-        return Err(export_error(
-            "glb",
-            "the mesh is empty or its attributes disagree",
-        ));
-    }
-    if joint_count == 0 || joint_count > usize::from(u16::MAX) {
-        return Err(export_error("glb", "the skeleton is empty or too large"));
-    }
-    if m.indices.iter().flatten().any(|&i| i as usize >= n) {
-        return Err(export_error("glb", "a triangle index is out of range"));
-    }
+    let agree =
+        m.normals.len() == n && m.colours.len() == n && m.joints.len() == n && m.weights.len() == n;
+    check_skinned_mesh(n, agree, &m.indices, joint_count)?;
     if m.joints
         .iter()
         .flatten()
@@ -75,90 +60,29 @@ pub fn glb_3d(creature: &Creature, clips: &[Clip]) -> Result<Vec<u8>, Error> {
         return Err(export_error("glb", "the skeleton has no root"));
     };
     use json::accessor::{ComponentType as C, Type as T};
-    use json::buffer::Target;
-    let mut bin = Bin {
-        data: Vec::new(),
-        views: Vec::new(),
-    };
-    let mut root = json::Root {
-        asset: json::Asset {
-            generator: Some(format!("creature {}", env!("CARGO_PKG_VERSION"))),
-            ..json::Asset::default()
-        },
-        ..json::Root::default()
-    };
+    
+    let mut bin = Bin::new();
+    let mut root = new_root();
 
-    let mut lo = [f32::MAX; 3];
-    let mut hi = [f32::MIN; 3];
-    for p in &m.positions {
-        for (k, v) in p.to_array().into_iter().enumerate() {
-            lo[k] = lo[k].min(v);
-            hi[k] = hi[k].max(v);
-        }
-    }
-    let view = bin.push(
-        &f32_bytes(m.positions.iter().flat_map(|p| p.to_array())),
-        Some(Target::ArrayBuffer),
-    );
-    let positions = root.push(accessor(
-        view,
+    let positions = bin.positions(&mut root, &m.positions);
+    let normals = bin.floats(
+        &mut root,
+        m.normals
+            .iter()
+            .flat_map(|v| v.normalize_or(glam::Vec3::Y).to_array()),
         n,
-        C::F32,
         T::Vec3,
-        false,
-        Some((lo.to_vec(), hi.to_vec())),
-    ));
-    let view = bin.push(
-        &f32_bytes(
-            m.normals
-                .iter()
-                .flat_map(|v| v.normalize_or(glam::Vec3::Y).to_array()),
-        ),
-        Some(Target::ArrayBuffer),
     );
-    let normals = root.push(accessor(view, n, C::F32, T::Vec3, false, None));
-    let view = bin.push(
-        &f32_bytes(
-            m.colours
-                .iter()
-                .flat_map(|c| c.clamp(glam::Vec3::ZERO, glam::Vec3::ONE).to_array()),
-        ),
-        Some(Target::ArrayBuffer),
+    let colours = bin.floats(
+        &mut root,
+        m.colours
+            .iter()
+            .flat_map(|c| c.clamp(glam::Vec3::ZERO, glam::Vec3::ONE).to_array()),
+        n,
+        T::Vec3,
     );
-    let colours = root.push(accessor(view, n, C::F32, T::Vec3, false, None));
-    let mut joint_bytes = Vec::with_capacity(n * 8);
-    let mut weight_bytes = Vec::with_capacity(n * 4);
-    for (joints, weights) in m.joints.iter().zip(&m.weights) {
-        let inf = creature_skin::Influences {
-            joints: *joints,
-            weights: *weights,
-        };
-        for (j, w) in joints.iter().zip(inf.quantize_u8()) {
-            // A joint whose weight rounds to 0 is reset to 0 (glTF: unused slots are 0).
-            let j = if w == 0 { 0 } else { *j };
-            joint_bytes.extend_from_slice(&j.to_le_bytes());
-            weight_bytes.push(w);
-        }
-    }
-    let view = bin.push(&joint_bytes, Some(Target::ArrayBuffer));
-    let joints = root.push(accessor(view, n, C::U16, T::Vec4, false, None));
-    let view = bin.push(&weight_bytes, Some(Target::ArrayBuffer));
-    let weights = root.push(accessor(view, n, C::U8, T::Vec4, true, None));
-    let index_bytes: Vec<u8> = m
-        .indices
-        .iter()
-        .flatten()
-        .flat_map(|i| i.to_le_bytes())
-        .collect();
-    let view = bin.push(&index_bytes, Some(Target::ElementArrayBuffer));
-    let indices = root.push(accessor(
-        view,
-        m.indices.len() * 3,
-        C::U32,
-        T::Scalar,
-        false,
-        None,
-    ));
+    let (joints, weights) = bin.skin(&mut root, &m.joints, &m.weights);
+    let indices = bin.indices(&mut root, &m.indices);
 
     let mut material = json::Material {
         name: Some("creature".into()),
@@ -250,35 +174,7 @@ pub fn glb_3d(creature: &Creature, clips: &[Clip]) -> Result<Vec<u8>, Error> {
     });
     root.scene = Some(scene);
 
-    while !bin.data.len().is_multiple_of(4) {
-        bin.data.push(0);
-    }
-    root.buffers.push(json::Buffer {
-        byte_length: USize64::from(bin.data.len()),
-        name: None,
-        uri: None,
-        extensions: None,
-        extras: Default::default(),
-    });
-    root.buffer_views = bin.views;
-
-    let mut text = serde_json::to_vec(&root).map_err(|e| export_error("glb", e))?;
-    while !text.len().is_multiple_of(4) {
-        text.push(b' ');
-    }
-    let total = 12 + 8 + text.len() + 8 + bin.data.len();
-    let total = u32::try_from(total).map_err(|_| export_error("glb", "file over 4 GiB"))?;
-    let mut out = Vec::with_capacity(total as usize);
-    out.extend_from_slice(b"glTF");
-    out.extend_from_slice(&2u32.to_le_bytes());
-    out.extend_from_slice(&total.to_le_bytes());
-    out.extend_from_slice(&(text.len() as u32).to_le_bytes());
-    out.extend_from_slice(b"JSON");
-    out.extend_from_slice(&text);
-    out.extend_from_slice(&(bin.data.len() as u32).to_le_bytes());
-    out.extend_from_slice(b"BIN\0");
-    out.extend_from_slice(&bin.data);
-    Ok(out)
+    bin.into_glb(root)
 }
 
 /// One clip as a glTF animation: a time accessor shared by its samplers, one sampler and one

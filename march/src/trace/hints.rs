@@ -64,10 +64,13 @@ impl<F: TileField + ?Sized> Tracer<'_, F> {
         });
         // Already outlined: the nearest node (the first of the nearest, in corner order) lies
         // in a traced component (what the walk below would find, without sampling).
-        let nearest = corners
+        let nearest = corners[1..]
             .iter()
-            .reduce(|a, b| if b.0.total_cmp(&a.0).is_lt() { b } else { a })
-            .map_or(base, |c| c.1);
+            .fold(
+                corners[0],
+                |a, &b| if b.0.total_cmp(&a.0).is_lt() { b } else { a },
+            )
+            .1;
         if self.covered(nearest.0, nearest.1) {
             return Ok(());
         }
@@ -106,11 +109,8 @@ impl<F: TileField + ?Sized> Tracer<'_, F> {
                     None if below => self.trace_ring((x - 1, y), 1, index, false)?,
                     None => self.trace_ring((x, y), 3, index, false)?,
                 };
-                if self
-                    .rings
-                    .get(ring)
-                    .is_some_and(|r| r.outer && r.encloses(x, y0))
-                {
+                let ring = &self.rings[ring];
+                if ring.outer && ring.encloses(x, y0) {
                     return Ok(());
                 }
             }

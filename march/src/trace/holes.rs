@@ -25,9 +25,7 @@ impl<F: TileField + ?Sized> Tracer<'_, F> {
                 column_pairs(&verticals)
                     .try_for_each(|(x, bottom, top)| self.scan_column(x, bottom, top))
             };
-            if let Some(ring) = self.rings.get_mut(r) {
-                ring.verticals = verticals;
-            }
+            self.rings[r].verticals = verticals;
             scanned?;
         }
         Ok(())
@@ -205,23 +203,20 @@ fn bit_range(from: i32, to: i32) -> u64 {
     (u64::MAX << (from & 63)) & (u64::MAX >> (63 - (to & 63)))
 }
 
-/// Sets bits `from ..= to` (both at least 0) of the bit set `words`.
+/// Sets bits `from ..= to` (`0 ≤ from ≤ to`, both within `words`) of the bit set `words`.
 #[inline]
 fn set_bits(words: &mut [u64], from: i32, to: i32) {
     let (from, to) = (from as usize, to as usize);
     if from >> 6 == to >> 6 {
-        if let Some(word) = words.get_mut(from >> 6) {
-            *word |= bit_range(from as i32, to as i32);
-        }
+        words[from >> 6] |= bit_range(from as i32, to as i32);
         return;
     }
-    if let Some(words) = words.get_mut(from >> 6..=to >> 6) {
-        let top = words.len() - 1;
-        for (k, word) in words.iter_mut().enumerate() {
-            let low = if k == 0 { from & 63 } else { 0 };
-            let high = if k == top { to & 63 } else { 63 };
-            *word |= (u64::MAX << low) & (u64::MAX >> (63 - high));
-        }
+    let words = &mut words[from >> 6..=to >> 6];
+    let top = words.len() - 1;
+    for (k, word) in words.iter_mut().enumerate() {
+        let low = if k == 0 { from & 63 } else { 0 };
+        let high = if k == top { to & 63 } else { 63 };
+        *word |= bit_range(low as i32, high as i32);
     }
 }
 

@@ -41,17 +41,17 @@ fn column_bits(mask: u64, column: i32) -> u32 {
 
 /// Node samples for an 8 × 8 block of grid nodes.
 #[derive(Clone)]
-pub(super) struct Tile {
-    pub(super) values: [f32; TILE_NODES],
+struct Tile {
+    values: [f32; TILE_NODES],
     /// Bit `s`: `values[s]` has been sampled.
-    pub(super) sampled: u64,
+    sampled: u64,
     /// Bit `s`: the node in slot `s` is inside (known where sampled, or proven).
-    pub(super) inside: u64,
+    inside: u64,
     /// Every bit set when the field proved every node inside without sampling
     /// ([`TileField::tile_inside`]): the inside flags are known, the values not.
-    pub(super) proven: u64,
+    proven: u64,
     /// Bit `s`: a traced ring crosses the edge from the node in slot `s` up to the node above.
-    pub(super) crossed: u64,
+    crossed: u64,
 }
 
 /// Slots of the tile cache: a tile goes to the slot of the low 2 bits of its column and the
@@ -63,7 +63,7 @@ const CACHE_SLOTS: usize = 128;
 /// sampled once". Contours are local, so lookups mostly hit one of a few neighbouring tiles,
 /// which a small direct-mapped cache remembers; other tiles are found through a hash table.
 pub(super) struct Nodes {
-    pub(super) tiles: Vec<Tile>,
+    tiles: Vec<Tile>,
     index: Table<u32>,
     /// Tile coordinates and index of a recently used tile, by [`Nodes::cache_slot`].
     cache: [(i32, i32, u32); CACHE_SLOTS],
@@ -127,13 +127,24 @@ impl Nodes {
 
     /// Stores the sample `v` of `slot` of `tile`, inside or not.
     pub(super) fn set(&mut self, tile: usize, slot: usize, v: f32, inside: bool) {
-        if let Some(t) = self.tiles.get_mut(tile)
-            && let Some(value) = t.values.get_mut(slot)
-        {
-            *value = v;
-            t.sampled |= 1 << slot;
-            t.inside |= u64::from(inside) << slot;
-        }
+        let t = &mut self.tiles[tile];
+        t.values[slot] = v;
+        t.sampled |= 1 << slot;
+        t.inside |= u64::from(inside) << slot;
+    }
+
+    /// The sample in `slot` of `tile`, if it has been taken.
+    #[inline(always)]
+    pub(super) fn sample(&self, tile: usize, slot: usize) -> Option<f32> {
+        let t = &self.tiles[tile];
+        (t.sampled & (1 << slot) != 0).then(|| t.values[slot])
+    }
+
+    /// Whether the node in `slot` of `tile` is inside, if that is known (sampled, or proven).
+    #[inline(always)]
+    pub(super) fn known_inside(&self, tile: usize, slot: usize) -> Option<bool> {
+        let t = &self.tiles[tile];
+        ((t.sampled | t.proven) & (1 << slot) != 0).then_some(t.inside & (1 << slot) != 0)
     }
 
     /// Fills every sample of `tile` with `fill`, and marks which are inside `iso`.
@@ -143,72 +154,64 @@ impl Nodes {
         iso: f32,
         fill: impl FnOnce(&mut [f32; TILE_NODES]),
     ) {
-        if let Some(t) = self.tiles.get_mut(tile) {
-            fill(&mut t.values);
-            t.sampled = u64::MAX;
-            t.inside = inside_bits(&t.values, iso);
-        }
+        let t = &mut self.tiles[tile];
+        fill(&mut t.values);
+        t.sampled = u64::MAX;
+        t.inside = inside_bits(&t.values, iso);
     }
 
     /// Marks every node of `tile` (unsampled) as proven inside.
     pub(super) fn prove_inside(&mut self, tile: usize) {
-        if let Some(t) = self.tiles.get_mut(tile) {
-            t.inside = u64::MAX;
-            t.proven = u64::MAX;
-        }
+        let t = &mut self.tiles[tile];
+        t.inside = u64::MAX;
+        t.proven = u64::MAX;
     }
 
     /// The inside flags of `tile` (sampled or proven nodes only), and which of its nodes'
     /// edges up traced rings cross.
     #[inline]
     pub(super) fn flags(&self, tile: usize) -> (u64, u64) {
-        self.tiles
-            .get(tile)
-            .map_or((0, 0), |t| (t.inside, t.crossed))
+        let t = &self.tiles[tile];
+        (t.inside, t.crossed)
     }
 
     /// The inside flags of column `column` of `tile`: bit `r` for row `r` (sampled or proven
     /// nodes only).
     #[inline]
     pub(super) fn column_inside(&self, tile: usize, column: i32) -> u32 {
-        self.tiles
-            .get(tile)
-            .map_or(0, |t| column_bits(t.inside, column))
+        column_bits(self.tiles[tile].inside, column)
     }
 
-    /// The sample in `slot` of `tile`, which has been taken (NaN, outside, otherwise).
+    /// The sample in `slot` of `tile`, which has been taken.
     #[inline]
     pub(super) fn sampled(&self, tile: usize, slot: usize) -> f32 {
-        self.tiles
-            .get(tile)
-            .and_then(|t| t.values.get(slot))
-            .copied()
-            .unwrap_or(f32::NAN)
+        let t = &self.tiles[tile];
+        debug_assert!(
+            t.sampled & (1 << slot) != 0,
+            "slot {slot} of tile {tile} unsampled"
+        );
+        t.values[slot]
     }
 
     /// The inside flags of `tile`, if all its nodes are sampled.
     #[inline]
     pub(super) fn all_inside(&self, tile: usize) -> Option<u64> {
-        self.tiles
-            .get(tile)
-            .and_then(|t| (t.sampled == u64::MAX).then_some(t.inside))
+        let t = &self.tiles[tile];
+        (t.sampled == u64::MAX).then_some(t.inside)
     }
 
     /// Records that a ring crosses the edges from the nodes of `tile` whose bits are set in
     /// `slots` up.
     #[inline]
     pub(super) fn mark_crossed(&mut self, tile: usize, slots: u64) {
-        if let Some(t) = self.tiles.get_mut(tile) {
-            t.crossed |= slots;
-        }
+        self.tiles[tile].crossed |= slots;
     }
 
     /// Whether a traced ring crosses the edge from node `(i, j)` up.
     #[inline]
     pub(super) fn crossed(&self, i: i32, j: i32) -> bool {
         self.find(i, j)
-            .and_then(|tile| self.tiles.get(tile))
-            .is_some_and(|t| t.crossed >> Self::slot(i, j) & 1 != 0)
+            .is_some_and(|tile| self.tiles[tile].crossed >> Self::slot(i, j) & 1 != 0)
     }
 }
 

@@ -12,9 +12,9 @@ impl<F: TileField + ?Sized> Tracer<'_, F> {
     pub(super) fn node(&mut self, i: i32, j: i32) -> f32 {
         let tile = self.tile(i, j);
         let slot = Nodes::slot(i, j);
-        match self.nodes.tiles.get(tile) {
-            Some(t) if t.sampled & (1 << slot) != 0 => t.values[slot],
-            _ => self.sample_node(tile, slot, i, j),
+        match self.nodes.sample(tile, slot) {
+            Some(v) => v,
+            None => self.sample_node(tile, slot, i, j),
         }
     }
 
@@ -84,9 +84,9 @@ impl<F: TileField + ?Sized> Tracer<'_, F> {
     pub(super) fn inside(&mut self, i: i32, j: i32) -> bool {
         let tile = self.flag_tile(i, j);
         let slot = Nodes::slot(i, j);
-        match self.nodes.tiles.get(tile) {
-            Some(t) if (t.sampled | t.proven) & (1 << slot) != 0 => t.inside & (1 << slot) != 0,
-            _ => cell::is_inside(self.sample_node(tile, slot, i, j), self.iso),
+        match self.nodes.known_inside(tile, slot) {
+            Some(inside) => inside,
+            None => cell::is_inside(self.sample_node(tile, slot, i, j), self.iso),
         }
     }
 }

@@ -37,22 +37,22 @@ impl<V: Copy + Default> Table<V> {
     }
 
     /// The slot holding `key`, and `true`; else the empty slot where it would go, and
-    /// `false`. `None` only if the table were full, which it never is (it grows first).
-    fn probe(&self, key: u64) -> Option<(usize, bool)> {
+    /// `false`. The table is never full (it grows first), so the probe ends.
+    fn probe(&self, key: u64) -> (usize, bool) {
         let mask = self.keys.len() - 1;
         let mut s = self.slot(key);
         loop {
-            match *self.keys.get(s)? {
-                k if k == key => return Some((s, true)),
-                EMPTY => return Some((s, false)),
+            match self.keys[s] {
+                k if k == key => return (s, true),
+                EMPTY => return (s, false),
                 _ => s = (s + 1) & mask,
             }
         }
     }
 
     pub(super) fn get(&self, at: (i32, i32)) -> Option<V> {
-        match self.probe(Self::key(at))? {
-            (s, true) => self.values.get(s).copied(),
+        match self.probe(Self::key(at)) {
+            (s, true) => Some(self.values[s]),
             (_, false) => None,
         }
     }
@@ -62,32 +62,28 @@ impl<V: Copy + Default> Table<V> {
         self.room_for_one();
         let key = Self::key(at);
         match self.probe(key) {
-            Some((s, true)) => (self.values.get(s).copied().unwrap_or(value), false),
-            Some((s, false)) => {
+            (s, true) => (self.values[s], false),
+            (s, false) => {
                 self.store(s, key, value);
                 (value, true)
             }
-            None => (value, false),
         }
     }
 
     pub(super) fn insert(&mut self, at: (i32, i32), value: V) {
         self.room_for_one();
         let key = Self::key(at);
-        if let Some((s, _)) = self.probe(key) {
-            self.store(s, key, value);
-        }
+        let (s, _) = self.probe(key);
+        self.store(s, key, value);
     }
 
     /// Writes `key` and `value` into slot `s`, counting the key if the slot was empty.
     fn store(&mut self, s: usize, key: u64, value: V) {
-        if let (Some(k), Some(v)) = (self.keys.get_mut(s), self.values.get_mut(s)) {
-            if *k == EMPTY {
-                self.len += 1;
-            }
-            *k = key;
-            *v = value;
+        if self.keys[s] == EMPTY {
+            self.len += 1;
         }
+        self.keys[s] = key;
+        self.values[s] = value;
     }
 
     /// Grows the table if one more key would fill more than half its slots.
@@ -106,9 +102,8 @@ impl<V: Copy + Default> Table<V> {
             if key == EMPTY {
                 continue;
             }
-            if let Some((s, _)) = self.probe(key) {
-                self.store(s, key, value);
-            }
+            let (s, _) = self.probe(key);
+            self.store(s, key, value);
         }
     }
 }

@@ -1,5 +1,4 @@
 //! Contour following: sample the field lazily, only along (and, for holes, inside) outlines.
-
 //!
 //! [`trace_field`] checks its input and drives a [`Tracer`] through the three steps its docs
 //! list, one file each: [`hints`] (step 1), [`walk`] (step 2) and [`holes`] (step 3). Beneath
@@ -257,6 +256,8 @@ pub fn trace_field<F: TileField + ?Sized>(
     Ok(crate::ring::finish_with_areas(raw, weld))
 }
 
+/// The state of one trace: the field and its parameters, the node samples taken so far, the
+/// rings traced so far, and the budget spent.
 struct Tracer<'a, F: ?Sized> {
     field: &'a F,
     /// Fill whole tiles with [`TileField::sample_tile`].
@@ -271,6 +272,7 @@ struct Tracer<'a, F: ?Sized> {
     ring_of_edge: Option<Table<u32>>,
     /// Saddle cell centre samples, keyed by cell.
     centres: Table<f32>,
+    /// Cells (and scanned nodes) counted against [`MarchOptions::max_cells`] so far.
     cells: usize,
     rings: Vec<Traced>,
     /// Rings before this index have had their hole scan (or need none).
@@ -291,6 +293,7 @@ impl<F: TileField + ?Sized> Tracer<'_, F> {
         Ok(())
     }
 
+    /// Counts one cell of hint `hint`'s walk up its column against the budget.
     fn tick(&mut self, hint: usize) -> Result<(), MarchError> {
         self.cells += 1;
         if self.cells > self.options.max_cells {
@@ -312,6 +315,8 @@ impl<F: TileField + ?Sized> Tracer<'_, F> {
     }
 }
 
+/// End-to-end tests through the public functions; the unit tests of the parts live beside
+/// them in `trace/`.
 #[cfg(test)]
 mod tests {
     use super::*;

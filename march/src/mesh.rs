@@ -285,13 +285,12 @@ fn mesh_rings(outline: &[&[Vec2]], options: &MeshOptions) -> Result<Mesh2, March
     let mut point_of = alloc::vec![NONE; count + FIRST_VERTEX];
     let crossing = |k: usize, obstacle: u32, point_of: &[u32]| {
         let ring_a = ring_of(outline, k);
-        // An obstacle that is not an outline point (an interior point) names no other ring.
-        let j = point_of[obstacle as usize] as usize;
-        let ring_b = if j < outline_len {
-            ring_of(outline, j)
-        } else {
-            ring_a
-        };
+        // The obstacle may be unknown (`NONE`) or not an outline point: then it names no
+        // other ring.
+        let ring_b = point_of
+            .get(obstacle as usize)
+            .filter(|&&j| (j as usize) < outline_len)
+            .map_or(ring_a, |&j| ring_of(outline, j as usize));
         MarchError::RingsCross {
             ring_a: ring_a.min(ring_b),
             ring_b: ring_a.max(ring_b),

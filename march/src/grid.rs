@@ -144,7 +144,7 @@ impl Padded<'_> {
         if i == 0 || j == 0 || i > self.width || j > self.height {
             return None;
         }
-        self.values.get((j - 1) * self.width + (i - 1)).copied()
+        Some(self.values[(j - 1) * self.width + (i - 1)])
     }
 
     /// Which nodes of padded row `j` are inside, as 0 or 1 (the border is outside).
@@ -154,11 +154,9 @@ impl Padded<'_> {
             return;
         }
         let start = (j - 1) * self.width;
-        let samples = self.values.get(start..start + self.width).unwrap_or(&[]);
-        if let Some(inner) = row.get_mut(1..=self.width) {
-            for (flag, &v) in inner.iter_mut().zip(samples) {
-                *flag = u8::from(cell::is_inside(v, self.iso));
-            }
+        let samples = &self.values[start..start + self.width];
+        for (flag, &v) in row[1..=self.width].iter_mut().zip(samples) {
+            *flag = u8::from(cell::is_inside(v, self.iso));
         }
     }
 
@@ -180,23 +178,16 @@ impl Padded<'_> {
         for j in 0..=self.height {
             self.inside_row(j + 1, &mut hi);
             for i in 0..nx - 1 {
-                let (Some(&a), Some(&b), Some(&c), Some(&d)) =
-                    (lo.get(i), lo.get(i + 1), hi.get(i + 1), hi.get(i))
-                else {
-                    continue;
-                };
+                let (a, b, c, d) = (lo[i], lo[i + 1], hi[i + 1], hi[i]);
                 let mask = a | b << 1 | c << 2 | d << 3;
-                let (Some(top_id), Some(right_id)) = (top.get_mut(i), sides.get_mut(i + 1)) else {
-                    continue;
-                };
                 if mask == 0 || mask == 15 {
-                    *top_id = NONE;
-                    *right_id = NONE;
+                    top[i] = NONE;
+                    sides[i + 1] = NONE;
                     continue;
                 }
                 // The cell's top and right edges are new; its bottom and left ones were met
                 // by the cells below and to the left.
-                *top_id = if c != d {
+                top[i] = if c != d {
                     new_crossing(
                         &mut points,
                         &mut next,
@@ -205,7 +196,7 @@ impl Padded<'_> {
                 } else {
                     NONE
                 };
-                *right_id = if b != c {
+                sides[i + 1] = if b != c {
                     new_crossing(
                         &mut points,
                         &mut next,
@@ -214,22 +205,16 @@ impl Padded<'_> {
                 } else {
                     NONE
                 };
-                let edges = [
-                    bottom.get(i).copied().unwrap_or(NONE),
-                    sides.get(i + 1).copied().unwrap_or(NONE),
-                    top.get(i).copied().unwrap_or(NONE),
-                    sides.get(i).copied().unwrap_or(NONE),
-                ];
+                let edges = [bottom[i], sides[i + 1], top[i], sides[i]];
                 for k in 0..4 {
                     let from = mask & (1 << k) != 0;
                     let to = mask & (1 << ((k + 1) & 3)) != 0;
                     if from && !to {
+                        // Edge `k` runs from an inside corner to an outside one: it is crossed,
+                        // so it has an id, and so has the exit edge.
                         let exit = cell::exit_edge(mask, k, || self.joined(i, j, options.saddle));
-                        if let (Some(slot), Some(&to_id)) =
-                            (next.get_mut(edges[k] as usize), edges.get(exit))
-                        {
-                            *slot = to_id;
-                        }
+                        debug_assert!(edges[k] != NONE && edges[exit] != NONE, "{mask:04b} {k}");
+                        next[edges[k] as usize] = edges[exit];
                     }
                 }
             }
@@ -279,7 +264,8 @@ impl Padded<'_> {
     fn point(&self, a: (usize, usize), b: (usize, usize), a_inside: bool) -> Vec2 {
         let (p_in, p_out) = if a_inside { (a, b) } else { (b, a) };
         let at = |(i, j): (usize, usize)| Vec2::new(i as f32 - 1.0, j as f32 - 1.0);
-        let v_in = self.value(p_in.0, p_in.1).unwrap_or(f32::NAN);
+        // The inside node is a sample, never on the virtual border.
+        let v_in = self.values[(p_in.1 - 1) * self.width + (p_in.0 - 1)];
         match self.value(p_out.0, p_out.1) {
             // Beyond the border: the ring runs through the border sample itself.
             None => at(p_in),

@@ -285,6 +285,8 @@ fn mesh_rings(outline: &[&[Vec2]], options: &MeshOptions) -> Result<Mesh2, March
     let mut point_of = alloc::vec![NONE; count + FIRST_VERTEX];
     let crossing = |k: usize, obstacle: u32, point_of: &[u32]| {
         let ring_a = ring_of(outline, k);
+        // The obstacle may be unknown (`NONE`) or not an outline point: then it names no
+        // other ring.
         let ring_b = point_of
             .get(obstacle as usize)
             .filter(|&&j| (j as usize) < outline_len)
@@ -515,14 +517,8 @@ impl Buckets {
         for j in j0..=j1 {
             for i in i0..=i1 {
                 let c = j * self.nx + i;
-                let (Some(&start), Some(&end)) = (self.starts.get(c), self.starts.get(c + 1))
-                else {
-                    continue;
-                };
-                for &k in self.items.get(start..end).unwrap_or(&[]) {
-                    let Some(&(a, b)) = segments.get(k as usize) else {
-                        continue;
-                    };
+                for &k in &self.items[self.starts[c]..self.starts[c + 1]] {
+                    let (a, b) = segments[k as usize];
                     if distance_squared_to_segment(p, a, b) < limit {
                         return false;
                     }
@@ -559,7 +555,7 @@ fn simplify(points: &[Vec2], tolerance: f32) -> Vec<Vec2> {
     for i in 1..n {
         let p = points[i];
         let next = points[(i + 1) % n];
-        let last = out.last().copied().unwrap_or(p);
+        let last = out[out.len() - 1];
         let droppable = dropped.len() < 32
             && distance_squared_to_segment(p, last, next) <= limit
             && dropped
@@ -663,7 +659,7 @@ fn quality(
     // The smallest angle so far as (twice area, dot): compared by cross-multiplying.
     let mut worst: Option<(f32, f32)> = None;
     for t in triangles {
-        let [a, b, c] = t.map(|i| positions.get(i as usize).copied().unwrap_or(Vec2::ZERO));
+        let [a, b, c] = t.map(|i| positions[i as usize]);
         let (y, x) = min_angle_tan(a, b, c);
         // angle < L  ⇔  y / x < tan L, for an acute angle (x > 0); a degenerate triangle
         // (y = 0) counts as below every limit.

@@ -122,12 +122,15 @@ impl IntoD2 for Vec2 {
 }
 
 pub(crate) fn bounds(points: &[Vec2]) -> Option<(Vec2, Vec2)> {
-    let first = *points.first()?;
-    Some(
-        points
-            .iter()
-            .fold((first, first), |(lo, hi), &p| (lo.min(p), hi.max(p))),
-    )
+    (!points.is_empty()).then(|| span(points))
+}
+
+/// [`bounds`] of at least one point.
+fn span(points: &[Vec2]) -> (Vec2, Vec2) {
+    let first = points[0];
+    points
+        .iter()
+        .fold((first, first), |(lo, hi), &p| (lo.min(p), hi.max(p)))
 }
 
 /// Shoelace area in `f64`, relative to the first point for precision.
@@ -206,7 +209,7 @@ pub fn contains_each(rings: &[Ring], points: &[Vec2]) -> Vec<bool> {
             }
             let from = first[bucket(low)] as usize;
             let (a, b) = (a.into_d2(), b.into_d2());
-            for &(y, k) in order.get(from..).unwrap_or(&[]) {
+            for &(y, k) in &order[from..] {
                 if y >= high {
                     break;
                 }
@@ -303,10 +306,7 @@ pub(crate) fn finish_with_areas(
     // Parents: the smallest outer ring containing a hole's first point (boxes only when
     // there is a hole to place).
     let boxes: Vec<(Vec2, Vec2)> = if rings.iter().any(|(_, area)| *area < 0.0) {
-        rings
-            .iter()
-            .map(|(p, _)| bounds(p).unwrap_or((Vec2::ZERO, Vec2::ZERO)))
-            .collect()
+        rings.iter().map(|(p, _)| span(p)).collect()
     } else {
         Vec::new()
     };
@@ -322,9 +322,8 @@ pub(crate) fn finish_with_areas(
             if o == h || *outer_area <= 0.0 {
                 continue;
             }
-            let Some(&(lo, hi)) = boxes.get(o) else {
-                continue;
-            };
+            // There is a hole (this one), so every ring has its box.
+            let (lo, hi) = boxes[o];
             if probe.cmplt(lo).any() || probe.cmpgt(hi).any() {
                 continue;
             }

@@ -30,7 +30,7 @@ impl Core<2> {
             for y in y0..=y1 {
                 let row = y * width;
                 for x in x0..=x1 {
-                    bits |= self.bits.get(row + x).copied().unwrap_or(0);
+                    bits |= self.bits[row + x];
                 }
             }
             // The one word, already loaded: no words left to read.
@@ -46,12 +46,12 @@ impl Core<2> {
             for x in x0..=x1 {
                 let at = (row + x) * words;
                 for (w, word) in seen.iter_mut().enumerate().take(words) {
-                    *word |= self.bits.get(at + w).copied().unwrap_or(0);
+                    *word |= self.bits[at + w];
                 }
             }
         }
         Some(BitBalls {
-            words: seen.get(..words).unwrap_or(&[]),
+            words: &seen[..words],
             base: 0,
             bits: 0,
             balls: &self.balls,
@@ -78,19 +78,16 @@ impl<'a, const D: usize> Iterator for BitBalls<'a, D> {
 
     #[inline]
     fn next(&mut self) -> Option<Self::Item> {
-        loop {
-            while self.bits == 0 {
-                let (&first, rest) = self.words.split_first()?;
-                self.bits = first;
-                self.words = rest;
-                self.base += 64;
-            }
-            let i = self.base - 64 + self.bits.trailing_zeros() as usize;
-            self.bits &= self.bits - 1;
-            if let Some(ball) = self.balls.get(i) {
-                return Some(ball);
-            }
+        while self.bits == 0 {
+            let (&first, rest) = self.words.split_first()?;
+            self.bits = first;
+            self.words = rest;
+            self.base += 64;
         }
+        let i = self.base - 64 + self.bits.trailing_zeros() as usize;
+        self.bits &= self.bits - 1;
+        // Only the bits of balls are ever set.
+        Some(&self.balls[i])
     }
 }
 

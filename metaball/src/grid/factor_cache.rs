@@ -70,12 +70,11 @@ impl FactorCache {
         ball: usize,
         compute: impl FnOnce() -> [f32; TILE],
     ) -> [f32; TILE] {
-        let Some(slot) = self.slots.get_mut(ball * 2 * CACHE_WAYS + base) else {
-            return compute();
-        };
-        if slot.0 == tag
-            && let Some(&factors) = self.factors.get(slot.1 as usize)
-        {
+        // `prepare` made room for every ball, both axes and every way.
+        let slot = &mut self.slots[ball * 2 * CACHE_WAYS + base];
+        // A finite coordinate's tag is never `EMPTY_TAG`: a matching slot holds factors.
+        if slot.0 == tag {
+            let factors = self.factors[slot.1 as usize];
             #[cfg(test)]
             {
                 self.hits += 1;
@@ -89,8 +88,8 @@ impl FactorCache {
             };
             self.factors.push(factors);
             *slot = (tag, row);
-        } else if let Some(kept) = self.factors.get_mut(slot.1 as usize) {
-            *kept = factors;
+        } else {
+            self.factors[slot.1 as usize] = factors;
             slot.0 = tag;
         }
         factors

@@ -32,6 +32,7 @@ impl<const D: usize> Core<D> {
         let mut lo = [f32::INFINITY; D];
         let mut hi = [f32::NEG_INFINITY; D];
         let mut cutoffs: Vec<f32> = Vec::with_capacity(balls.len());
+        debug_assert!(balls.len() <= crate::MAX_FIELD_BALLS);
         for (index, &(center, radius, id)) in balls.iter().enumerate() {
             let r2 = radius * radius;
             let cutoff = radius * math::sqrt(q_cut);
@@ -41,7 +42,8 @@ impl<const D: usize> Core<D> {
                 inv_r2: 1.0 / r2,
                 cutoff_d2,
                 reach: pad(math::sqrt(cutoff_d2)),
-                index: u32::try_from(index).unwrap_or(u32::MAX),
+                // The caller keeps to `MAX_FIELD_BALLS` (`u32::MAX`) balls.
+                index: index as u32,
             });
             ids.push(id);
             value_error += per_ball_value_error;
@@ -149,7 +151,7 @@ impl<const D: usize> Core<D> {
                 to[k] = self.clamp_axis(k, ball.center[k] + r);
             }
             for_each_run(from, to, self.dims, |run| {
-                for count in counts.get_mut(run).unwrap_or(&mut []) {
+                for count in &mut counts[run] {
                     *count += 1;
                 }
             });
@@ -178,16 +180,14 @@ impl<const D: usize> Core<D> {
             if let Some((from, to)) = *range {
                 for_each_run(from, to, self.dims, |run| {
                     let (first, len) = (run.start, run.len());
-                    for slot in cursor.get_mut(run).unwrap_or(&mut []) {
-                        if let Some(entry) = entries.get_mut(*slot as usize) {
-                            *entry = *ball;
-                        }
+                    for slot in &mut cursor[run] {
+                        entries[*slot as usize] = *ball;
                         *slot += 1;
                     }
                     if keep_bits {
                         let (at, bit) = (first * words + i / 64, 1u64 << (i % 64));
                         let span = (len - 1) * words + 1;
-                        let run = bits.get_mut(at..at + span).unwrap_or(&mut []);
+                        let run = &mut bits[at..at + span];
                         for word in run.iter_mut().step_by(words) {
                             *word |= bit;
                         }
@@ -231,10 +231,13 @@ impl<const D: usize> Core<D> {
             cell += (t as u32 as usize).min(dim - 1) * stride;
             stride *= dim;
         }
-        match (self.starts.get(cell), self.starts.get(cell + 1)) {
-            (Some(&a), Some(&b)) => self.entries.get(a as usize..b as usize).unwrap_or(&[]),
-            _ => &[],
-        }
+        self.cell_entries(cell)
+    }
+
+    /// The entries of cell `c` (flat index, `c < cell_count()`), in ball order.
+    #[inline]
+    pub(super) fn cell_entries(&self, c: usize) -> &[Entry<D>] {
+        &self.entries[self.starts[c] as usize..self.starts[c + 1] as usize]
     }
 
     pub(crate) fn len(&self) -> usize {
@@ -362,6 +365,21 @@ mod tests {
         assert_eq!(core.entry_count(), 0);
         assert_eq!(core.value([0.0, 0.0]), 0.0);
         assert!(core.value_exact([0.0, 0.0]) <= core.value_error());
+        // Blocks of every path read +0, with or without a factor cache.
+        let mut cache = super::super::FactorCache::default();
+        for [cols, rows] in [[8, 8], [5, 3], [20, 3]] {
+            let mut block = vec![f32::NAN; cols * rows];
+            core.sample_block([-1.0, -1.0], 0.25, cols, rows, &mut block, None);
+            assert!(block.iter().all(|s| s.to_bits() == 0));
+            block.fill(f32::NAN);
+            core.sample_block([-1.0, -1.0], 0.25, cols, rows, &mut block, Some(&mut cache));
+            assert!(block.iter().all(|s| s.to_bits() == 0));
+        }
+        assert!(
+            core.sample_grid([-1.0, -1.0], 0.25, 9, 9)
+                .iter()
+                .all(|s| s.to_bits() == 0)
+        );
     }
 
     #[test]

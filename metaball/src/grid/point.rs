@@ -152,7 +152,7 @@ impl<const D: usize> Core<D> {
     /// Adds ball `index`'s contribution `f` to its id's sum.
     #[inline(always)]
     fn add_share(&self, per_id: &mut PerId, index: u32, f: f32) {
-        let id = self.ids.get(index as usize).copied().unwrap_or(0);
+        let id = self.ids[index as usize];
         // A bone's balls are usually consecutive: the last id first.
         match per_id.last_mut() {
             Some(last) if last.0 == id => last.1 += f64::from(f),
@@ -174,6 +174,7 @@ impl<const D: usize> Core<D> {
         p: [f32; D],
         attributes: &[T],
     ) -> Result<Option<T>, MetaballError> {
+        debug_assert_eq!(attributes.len(), self.balls.len());
         let mut contributions: SmallVec<[(u32, f32); 16]> = SmallVec::new();
         let mut total = 0.0f64;
         self.for_each_contribution(&p, |index, f| {
@@ -185,9 +186,7 @@ impl<const D: usize> Core<D> {
         }
         let mut acc: Option<T> = None;
         for &(index, f) in &contributions {
-            let Some(&a) = attributes.get(index as usize) else {
-                continue;
-            };
+            let a = attributes[index as usize];
             if !a.is_finite() {
                 return Err(MetaballError::NonFinite {
                     what: "attribute",
@@ -308,10 +307,9 @@ fn split_terms<'a, const D: usize>(
         let mut n = 0;
         for (lane, e) in block.iter().enumerate() {
             let d2 = distance2(p, &e.center);
-            if let (Some(slot), Some(f)) = (kept.get_mut(n), f.get_mut(n)) {
-                *slot = lane as u8;
-                *f = -a * (d2 * e.inv_r2);
-            }
+            // `n ≤ lane < POINT_BATCH`.
+            kept[n] = lane as u8;
+            f[n] = -a * (d2 * e.inv_r2);
             n += usize::from(d2 < e.cutoff_d2);
         }
         // Within its cutoff an exponent is above −87, where the floored `exp` has the same
@@ -329,9 +327,7 @@ fn split_terms<'a, const D: usize>(
             }
         }
         for (&lane, &f) in kept.iter().zip(&f).take(n) {
-            if let Some(e) = block.get(usize::from(lane)) {
-                visit(e, f);
-            }
+            visit(&block[usize::from(lane)], f);
         }
     }
 }

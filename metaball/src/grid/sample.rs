@@ -53,6 +53,11 @@ impl Core<2> {
         if cols == 0 || rows == 0 {
             return;
         }
+        if self.cell_count() == 0 {
+            // No ball reaches epsilon anywhere (an empty grid): every sample is +0.
+            out.fill(0.0);
+            return;
+        }
         let far = [
             origin[0] + step * (cols - 1) as f32,
             origin[1] + step * (rows - 1) as f32,
@@ -84,13 +89,9 @@ impl Core<2> {
         let (x0, x1) = (self.clamp_axis(0, origin[0]), self.clamp_axis(0, far[0]));
         let (y0, y1) = (self.clamp_axis(1, origin[1]), self.clamp_axis(1, far[1]));
         let spanned = (x1 - x0 + 1) * (y1 - y0 + 1);
-        let cell_entries = |c: usize| match (self.starts.get(c), self.starts.get(c + 1)) {
-            (Some(&a), Some(&b)) => self.entries.get(a as usize..b as usize).unwrap_or(&[]),
-            _ => &[],
-        };
         if spanned == 1 {
             // One cell: its list is already the balls in ball order, each once.
-            let list = cell_entries(y0 * self.dims[0] + x0);
+            let list = self.cell_entries(y0 * self.dims[0] + x0);
             if tile {
                 self.sample_tile_either(cache, origin, step, size, list.iter(), out);
             } else {
@@ -102,18 +103,16 @@ impl Core<2> {
             let mut inline_seen = [0u64; SEEN_INLINE_WORDS];
             let mut heap_seen = Vec::new();
             let seen: &mut [u64] = if words <= SEEN_INLINE_WORDS {
-                inline_seen.get_mut(..words).unwrap_or(&mut [])
+                &mut inline_seen[..words]
             } else {
                 heap_seen.resize(words, 0);
                 &mut heap_seen
             };
             for y in y0..=y1 {
                 for x in x0..=x1 {
-                    for e in cell_entries(y * self.dims[0] + x) {
+                    for e in self.cell_entries(y * self.dims[0] + x) {
                         let i = e.index as usize;
-                        if let Some(word) = seen.get_mut(i / 64) {
-                            *word |= 1 << (i % 64);
-                        }
+                        seen[i / 64] |= 1 << (i % 64);
                     }
                 }
             }
@@ -192,11 +191,10 @@ impl Core<2> {
             ) else {
                 continue;
             };
-            let (Some(d2s), Some(factors)) =
-                (column_d2.get_mut(j0..=j1), column_factor.get_mut(j0..=j1))
-            else {
-                continue;
-            };
+            // `j1 < width` and `i1 < height` (`index_range`); `scratch` holds the rows and
+            // columns, `out` the samples.
+            let d2s = &mut column_d2[j0..=j1];
+            let factors = &mut column_factor[j0..=j1];
             for ((j, d2), factor) in (j0..=j1).zip(d2s.iter_mut()).zip(factors.iter_mut()) {
                 let dx = x_of(j) - center[0];
                 let dx2 = dx * dx;
@@ -206,9 +204,7 @@ impl Core<2> {
             }
             let rows = if BATCH {
                 math::exp_nonpositive_batch(factors);
-                let Some(rows) = row_factor.get_mut(i0..=i1) else {
-                    continue;
-                };
+                let rows = &mut row_factor[i0..=i1];
                 for (i, f) in (i0..=i1).zip(rows.iter_mut()) {
                     let dy = y_of(i) - center[1];
                     *f = -sharpness * ((dy * dy) * ball.inv_r2);
@@ -222,13 +218,11 @@ impl Core<2> {
                 let dy = y_of(i) - center[1];
                 let dy2 = dy * dy;
                 let row_factor = if BATCH {
-                    scale * rows.get(i - i0).copied().unwrap_or(0.0)
+                    scale * rows[i - i0]
                 } else {
                     scale * math::exp(-sharpness * (dy2 * ball.inv_r2))
                 };
-                let Some(row) = out.get_mut(i * width + j0..=i * width + j1) else {
-                    continue;
-                };
+                let row = &mut out[i * width + j0..=i * width + j1];
                 for ((sample, &dx2), &factor) in row.iter_mut().zip(&*d2s).zip(&*factors) {
                     // Same expression as `distance2`: (0 + dx²) + dy². Adding +0 instead of
                     // skipping keeps the bits (a sample starts at +0 and only grows), and lets

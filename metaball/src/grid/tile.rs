@@ -149,9 +149,8 @@ impl Core<2> {
                 let Some((dx2, dy2, partial)) = lanes.reach(ball) else {
                     continue;
                 };
-                let (Some(batched), Some(slot)) = (batch.get_mut(len), waiting.get_mut(len)) else {
-                    break;
-                };
+                // `len < TILE_BATCH`: the batch is sent off once full.
+                let (batched, slot) = (&mut batch[len], &mut waiting[len]);
                 // Column exponents, then row exponents.
                 let (columns, rows) = batched.split_at_mut(TILE);
                 exponents(columns, dx2, minus_sharpness, ball.inv_r2);
@@ -162,7 +161,7 @@ impl Core<2> {
                     break;
                 }
             }
-            let batch = batch.get_mut(..len).unwrap_or(&mut []);
+            let batch = &mut batch[..len];
             // Exponents below −87 (beyond [`SEPARABLE_FLOOR`]) belong to samples beyond the
             // cutoff, whose terms are masked to +0, or to lanes past the block: their factors
             // are never read, so they need not be flushed to 0.

@@ -8,6 +8,9 @@
 //! - [`tile`]: the fixed-width path for blocks of at most 8 × 8 samples.
 //! - [`factor_cache`]: row and column factors kept between tiles (`BlockSampler`).
 //! - [`proof`]: proving a whole block at least a level without sampling it.
+//!
+//! The sampling paths are hot (a contour tracer's tiles): a small non-generic helper called
+//! from another of these modules needs `#[inline]`, or it cannot inline across codegen units.
 
 use alloc::vec::Vec;
 

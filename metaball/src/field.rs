@@ -264,6 +264,228 @@ fn check_attributes<T: Attribute>(count: usize, attributes: &[T]) -> Result<(), 
     }
 }
 
+/// The methods [`Field2`] and [`Field3`] share, the same code for both: the field's ball,
+/// point and vector types vary, the work is `Core<D>`'s. The examples of `shares`, `blend` and
+/// `validate_attributes` are passed in (`Field2`'s; `Field3` has none).
+macro_rules! shared_field_methods {
+    (
+        $Field:ident, $Ball:ident, $Vec:ident;
+        shares: { $(#[$shares_doc:meta])* }
+        blend: { $(#[$blend_doc:meta])* }
+        validate_attributes: { $(#[$validate_doc:meta])* }
+    ) => {
+        impl $Field {
+            /// A field of `balls` with `falloff` and the other [`FieldOptions::DEFAULT`]s.
+            ///
+            /// # Errors
+            /// [`MetaballError::NoBalls`] for an empty slice; for a bad ball (non-finite or
+            /// out-of-range centre, radius not positive or outside
+            /// [`RADIUS_RANGE`](crate::RADIUS_RANGE)) the error names its index; a bad falloff
+            /// constant is named too.
+            pub fn new(balls: &[$Ball], falloff: Falloff) -> Result<Self, MetaballError> {
+                Self::with_options(balls, &FieldOptions::DEFAULT.with_falloff(falloff))
+            }
+
+            /// A field of `balls` with `options`.
+            ///
+            /// # Errors
+            /// As [`new`](Self::new), plus a bad epsilon or cell size.
+            pub fn with_options(
+                balls: &[$Ball],
+                options: &FieldOptions,
+            ) -> Result<Self, MetaballError> {
+                check_options_and_count(options, balls.len())?;
+                let mut input = Vec::with_capacity(balls.len());
+                for (index, ball) in balls.iter().enumerate() {
+                    let center = ball.center.to_array();
+                    validate_ball(&center, ball.radius, index)?;
+                    input.push((center, ball.radius, ball.id));
+                }
+                let core = Core::build(
+                    &input,
+                    options.falloff.kernel(),
+                    options.epsilon,
+                    options.cell_size,
+                );
+                Ok(Self {
+                    balls: balls.to_vec(),
+                    options: *options,
+                    core,
+                })
+            }
+
+            /// The balls, in input order.
+            #[must_use]
+            pub fn balls(&self) -> &[$Ball] {
+                &self.balls
+            }
+
+            /// The options the field was built with.
+            #[must_use]
+            pub fn options(&self) -> &FieldOptions {
+                &self.options
+            }
+
+            /// The falloff.
+            #[must_use]
+            pub fn falloff(&self) -> Falloff {
+                self.options.falloff
+            }
+
+            /// How many balls the field has (at least 1).
+            #[must_use]
+            pub fn ball_count(&self) -> usize {
+                self.core.len()
+            }
+
+            /// The culled field value at `p`: the sum over the balls whose cutoff reaches `p`,
+            /// in ball order. Within [`error_bound`](Self::error_bound) of
+            /// [`value_exact`](Self::value_exact), up to `f32` rounding: for the Gaussian
+            /// falloffs (seed, Blinn) each term's `exp` is the crate's own (within `1.5e-7` of
+            /// the true `exp`, the same bits on every platform, and what
+            /// [`Field2::sample_block`] uses), where `value_exact` uses the platform's.
+            /// [`value_and_gradient`](Self::value_and_gradient), [`shares`](Self::shares) and
+            /// [`blend`](Self::blend) sum the same terms.
+            #[must_use]
+            #[inline]
+            pub fn value(&self, p: $Vec) -> f32 {
+                self.core.value(p.to_array())
+            }
+
+            /// The exact field value at `p`: the sum over every ball, no culling, in ball order
+            /// (the seeds' computation; O(all balls)).
+            #[must_use]
+            pub fn value_exact(&self, p: $Vec) -> f32 {
+                self.core.value_exact(p.to_array())
+            }
+
+            /// Whether `p` is inside: `value(p) ≥ ISO_LEVEL`.
+            #[must_use]
+            pub fn contains(&self, p: $Vec) -> bool {
+                self.value(p) >= ISO_LEVEL
+            }
+
+            /// The analytic gradient of the culled field at `p` (it points towards higher
+            /// values, i.e. inwards at the iso line).
+            #[must_use]
+            pub fn gradient(&self, p: $Vec) -> $Vec {
+                self.value_and_gradient(p).1
+            }
+
+            /// The culled value and analytic gradient together, for the price of one.
+            #[must_use]
+            pub fn value_and_gradient(&self, p: $Vec) -> (f32, $Vec) {
+                let (v, g) = self.core.value_and_gradient(p.to_array());
+                (v, $Vec::from_array(g))
+            }
+
+            /// The exact analytic gradient over every ball.
+            #[must_use]
+            pub fn gradient_exact(&self, p: $Vec) -> $Vec {
+                $Vec::from_array(self.core.value_and_gradient_exact(p.to_array()).1)
+            }
+
+            /// The `k` ids with the largest summed contribution at `p`, largest first, with
+            /// their shares renormalised to sum to 1 over the kept ids (as the seed's skinning
+            /// does with its top 4). When `k` is at least the number of ids reaching `p`, each
+            /// share is exactly the per-id `Σ f_i / D` of the culled field.
+            ///
+            /// Fewer than `k` entries when fewer ids reach `p` (no padding); empty for `k = 0`
+            /// or where the culled field is 0.
+            ///
+            $(#[$shares_doc])*
+            #[must_use]
+            pub fn shares(&self, p: $Vec, k: usize) -> Shares {
+                self.core.shares(p.to_array(), k)
+            }
+
+            /// Blends one attribute per ball (colour, texture weights, anything linear) with
+            /// the per-ball shares `f_i(p) / D(p)` of the culled field: `Σ (f_i / Σ f_j) a_i`.
+            /// The weights are normalised before they multiply the attributes (in `f64`), so
+            /// the blend of finite attributes is their convex combination and cannot overflow
+            /// unless an attribute is within rounding of `f32::MAX`.
+            ///
+            /// `Ok(None)` where no ball reaches `p` (culled value 0).
+            ///
+            /// Only the attributes of the balls that reach `p` are read, so a sample stays
+            /// O(nearby balls), and only those are checked: a NaN or infinite attribute of a
+            /// ball that reaches `p` is an error, one of a ball that does not is never read. To
+            /// check every attribute once up front, call
+            /// [`validate_attributes`](Self::validate_attributes).
+            ///
+            $(#[$blend_doc])*
+            ///
+            /// # Errors
+            /// - [`MetaballError::WrongLength`] unless there is exactly one attribute per ball;
+            /// - [`MetaballError::NonFinite`] (`what: "attribute"`, the ball's index) for a NaN
+            ///   or infinite attribute of a ball that reaches `p`;
+            /// - [`MetaballError::BlendOverflow`] if the blend of finite attributes is not
+            ///   finite.
+            pub fn blend<T: Attribute>(
+                &self,
+                p: $Vec,
+                attributes: &[T],
+            ) -> Result<Option<T>, MetaballError> {
+                check_attribute_count(self.core.len(), attributes.len())?;
+                self.core.blend(p.to_array(), attributes)
+            }
+
+            /// Checks a whole attribute list for [`blend`](Self::blend) once, in O(balls): one
+            /// attribute per ball, every one finite.
+            ///
+            $(#[$validate_doc])*
+            ///
+            /// # Errors
+            /// [`MetaballError::WrongLength`] or [`MetaballError::NonFinite`] naming the first
+            /// non-finite attribute's index.
+            pub fn validate_attributes<T: Attribute>(
+                &self,
+                attributes: &[T],
+            ) -> Result<(), MetaballError> {
+                check_attributes(self.core.len(), attributes)
+            }
+
+            /// The largest possible difference between [`value`](Self::value) and
+            /// [`value_exact`](Self::value_exact) anywhere, up to `f32` rounding: the sum over
+            /// the balls of the most each can contribute beyond its cutoff, i.e.
+            /// `epsilon × ball count` for the exponential falloff and 0 for Wyvill.
+            ///
+            /// Near the iso line this moves the outline by at most about
+            /// `error_bound / |gradient|`: for a lone seed ball of radius `R`, `|∇D| = 1/R`
+            /// there.
+            #[must_use]
+            pub fn error_bound(&self) -> f32 {
+                self.core.value_error()
+            }
+
+            /// The largest possible length of `gradient(p) − gradient_exact(p)`, up to
+            /// rounding: the sum over the balls of the steepest each can be beyond its cutoff.
+            #[must_use]
+            pub fn gradient_error_bound(&self) -> f32 {
+                self.core.gradient_error()
+            }
+
+            /// The box `(min, max)` outside which the culled field is exactly 0: every ball's
+            /// centre ± its cutoff radius.
+            #[must_use]
+            pub fn bounds(&self) -> ($Vec, $Vec) {
+                let (lo, hi) = self.core.bounds();
+                ($Vec::from_array(lo), $Vec::from_array(hi))
+            }
+
+            /// The culling grid's statistics.
+            #[must_use]
+            pub fn grid_stats(&self) -> GridStats {
+                GridStats {
+                    cell_size: self.core.cell_size(),
+                    cells: self.core.cell_count(),
+                    entries: self.core.entry_count(),
+                }
+            }
+        }
+    };
+}
+
 /// A 2D metaball field `D(p) = Σ f_i(p)`, inside where `D(p) ≥ ISO_LEVEL` (1.0).
 ///
 /// Built once from a ball set; then every sample costs O(balls near `p`): each ball is cut off
@@ -311,142 +533,60 @@ pub struct Field2 {
     core: Core<2>,
 }
 
+shared_field_methods! {
+    Field2, Ball2, Vec2;
+    shares: {
+        /// ```
+        /// use creature_metaball::{Ball2, Falloff, Field2, glam::Vec2};
+        ///
+        /// // Two balls owned by bone 3, one by bone 5.
+        /// let balls = [
+        ///     Ball2::new(Vec2::new(0.0, 0.0), 5.0, 3),
+        ///     Ball2::new(Vec2::new(6.0, 0.0), 5.0, 3),
+        ///     Ball2::new(Vec2::new(12.0, 0.0), 5.0, 5),
+        /// ];
+        /// let field = Field2::new(&balls, Falloff::SEED)?;
+        /// let shares = field.shares(Vec2::new(8.0, 0.0), 4);
+        /// assert_eq!(shares.len(), 2);
+        /// assert_eq!(shares[0].id, 3);
+        /// assert!(shares[0].weight > shares[1].weight);
+        /// # Ok::<(), creature_metaball::MetaballError>(())
+        /// ```
+    }
+    blend: {
+        /// ```
+        /// use creature_metaball::{Ball2, Falloff, Field2, glam::{Vec2, Vec3}};
+        ///
+        /// let balls = [Ball2::new(Vec2::ZERO, 5.0, 0), Ball2::new(Vec2::new(8.0, 0.0), 5.0, 1)];
+        /// let colours = [Vec3::new(1.0, 0.0, 0.0), Vec3::new(0.0, 0.0, 1.0)];
+        /// let field = Field2::new(&balls, Falloff::SEED)?;
+        /// let mid = field.blend(Vec2::new(4.0, 0.0), &colours)?.unwrap_or_default();
+        /// assert!((mid.x - 0.5).abs() < 1e-5 && (mid.z - 0.5).abs() < 1e-5);
+        /// assert_eq!(field.blend(Vec2::new(1e4, 0.0), &colours)?, None);
+        /// # Ok::<(), creature_metaball::MetaballError>(())
+        /// ```
+    }
+    validate_attributes: {
+        /// ```
+        /// use creature_metaball::{Ball2, Falloff, Field2, MetaballError, glam::Vec2};
+        ///
+        /// let balls = [Ball2::new(Vec2::ZERO, 5.0, 0), Ball2::new(Vec2::new(1e3, 0.0), 5.0, 1)];
+        /// let field = Field2::new(&balls, Falloff::SEED)?;
+        /// let bad = [0.5, f32::NAN];
+        /// // The far ball does not reach the origin, so blending there never reads its NaN…
+        /// assert_eq!(field.blend(Vec2::ZERO, &bad)?, Some(0.5));
+        /// // …but the validator finds it.
+        /// assert_eq!(
+        ///     field.validate_attributes(&bad),
+        ///     Err(MetaballError::NonFinite { what: "attribute", index: 1 })
+        /// );
+        /// # Ok::<(), MetaballError>(())
+        /// ```
+    }
+}
+
+/// The 2D-only methods: combined queries, grid and block sampling, block proofs.
 impl Field2 {
-    /// A field of `balls` with `falloff` and the other [`FieldOptions::DEFAULT`]s.
-    ///
-    /// # Errors
-    /// [`MetaballError::NoBalls`] for an empty slice; for a bad ball (non-finite or
-    /// out-of-range centre, radius not positive or outside
-    /// [`RADIUS_RANGE`](crate::RADIUS_RANGE)) the error names its index; a bad falloff constant
-    /// is named too.
-    pub fn new(balls: &[Ball2], falloff: Falloff) -> Result<Self, MetaballError> {
-        Self::with_options(balls, &FieldOptions::DEFAULT.with_falloff(falloff))
-    }
-
-    /// A field of `balls` with `options`.
-    ///
-    /// # Errors
-    /// As [`Field2::new`], plus a bad epsilon or cell size.
-    pub fn with_options(balls: &[Ball2], options: &FieldOptions) -> Result<Self, MetaballError> {
-        check_options_and_count(options, balls.len())?;
-        let mut input = Vec::with_capacity(balls.len());
-        for (index, ball) in balls.iter().enumerate() {
-            let center = ball.center.to_array();
-            validate_ball(&center, ball.radius, index)?;
-            input.push((center, ball.radius, ball.id));
-        }
-        let core = Core::build(
-            &input,
-            options.falloff.kernel(),
-            options.epsilon,
-            options.cell_size,
-        );
-        Ok(Self {
-            balls: balls.to_vec(),
-            options: *options,
-            core,
-        })
-    }
-
-    /// The balls, in input order.
-    #[must_use]
-    pub fn balls(&self) -> &[Ball2] {
-        &self.balls
-    }
-
-    /// The options the field was built with.
-    #[must_use]
-    pub fn options(&self) -> &FieldOptions {
-        &self.options
-    }
-
-    /// The falloff.
-    #[must_use]
-    pub fn falloff(&self) -> Falloff {
-        self.options.falloff
-    }
-
-    /// How many balls the field has (at least 1).
-    #[must_use]
-    pub fn ball_count(&self) -> usize {
-        self.core.len()
-    }
-
-    /// The culled field value at `p`: the sum over the balls whose cutoff reaches `p`, in ball
-    /// order. Within [`error_bound`](Self::error_bound) of [`value_exact`](Self::value_exact),
-    /// up to `f32` rounding: for the Gaussian falloffs (seed, Blinn) each term's `exp` is the
-    /// crate's own (within `1.5e-7` of the true `exp`, the same bits on every platform, and
-    /// what [`sample_block`](Self::sample_block) uses), where `value_exact` uses the
-    /// platform's. [`value_and_gradient`](Self::value_and_gradient), [`shares`](Self::shares)
-    /// and [`blend`](Self::blend) sum the same terms.
-    #[must_use]
-    #[inline]
-    pub fn value(&self, p: Vec2) -> f32 {
-        self.core.value(p.to_array())
-    }
-
-    /// The exact field value at `p`: the sum over every ball, no culling, in ball order (the
-    /// seeds' computation; O(all balls)).
-    #[must_use]
-    pub fn value_exact(&self, p: Vec2) -> f32 {
-        self.core.value_exact(p.to_array())
-    }
-
-    /// Whether `p` is inside: `value(p) ≥ ISO_LEVEL`.
-    #[must_use]
-    pub fn contains(&self, p: Vec2) -> bool {
-        self.value(p) >= ISO_LEVEL
-    }
-
-    /// The analytic gradient of the culled field at `p` (it points towards higher values, i.e.
-    /// inwards at the iso line).
-    #[must_use]
-    pub fn gradient(&self, p: Vec2) -> Vec2 {
-        self.value_and_gradient(p).1
-    }
-
-    /// The culled value and analytic gradient together, for the price of one.
-    #[must_use]
-    pub fn value_and_gradient(&self, p: Vec2) -> (f32, Vec2) {
-        let (v, g) = self.core.value_and_gradient(p.to_array());
-        (v, Vec2::from_array(g))
-    }
-
-    /// The exact analytic gradient over every ball.
-    #[must_use]
-    pub fn gradient_exact(&self, p: Vec2) -> Vec2 {
-        Vec2::from_array(self.core.value_and_gradient_exact(p.to_array()).1)
-    }
-
-    /// The `k` ids with the largest summed contribution at `p`, largest first, with their
-    /// shares renormalised to sum to 1 over the kept ids (as the seed's skinning does with its
-    /// top 4). When `k` is at least the number of ids reaching `p`, each share is exactly the
-    /// per-id `Σ f_i / D` of the culled field.
-    ///
-    /// Fewer than `k` entries when fewer ids reach `p` (no padding); empty for `k = 0` or where
-    /// the culled field is 0.
-    ///
-    /// ```
-    /// use creature_metaball::{Ball2, Falloff, Field2, glam::Vec2};
-    ///
-    /// // Two balls owned by bone 3, one by bone 5.
-    /// let balls = [
-    ///     Ball2::new(Vec2::new(0.0, 0.0), 5.0, 3),
-    ///     Ball2::new(Vec2::new(6.0, 0.0), 5.0, 3),
-    ///     Ball2::new(Vec2::new(12.0, 0.0), 5.0, 5),
-    /// ];
-    /// let field = Field2::new(&balls, Falloff::SEED)?;
-    /// let shares = field.shares(Vec2::new(8.0, 0.0), 4);
-    /// assert_eq!(shares.len(), 2);
-    /// assert_eq!(shares[0].id, 3);
-    /// assert!(shares[0].weight > shares[1].weight);
-    /// # Ok::<(), creature_metaball::MetaballError>(())
-    /// ```
-    #[must_use]
-    pub fn shares(&self, p: Vec2, k: usize) -> Shares {
-        self.core.shares(p.to_array(), k)
-    }
-
     /// [`value_and_gradient`](Self::value_and_gradient) and [`shares`](Self::shares) at `p` in
     /// one pass over the balls that reach it (two for Wyvill's falloff): the same results, bit
     /// for bit, for about the price of one — for a mesh vertex that needs its skin weights and
@@ -467,108 +607,6 @@ impl Field2 {
     pub fn value_gradient_and_shares(&self, p: Vec2, k: usize) -> (f32, Vec2, Shares) {
         let (v, g, s) = self.core.value_gradient_and_shares(p.to_array(), k);
         (v, Vec2::from_array(g), s)
-    }
-
-    /// Blends one attribute per ball (colour, texture weights, anything linear) with the
-    /// per-ball shares `f_i(p) / D(p)` of the culled field: `Σ (f_i / Σ f_j) a_i`. The weights
-    /// are normalised before they multiply the attributes (in `f64`), so the blend of finite
-    /// attributes is their convex combination and cannot overflow unless an attribute is within
-    /// rounding of `f32::MAX`.
-    ///
-    /// `Ok(None)` where no ball reaches `p` (culled value 0).
-    ///
-    /// Only the attributes of the balls that reach `p` are read, so a sample stays O(nearby
-    /// balls), and only those are checked: a NaN or infinite attribute of a ball that reaches
-    /// `p` is an error, one of a ball that does not is never read. To check every attribute
-    /// once up front, call [`validate_attributes`](Self::validate_attributes).
-    ///
-    /// ```
-    /// use creature_metaball::{Ball2, Falloff, Field2, glam::{Vec2, Vec3}};
-    ///
-    /// let balls = [Ball2::new(Vec2::ZERO, 5.0, 0), Ball2::new(Vec2::new(8.0, 0.0), 5.0, 1)];
-    /// let colours = [Vec3::new(1.0, 0.0, 0.0), Vec3::new(0.0, 0.0, 1.0)];
-    /// let field = Field2::new(&balls, Falloff::SEED)?;
-    /// let mid = field.blend(Vec2::new(4.0, 0.0), &colours)?.unwrap_or_default();
-    /// assert!((mid.x - 0.5).abs() < 1e-5 && (mid.z - 0.5).abs() < 1e-5);
-    /// assert_eq!(field.blend(Vec2::new(1e4, 0.0), &colours)?, None);
-    /// # Ok::<(), creature_metaball::MetaballError>(())
-    /// ```
-    ///
-    /// # Errors
-    /// - [`MetaballError::WrongLength`] unless there is exactly one attribute per ball;
-    /// - [`MetaballError::NonFinite`] (`what: "attribute"`, the ball's index) for a NaN or
-    ///   infinite attribute of a ball that reaches `p`;
-    /// - [`MetaballError::BlendOverflow`] if the blend of finite attributes is not finite.
-    pub fn blend<T: Attribute>(
-        &self,
-        p: Vec2,
-        attributes: &[T],
-    ) -> Result<Option<T>, MetaballError> {
-        check_attribute_count(self.core.len(), attributes.len())?;
-        self.core.blend(p.to_array(), attributes)
-    }
-
-    /// Checks a whole attribute list for [`blend`](Self::blend) once, in O(balls): one
-    /// attribute per ball, every one finite.
-    ///
-    /// ```
-    /// use creature_metaball::{Ball2, Falloff, Field2, MetaballError, glam::Vec2};
-    ///
-    /// let balls = [Ball2::new(Vec2::ZERO, 5.0, 0), Ball2::new(Vec2::new(1e3, 0.0), 5.0, 1)];
-    /// let field = Field2::new(&balls, Falloff::SEED)?;
-    /// let bad = [0.5, f32::NAN];
-    /// // The far ball does not reach the origin, so blending there never reads its NaN…
-    /// assert_eq!(field.blend(Vec2::ZERO, &bad)?, Some(0.5));
-    /// // …but the validator finds it.
-    /// assert_eq!(
-    ///     field.validate_attributes(&bad),
-    ///     Err(MetaballError::NonFinite { what: "attribute", index: 1 })
-    /// );
-    /// # Ok::<(), MetaballError>(())
-    /// ```
-    ///
-    /// # Errors
-    /// [`MetaballError::WrongLength`] or [`MetaballError::NonFinite`] naming the first
-    /// non-finite attribute's index.
-    pub fn validate_attributes<T: Attribute>(&self, attributes: &[T]) -> Result<(), MetaballError> {
-        check_attributes(self.core.len(), attributes)
-    }
-
-    /// The largest possible difference between [`value`](Self::value) and
-    /// [`value_exact`](Self::value_exact) anywhere, up to `f32` rounding: the sum over the
-    /// balls of the most each can contribute beyond its cutoff, i.e. `epsilon × ball count`
-    /// for the exponential falloff and 0 for Wyvill.
-    ///
-    /// Near the iso line this moves the outline by at most about
-    /// `error_bound / |gradient|`: for a lone seed ball of radius `R`, `|∇D| = 1/R` there.
-    #[must_use]
-    pub fn error_bound(&self) -> f32 {
-        self.core.value_error()
-    }
-
-    /// The largest possible length of `gradient(p) − gradient_exact(p)`, up to rounding: the
-    /// sum over the balls of the steepest each can be beyond its cutoff.
-    #[must_use]
-    pub fn gradient_error_bound(&self) -> f32 {
-        self.core.gradient_error()
-    }
-
-    /// The box `(min, max)` outside which the culled field is exactly 0: every ball's centre
-    /// ± its cutoff radius.
-    #[must_use]
-    pub fn bounds(&self) -> (Vec2, Vec2) {
-        let (lo, hi) = self.core.bounds();
-        (Vec2::from_array(lo), Vec2::from_array(hi))
-    }
-
-    /// The culling grid's statistics.
-    #[must_use]
-    pub fn grid_stats(&self) -> GridStats {
-        GridStats {
-            cell_size: self.core.cell_size(),
-            cells: self.core.cell_count(),
-            entries: self.core.entry_count(),
-        }
     }
 
     /// Samples the culled field on a `width × height` grid with spacing `step`: sample
@@ -950,158 +988,11 @@ pub struct Field3 {
     core: Core<3>,
 }
 
-impl Field3 {
-    /// A field of `balls` with `falloff` and the other [`FieldOptions::DEFAULT`]s.
-    ///
-    /// # Errors
-    /// As [`Field2::new`].
-    pub fn new(balls: &[Ball3], falloff: Falloff) -> Result<Self, MetaballError> {
-        Self::with_options(balls, &FieldOptions::DEFAULT.with_falloff(falloff))
-    }
-
-    /// A field of `balls` with `options`.
-    ///
-    /// # Errors
-    /// As [`Field2::with_options`].
-    pub fn with_options(balls: &[Ball3], options: &FieldOptions) -> Result<Self, MetaballError> {
-        check_options_and_count(options, balls.len())?;
-        let mut input = Vec::with_capacity(balls.len());
-        for (index, ball) in balls.iter().enumerate() {
-            let center = ball.center.to_array();
-            validate_ball(&center, ball.radius, index)?;
-            input.push((center, ball.radius, ball.id));
-        }
-        let core = Core::build(
-            &input,
-            options.falloff.kernel(),
-            options.epsilon,
-            options.cell_size,
-        );
-        Ok(Self {
-            balls: balls.to_vec(),
-            options: *options,
-            core,
-        })
-    }
-
-    /// The balls, in input order.
-    #[must_use]
-    pub fn balls(&self) -> &[Ball3] {
-        &self.balls
-    }
-
-    /// The options the field was built with.
-    #[must_use]
-    pub fn options(&self) -> &FieldOptions {
-        &self.options
-    }
-
-    /// The falloff.
-    #[must_use]
-    pub fn falloff(&self) -> Falloff {
-        self.options.falloff
-    }
-
-    /// How many balls the field has (at least 1).
-    #[must_use]
-    pub fn ball_count(&self) -> usize {
-        self.core.len()
-    }
-
-    /// The culled field value at `p`; see [`Field2::value`].
-    #[must_use]
-    #[inline]
-    pub fn value(&self, p: Vec3) -> f32 {
-        self.core.value(p.to_array())
-    }
-
-    /// The exact all-balls value at `p`; see [`Field2::value_exact`].
-    #[must_use]
-    pub fn value_exact(&self, p: Vec3) -> f32 {
-        self.core.value_exact(p.to_array())
-    }
-
-    /// Whether `p` is inside: `value(p) ≥ ISO_LEVEL`.
-    #[must_use]
-    pub fn contains(&self, p: Vec3) -> bool {
-        self.value(p) >= ISO_LEVEL
-    }
-
-    /// The analytic gradient of the culled field at `p`.
-    #[must_use]
-    pub fn gradient(&self, p: Vec3) -> Vec3 {
-        self.value_and_gradient(p).1
-    }
-
-    /// The culled value and analytic gradient together.
-    #[must_use]
-    pub fn value_and_gradient(&self, p: Vec3) -> (f32, Vec3) {
-        let (v, g) = self.core.value_and_gradient(p.to_array());
-        (v, Vec3::from_array(g))
-    }
-
-    /// The exact analytic gradient over every ball.
-    #[must_use]
-    pub fn gradient_exact(&self, p: Vec3) -> Vec3 {
-        Vec3::from_array(self.core.value_and_gradient_exact(p.to_array()).1)
-    }
-
-    /// The top-`k` ids and their renormalised shares at `p`; see [`Field2::shares`].
-    #[must_use]
-    pub fn shares(&self, p: Vec3, k: usize) -> Shares {
-        self.core.shares(p.to_array(), k)
-    }
-
-    /// Blends one attribute per ball with the shares `f_i / D`; see [`Field2::blend`].
-    ///
-    /// # Errors
-    /// As [`Field2::blend`].
-    pub fn blend<T: Attribute>(
-        &self,
-        p: Vec3,
-        attributes: &[T],
-    ) -> Result<Option<T>, MetaballError> {
-        check_attribute_count(self.core.len(), attributes.len())?;
-        self.core.blend(p.to_array(), attributes)
-    }
-
-    /// Checks a whole attribute list for [`blend`](Self::blend) once; see
-    /// [`Field2::validate_attributes`].
-    ///
-    /// # Errors
-    /// As [`Field2::validate_attributes`].
-    pub fn validate_attributes<T: Attribute>(&self, attributes: &[T]) -> Result<(), MetaballError> {
-        check_attributes(self.core.len(), attributes)
-    }
-
-    /// The bound on `|value − value_exact|`; see [`Field2::error_bound`].
-    #[must_use]
-    pub fn error_bound(&self) -> f32 {
-        self.core.value_error()
-    }
-
-    /// The bound on `|gradient − gradient_exact|`; see [`Field2::gradient_error_bound`].
-    #[must_use]
-    pub fn gradient_error_bound(&self) -> f32 {
-        self.core.gradient_error()
-    }
-
-    /// The box outside which the culled field is exactly 0.
-    #[must_use]
-    pub fn bounds(&self) -> (Vec3, Vec3) {
-        let (lo, hi) = self.core.bounds();
-        (Vec3::from_array(lo), Vec3::from_array(hi))
-    }
-
-    /// The culling grid's statistics.
-    #[must_use]
-    pub fn grid_stats(&self) -> GridStats {
-        GridStats {
-            cell_size: self.core.cell_size(),
-            cells: self.core.cell_count(),
-            entries: self.core.entry_count(),
-        }
-    }
+shared_field_methods! {
+    Field3, Ball3, Vec3;
+    shares: {}
+    blend: {}
+    validate_attributes: {}
 }
 
 #[cfg(test)]

@@ -29,7 +29,7 @@ pub fn glb_2d(creature: &crate::d2::Creature) -> Result<Vec<u8>, Error> {
     let agree = m.uvs.len() == n && m.joints.len() == n && m.weights.len() == n;
     check_skinned_mesh(n, agree, &m.indices, creature.bones.len())?;
     use json::accessor::{ComponentType as C, Type as T};
-    
+
     let mut bin = Bin::new();
     let mut root = new_root();
 

@@ -60,7 +60,7 @@ pub fn glb_3d(creature: &Creature, clips: &[Clip]) -> Result<Vec<u8>, Error> {
         return Err(export_error("glb", "the skeleton has no root"));
     };
     use json::accessor::{ComponentType as C, Type as T};
-    
+
     let mut bin = Bin::new();
     let mut root = new_root();
 

@@ -45,25 +45,30 @@ pub(crate) fn turn(c: &Creature) -> Result<Clip, Error> {
     // Cut at the frame near 4 s with the first frame's feet planted; then try again at
     // the rate that completes the turn exactly at that frame (the steps shift with the
     // rate), keeping the best of three.
-    let mut rate = core::f32::consts::FRAC_PI_2;
-    let mut best: Option<(f32, f32, GaitRun, usize)> = None;
-    for _ in 0..3 {
+    // A try at `rate`: its score, run, cut and the rate that completes the turn at the cut.
+    let attempt = |rate: f32| -> Result<(f32, GaitRun, usize, f32), Error> {
         let run = c.simulate_gait(5.0, 0.0, rate)?;
         let shortfall = |f: usize| radius * (f as f32 / CLIP_FPS * rate - full).abs();
         let end = best_cut(&run, window.clone(), shortfall);
         let score = run.mismatch(end) + shortfall(end);
         let next = full / (end.max(1) as f32 / CLIP_FPS);
-        if best.as_ref().is_none_or(|b| score < b.0) {
-            best = Some((score, rate, run, end));
-        }
+        Ok((score, run, end, next))
+    };
+    let mut rate = core::f32::consts::FRAC_PI_2;
+    let (mut score, run, end, mut next) = attempt(rate)?;
+    let mut best = (score, rate, run, end);
+    for _ in 1..3 {
         if score <= 0.0 || next == rate {
             break;
         }
         rate = next;
+        let (tried, run, end, after) = attempt(rate)?;
+        if tried < best.0 {
+            best = (tried, rate, run, end);
+        }
+        (score, next) = (tried, after);
     }
-    let Some((_, rate, run, end)) = best else {
-        return Err(Error::NoGait);
-    };
+    let (_, rate, run, end) = best;
     let run = c.closed_or_cut(run, end, &Pose::IDENTITY);
     c.clip_from_run("turn", &run, rate)
 }

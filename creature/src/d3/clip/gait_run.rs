@@ -1,11 +1,12 @@
 //! A recorded gait controller run (per frame the body, the feet and their contacts), how far a
-//! frame is from repeating the first, the best frame to cut a loop at, and closing the loop.
+//! frame is from repeating the first, the best frame to cut a loop at, closing the loop, and
+//! how far a planted foot ends up beyond its leg's reach.
 
 use alloc::vec::Vec;
 
 use glam::{Quat, Vec3};
 
-use creature_gait::Pose;
+use creature_gait::{Leg, LimbKind, Pose};
 
 use super::kinematics::angle_between;
 
@@ -117,6 +118,24 @@ impl GaitRun {
 
     pub(super) fn planted(&self, frame: usize, leg: usize) -> bool {
         self.contacts[frame][leg]
+    }
+
+    /// How far (metres) the farthest planted foot is beyond its leg's reach (`legs`, the run's).
+    /// Only walking legs: an arm holding its place is not on the ground, and may lag out of
+    /// reach.
+    pub(super) fn overreach(&self, legs: &[Leg]) -> f32 {
+        let mut worst = 0.0f32;
+        for (frame, body) in self.bodies.iter().enumerate() {
+            for (i, leg) in legs.iter().enumerate() {
+                if leg.kind == LimbKind::Leg && self.planted(frame, i) {
+                    let d = body
+                        .inverse_transform_point(self.foot(frame, i))
+                        .distance(leg.hip);
+                    worst = worst.max(d - (leg.upper + leg.lower));
+                }
+            }
+        }
+        worst
     }
 }
 

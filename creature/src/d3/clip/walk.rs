@@ -22,26 +22,27 @@ const WARM_UP: f32 = 1.0;
 
 /// A looping `walk` (see [`Creature::bake_walk_loop`]).
 pub(crate) fn walk_loop(c: &Creature) -> Result<Clip, Error> {
+    let setup = c.gait.as_ref().ok_or(Error::NoGait)?;
     let run = c.simulate_gait(4.0, c.speed, 0.0)?;
     let first = CLIP_FPS as usize;
     let end = best_cut(&run, first..run.frames(), |_| 0.0);
     let travel = Pose::from_yaw(Vec3::Z * (c.speed * end as f32 / CLIP_FPS), 0.0);
-    let run = c.closed_or_cut(run, end, &travel);
+    let run = c.closed_or_cut(run, end, &travel, &setup.legs);
     c.clip_from_run("walk", &run, 0.0)
 }
 
 /// A full `turn` in place (see [`Creature::bake_turn`]).
 pub(crate) fn turn(c: &Creature) -> Result<Clip, Error> {
+    let setup = c.gait.as_ref().ok_or(Error::NoGait)?;
     let full = core::f32::consts::TAU;
     let window = (3.5 * CLIP_FPS) as usize..(4.5 * CLIP_FPS) as usize + 1;
     // The turn's shortfall (or excess) at the cut is spread over the clip, which moves the
     // hips over the planted feet: it weighs as far as it moves the farthest hip.
-    let radius = c.gait.as_ref().map_or(0.0, |g| {
-        g.legs
-            .iter()
-            .map(|l| glam::Vec2::new(l.hip.x, l.hip.z).length())
-            .fold(0.0, f32::max)
-    });
+    let radius = setup
+        .legs
+        .iter()
+        .map(|l| glam::Vec2::new(l.hip.x, l.hip.z).length())
+        .fold(0.0, f32::max);
     // Cut at the frame near 4 s with the first frame's feet planted; then try again at
     // the rate that completes the turn exactly at that frame (the steps shift with the
     // rate), keeping the best of three.
@@ -69,7 +70,7 @@ pub(crate) fn turn(c: &Creature) -> Result<Clip, Error> {
         (score, next) = (tried, after);
     }
     let (_, rate, run, end) = best;
-    let run = c.closed_or_cut(run, end, &Pose::IDENTITY);
+    let run = c.closed_or_cut(run, end, &Pose::IDENTITY, &setup.legs);
     c.clip_from_run("turn", &run, rate)
 }
 
@@ -91,39 +92,18 @@ impl Creature {
     /// planted foot further out of its leg's reach than the plain cut does (the spread
     /// correction can stretch a leg that was nearly straight), or would slide a foot that
     /// never lifts in the clip (a walker so slow that it takes no step in it): then the plain
-    /// cut, whose [`Clip::loop_error`] says how far it is from looping.
-    fn closed_or_cut(&self, run: GaitRun, end: usize, motion: &Pose) -> GaitRun {
+    /// cut, whose [`Clip::loop_error`] says how far it is from looping (`legs`: the run's).
+    fn closed_or_cut(&self, run: GaitRun, end: usize, motion: &Pose, legs: &[Leg]) -> GaitRun {
         let mut closed = run.clone();
         let planted_shift = closed.close_loop(end, motion);
         let mut cut = run;
         cut.truncate(end + 1);
         let tolerance = 1e-4 * self.length;
-        if planted_shift <= tolerance && self.overreach(&closed) <= self.overreach(&cut) + tolerance
-        {
+        if planted_shift <= tolerance && closed.overreach(legs) <= cut.overreach(legs) + tolerance {
             closed
         } else {
             cut
         }
-    }
-
-    /// How far (metres) the farthest planted foot of `run` is beyond its leg's reach. Only
-    /// walking legs: an arm holding its place is not on the ground, and may lag out of reach.
-    fn overreach(&self, run: &GaitRun) -> f32 {
-        let Some(setup) = self.gait.as_ref() else {
-            return 0.0;
-        };
-        let mut worst = 0.0f32;
-        for (frame, body) in run.bodies.iter().enumerate() {
-            for (i, leg) in setup.legs.iter().enumerate() {
-                if leg.kind == creature_gait::LimbKind::Leg && run.planted(frame, i) {
-                    let d = body
-                        .inverse_transform_point(run.foot(frame, i))
-                        .distance(leg.hip);
-                    worst = worst.max(d - (leg.upper + leg.lower));
-                }
-            }
-        }
-        worst
     }
 
     /// Runs the gait controller at [`CLIP_FPS`] over flat ground for `seconds` after the

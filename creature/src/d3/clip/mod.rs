@@ -1,10 +1,10 @@
 //! Baked animation clips of 3D creatures: the [`Clip`] and [`Track`] types, and what every
-//! baker shares (frame counts, empty clips, loop errors, the root joint and tail chain). The
-//! bakers and their helpers are in the submodules:
+//! baker shares (frame counts, empty clips, loop errors, the root's rest position, the tail
+//! chain). The bakers and their helpers are in the submodules:
 //!
 //! - `walk`: walkers' gait-driven `walk`, `turn` and `idle` (the controller run, the loop cut
 //!   and closed, legs by two-bone IK);
-//! - `gait_run`: a recorded controller run, its mismatch, loop closing and best cut;
+//! - `gait_run`: a recorded controller run, its mismatch, best cut, loop closing and overreach;
 //! - `floor`: keeping the body and knees above the floor;
 //! - `flight`: fliers' `hover` and `fly` (flapping wings, damped chains);
 //! - `swim`: swimmers' `idle` and `swim` (a spine wave, fins);

@@ -22,7 +22,6 @@
 
 mod creature;
 mod generate;
-mod noise;
 mod params;
 mod skeleton;
 mod texture;

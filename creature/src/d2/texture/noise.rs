@@ -123,7 +123,8 @@ impl ValueTable {
     /// by lattice row: [`Expanded::row`] then only interpolates in y, a contiguous run the
     /// compiler vectorises.
     pub(crate) fn expand(&self, xs: &[f32]) -> Expanded {
-        // Each point's lattice column and smoothed weight, then row by row a plain lerp.
+        // Each point's lattice column (at most `scale.x`, so it and the next are in the table)
+        // and smoothed weight, then row by row a plain lerp.
         let weights: Vec<(usize, f32)> = xs
             .iter()
             .map(|&x| {
@@ -135,14 +136,10 @@ impl ValueTable {
         let rows = self.values.len() / self.columns.max(1);
         let mut values = Vec::with_capacity(rows * xs.len());
         for lattice in self.values.chunks_exact(self.columns) {
-            values.extend(
-                weights
-                    .iter()
-                    .map(|&(ix, fx)| match lattice.get(ix..ix + 2) {
-                        Some(&[a, b]) => a + (b - a) * fx,
-                        _ => 0.0,
-                    }),
-            );
+            values.extend(weights.iter().map(|&(ix, fx)| {
+                let (a, b) = (lattice[ix], lattice[ix + 1]);
+                a + (b - a) * fx
+            }));
         }
         Expanded {
             scale_y: self.scale.y,
@@ -167,14 +164,13 @@ impl Expanded {
         let q = y.clamp(0.0, 1.0) * self.scale_y;
         let iy = q as usize;
         let w = smooth(q - iy as f32);
+        // `iy` is at most `scale_y`: it and the next row are in the table.
         let start = iy * self.width;
-        match (
-            self.values.get(start..start + self.width),
-            self.values.get(start + self.width..start + 2 * self.width),
-        ) {
-            (Some(a), Some(b)) => (a, b, w),
-            _ => (&[], &[], 0.0),
-        }
+        let (a, b) = (
+            &self.values[start..start + self.width],
+            &self.values[start + self.width..start + 2 * self.width],
+        );
+        (a, b, w)
     }
 }
 
@@ -240,11 +236,11 @@ impl CellTable {
         for column in 0..self.columns {
             let mut x = [0.0; 3];
             let mut dy2 = [f32::MAX; 3];
+            // Rows up to `scale + 2`, of the `scale + 4` stored.
             for (k, row) in (iy - 1..=iy + 1).enumerate() {
-                if let Some(point) = self.points.get(row * self.columns + column) {
-                    x[k] = point.x;
-                    dy2[k] = (point.y - q) * (point.y - q);
-                }
+                let point = self.points[row * self.columns + column];
+                x[k] = point.x;
+                dy2[k] = (point.y - q) * (point.y - q);
             }
             out.x.push(x);
             out.dy2.push(dy2);
@@ -252,23 +248,20 @@ impl CellTable {
     }
 
     /// The 9 candidate feature points (x, squared y distance) of the points whose x falls in
-    /// lattice column `ix − 1` (stored as `ix`), on a row made by [`Self::row`].
+    /// lattice column `ix − 1` (stored as `ix`, from 1 to `scale + 1`), on a row made by
+    /// [`Self::row`].
     #[inline]
     fn candidates(row: &CellRow, ix: usize) -> ([f32; 9], [f32; 9]) {
         let mut xs = [0.0; 9];
         let mut dy2s = [f32::MAX; 9];
-        if let (Some(x), Some(dy2)) = (
-            row.x.get(ix.wrapping_sub(1)..=ix + 1),
-            row.dy2.get(ix.wrapping_sub(1)..=ix + 1),
-        ) {
-            for ((x, dy2), (xs, dy2s)) in x
-                .iter()
-                .zip(dy2)
-                .zip(xs.chunks_exact_mut(3).zip(dy2s.chunks_exact_mut(3)))
-            {
-                xs.copy_from_slice(x);
-                dy2s.copy_from_slice(dy2);
-            }
+        let (x, dy2) = (&row.x[ix - 1..=ix + 1], &row.dy2[ix - 1..=ix + 1]);
+        for ((x, dy2), (xs, dy2s)) in x
+            .iter()
+            .zip(dy2)
+            .zip(xs.chunks_exact_mut(3).zip(dy2s.chunks_exact_mut(3)))
+        {
+            xs.copy_from_slice(x);
+            dy2s.copy_from_slice(dy2);
         }
         (xs, dy2s)
     }
@@ -392,15 +385,9 @@ impl BaseTextures {
         let (ga, gb, gw) = self.grain.row(row.y);
         let dy = row.y - WOOD_CENTRE.y;
         let dy2 = dy * dy;
-        let (Some(wa), Some(wb), Some(ga), Some(gb), Some(dx2)) = (
-            wa.get(range.clone()),
-            wb.get(range.clone()),
-            ga.get(range.clone()),
-            gb.get(range.clone()),
-            self.wood_dx2.get(range),
-        ) else {
-            return;
-        };
+        let (wa, wb) = (&wa[range.clone()], &wb[range.clone()]);
+        let (ga, gb) = (&ga[range.clone()], &gb[range.clone()]);
+        let dx2 = &self.wood_dx2[range];
         let points = wa.iter().zip(wb).zip(ga.iter().zip(gb)).zip(dx2).zip(out);
         for ((((&wa, &wb), (&ga, &gb)), &dx2), out) in points {
             let warp = wa + (wb - wa) * ww;
@@ -426,14 +413,8 @@ impl BaseTextures {
             }
             let (xs, dy2s) = CellTable::candidates(&row.cells, ix);
             let local = run.start - range.start..run.end - range.start;
-            let (Some(q), Some(fa), Some(fb), Some(out)) = (
-                self.cell_x.get(run.clone()),
-                fa.get(run.clone()),
-                fb.get(run),
-                out.get_mut(local),
-            ) else {
-                continue;
-            };
+            let (q, fa, fb) = (&self.cell_x[run.clone()], &fa[run.clone()], &fb[run]);
+            let out = &mut out[local];
             for (((&q, &fa), &fb), out) in q.iter().zip(fa).zip(fb).zip(out) {
                 let mut d1 = f32::MAX;
                 let mut d2 = f32::MAX;

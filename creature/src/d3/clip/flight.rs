@@ -1,0 +1,233 @@
+//! Fliers' `hover` and `fly` clips: the wings beat by the flap motion, the body bobs and
+//! drifts, and the legs, arms and tail are damped chains of a legless gait controller.
+
+use alloc::vec::Vec;
+
+use glam::{Quat, Vec3};
+
+use creature_gait::{Chain, Controller, FlapParams, GaitOptions, Plane, Pose, Side};
+use creature_limbs::LimbKind;
+
+use super::kinematics::rotation_arc;
+use super::{Clip, empty_clip, frames_for, loop_error, side_sign, sin_turns};
+use crate::Error;
+use crate::d3::Creature;
+
+/// A flier's `hover` (speed 0) or `fly` clip.
+pub(crate) fn flight(c: &Creature, name: &'static str, speed: f32) -> Result<Clip, Error> {
+    let buzzing = c.plan.limbs_of(LimbKind::BuzzingWing).count() > 0;
+    let flap = if buzzing {
+        FlapParams::BUZZING.with_frequency(8.0)
+    } else {
+        FlapParams::FLAPPING
+    };
+    // Buzzing: the hover bob's period (10 beats); flapping: 3 beats (bob in time).
+    let bob_rate = if buzzing {
+        flap.idle_frequency
+    } else {
+        flap.frequency
+    };
+    let seconds = if buzzing {
+        1.0 / bob_rate
+    } else {
+        3.0 / flap.frequency
+    };
+    let (frames, fps) = frames_for(seconds);
+    // Wings beat by the flap motion; legs, arms and the tail are damped chains.
+    let mut wings = Vec::new();
+    for (index, limb) in c.plan.limbs.iter().enumerate() {
+        if matches!(limb.kind, LimbKind::BuzzingWing | LimbKind::FlappingWing) {
+            let sign = side_sign(limb.side);
+            for (k, joint) in c.limb_joints(index).into_iter().enumerate() {
+                wings.push((joint, sign, k));
+            }
+        }
+    }
+    let mut chains = Vec::new();
+    for (index, limb) in c.plan.limbs.iter().enumerate() {
+        if matches!(limb.kind, LimbKind::Leg | LimbKind::Arm) {
+            chains.push((c.limb_joints(index), 9.81));
+        }
+    }
+    let tail = c.tail_chain();
+    if let Some(&tip) = c.rig.spine.first()
+        && !tail.is_empty()
+    {
+        let mut joints = tail.clone();
+        joints.push(tip);
+        chains.push((joints, 0.0));
+    }
+    let flight = FlightChains::new(c, &chains, speed)?;
+    let mut joints: Vec<usize> = wings.iter().map(|w| w.0).collect();
+    joints.extend(flight.animated());
+    let mut clip = empty_clip(name, fps, frames, &joints);
+    let rest_root = c.rest_root();
+    // The bob, and a slow figure-eight drift about the flight path (1.5% of the body
+    // length hovering, 0.75% flying), once per clip, so hanging chains swing.
+    let drift = c.length * if speed > 0.0 { 0.0075 } else { 0.015 };
+    let offset = |t: f32| {
+        let a = t / seconds;
+        flap.body_offset(t, speed)
+            + Vec3::new(drift * sin_turns(a), 0.0, drift * sin_turns(2.0 * a))
+            + Vec3::Z * (speed * t)
+    };
+    let dt = 1.0 / fps;
+    let mut flight = flight;
+    // Whole clips of warm-up (at least FLIGHT_WARM_UP seconds), so the chains' start-up
+    // has died away (their damping halves it in about 0.2 s) and frame 0 is in phase.
+    let periods = crate::math::ceil_non_negative(FLIGHT_WARM_UP / seconds).max(1);
+    let warm_up = periods * (frames - 1);
+    for step in 0..warm_up + frames {
+        let t = (step as f32 - warm_up as f32) * dt;
+        let position = offset(t);
+        flight.update(dt, position, Vec3::Z * speed)?;
+        if step < warm_up {
+            continue;
+        }
+        let t = t.max(0.0);
+        clip.root_translation.push(rest_root + position);
+        clip.root_rotation.push(Quat::IDENTITY);
+        let mut tracks = clip.tracks.iter_mut();
+        // `wings` first: zip then takes no track past the last wing joint.
+        for (&(_, sign, k), track) in wings.iter().zip(tracks.by_ref()) {
+            let rotation = if k == 0 {
+                flap.wing_rotation(t, if sign > 0.0 { Side::Left } else { Side::Right })
+            } else {
+                Quat::from_rotation_z(
+                    sign * 0.25 * flap.amplitude * sin_turns(flap.frequency * t - 0.12 * k as f32),
+                )
+            };
+            track.rotations.push(rotation.normalize());
+        }
+        for (track, rotation) in tracks.zip(flight.rotations(c)?) {
+            track.rotations.push(rotation);
+        }
+    }
+    clip.loop_error = loop_error(&clip);
+    Ok(clip)
+}
+
+/// Seconds of simulation before a flier's clip starts (rounded up to whole bob periods).
+const FLIGHT_WARM_UP: f32 = 3.0;
+
+/// A flier's legs, arms and tail as damped chains of a legless gait controller: each chain is
+/// straight at rest along its limb (root to tip), pulled toward that rest by a spring, by
+/// gravity (legs and arms) and held back by damping, so it sways with the body's bob and
+/// trails in flight. Each bone turns by its segment's deflection from the rest direction.
+struct FlightChains {
+    controller: Controller,
+    /// Per chain: its skeleton joints (root first, the tip last; all but the tip animated),
+    /// its rest direction and its index in the controller.
+    chains: Vec<(Vec<usize>, Vec3, usize)>,
+}
+
+impl FlightChains {
+    fn new(c: &Creature, chains: &[(Vec<usize>, f32)], speed: f32) -> Result<Self, Error> {
+        let position = |j: usize| c.skeleton.joints.get(j).map_or(Vec3::ZERO, |j| j.position);
+        let mut controller = Controller::chains_only(c.length.max(1e-3), &GaitOptions::DEFAULT)?;
+        let mut out = Vec::with_capacity(chains.len());
+        for (joints, gravity) in chains {
+            let (Some(&root), Some(&tip)) = (joints.first(), joints.last()) else {
+                continue;
+            };
+            let segments = joints.len().saturating_sub(1);
+            let span = position(tip) - position(root);
+            let length: f32 = joints
+                .windows(2)
+                .map(|w| match w {
+                    [a, b] => position(*a).distance(position(*b)),
+                    _ => 0.0,
+                })
+                .sum();
+            if segments == 0 || !(length > 1e-6) || span.length_squared() < 1e-12 {
+                continue;
+            }
+            let direction = span.normalize();
+            // Damping 6 /s; the spring such that gravity sags a chain by about 15% of its
+            // length and flight trails it by about 30%.
+            let damping = 6.0;
+            let stiffness = (gravity / (0.15 * length))
+                .max(damping * speed / (0.3 * length))
+                .clamp(20.0, 10_000.0);
+            let chain = Chain::new(
+                position(root),
+                direction,
+                segments,
+                length / segments as f32,
+            )
+            .with_spring(stiffness, damping)
+            .with_gravity(*gravity);
+            let index = controller.add_chain(chain)?;
+            out.push((joints.clone(), direction, index));
+        }
+        Ok(Self {
+            controller,
+            chains: out,
+        })
+    }
+
+    /// The animated joints, in the order of [`rotations`](Self::rotations).
+    fn animated(&self) -> impl Iterator<Item = usize> + '_ {
+        self.chains
+            .iter()
+            .flat_map(|(joints, _, _)| joints.iter().take(joints.len().saturating_sub(1)))
+            .copied()
+    }
+
+    fn update(&mut self, dt: f32, position: Vec3, velocity: Vec3) -> Result<(), Error> {
+        // No ground under a flier.
+        let ground = Plane::horizontal(f32::MIN / 4.0);
+        self.controller.update(
+            dt,
+            Pose::from_yaw(position, 0.0),
+            velocity,
+            Vec3::ZERO,
+            &ground,
+        )?;
+        Ok(())
+    }
+
+    /// The animated joints' local rotations now: each bone's global rotation is its segment's
+    /// deflection from the chain's rest direction, taken relative to the nearest animated
+    /// ancestor's.
+    ///
+    /// # Errors
+    /// [`Error::Gait`] if the controller has no chain of an index it gave (never).
+    fn rotations(&self, c: &Creature) -> Result<Vec<Quat>, Error> {
+        let joints = &c.skeleton.joints;
+        let mut global: Vec<Option<Quat>> = alloc::vec![None; joints.len()];
+        for (chain_joints, direction, index) in &self.chains {
+            let points = self.controller.chain(*index)?;
+            // A point per joint: the chain was made with a segment between each two.
+            debug_assert_eq!(points.len(), chain_joints.len(), "a point per joint");
+            for (k, &j) in chain_joints.iter().enumerate().take(chain_joints.len() - 1) {
+                let d = (points[k + 1] - points[k]).normalize_or(*direction);
+                if let Some(g) = global.get_mut(j) {
+                    *g = Some(rotation_arc(*direction, d));
+                }
+            }
+        }
+        let ancestor = |j: usize| {
+            let mut at = joints.get(j).and_then(|j| j.parent);
+            let mut hops = 0;
+            while let Some(p) = at {
+                if let Some(Some(g)) = global.get(p) {
+                    return *g;
+                }
+                hops += 1;
+                if hops > joints.len() {
+                    break;
+                }
+                at = joints.get(p).and_then(|j| j.parent);
+            }
+            Quat::IDENTITY
+        };
+        Ok(self
+            .animated()
+            .map(|j| {
+                let g = global.get(j).copied().flatten().unwrap_or(Quat::IDENTITY);
+                (ancestor(j).inverse() * g).normalize()
+            })
+            .collect())
+    }
+}

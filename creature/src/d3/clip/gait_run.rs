@@ -1,0 +1,167 @@
+//! A recorded gait controller run (per frame the body, the feet and their contacts), how far a
+//! frame is from repeating the first, the best frame to cut a loop at, closing the loop, and
+//! how far a planted foot ends up beyond its leg's reach.
+
+use alloc::vec::Vec;
+
+use glam::{Quat, Vec3};
+
+use creature_gait::{Leg, LimbKind, Pose};
+
+use super::kinematics::angle_between;
+
+/// A gait controller's run, frame by frame: the reacted body pose and the feet (world, relative
+/// to the clip's start) and which feet are planted. Every frame has its body, `legs` feet and
+/// `legs` contacts (the controller's leg states, one per leg), so a frame below
+/// [`frames`](Self::frames) and a leg below `legs` index them directly.
+#[derive(Debug, Clone)]
+pub(super) struct GaitRun {
+    /// The body pose per frame.
+    pub(super) bodies: Vec<Pose>,
+    /// Frame-major: `legs` feet per frame.
+    pub(super) feet: Vec<Vec3>,
+    /// Per frame, per leg: whether the foot is planted.
+    pub(super) contacts: Vec<Vec<bool>>,
+    /// Legs per frame.
+    pub(super) legs: usize,
+}
+
+impl GaitRun {
+    pub(super) fn frames(&self) -> usize {
+        self.bodies.len()
+    }
+
+    pub(super) fn foot(&self, frame: usize, leg: usize) -> Vec3 {
+        self.feet[frame * self.legs + leg]
+    }
+
+    /// How far frame `end` is from repeating frame 0: the largest of each foot's offset from
+    /// its first place relative to the body (metres), the root's height change and its tilt
+    /// (radians) change, the heading aside. `end` is a frame of the run.
+    pub(super) fn mismatch(&self, end: usize) -> f32 {
+        let (a, b) = (&self.bodies[0], &self.bodies[end]);
+        let level = |p: &Pose| {
+            let f = p.rotation * Vec3::Z;
+            Quat::from_rotation_y(glam::Vec2::new(f.z, f.x).to_angle()).inverse() * p.rotation
+        };
+        let mut error = angle_between(level(a), level(b));
+        error = error.max((a.translation.y - b.translation.y).abs());
+        for leg in 0..self.legs {
+            let pa = a.inverse_transform_point(self.foot(0, leg));
+            let pb = b.inverse_transform_point(self.foot(end, leg));
+            error = error.max(pa.distance(pb));
+        }
+        error
+    }
+
+    /// Keeps frames `0..=end` and closes the loop: frame `end` becomes frame 0 moved by
+    /// `motion` (the root motion over the clip). The body's mismatch is spread linearly over
+    /// the frames; each foot's over its swing frames only (in proportion to their count), so
+    /// planted feet stay where they are; a foot that never swings takes it linearly, sliding:
+    /// returns the longest such slide (0 when every foot swings or none has to move).
+    pub(super) fn close_loop(&mut self, end: usize, motion: &Pose) -> f32 {
+        let keep = (end + 1).min(self.frames());
+        if keep < 2 {
+            return 0.0;
+        }
+        self.truncate(keep);
+        let last = keep - 1;
+        let (first, end_body) = (self.bodies[0], self.bodies[last]);
+        let mut planted_shift = 0.0f32;
+        let target = Pose {
+            translation: motion.transform_point(first.translation),
+            rotation: (motion.rotation * first.rotation).normalize(),
+        };
+        let turn = (target.rotation * end_body.rotation.inverse()).normalize();
+        let shift = target.translation - end_body.translation;
+        for (f, body) in self.bodies.iter_mut().enumerate() {
+            let s = f as f32 / last as f32;
+            body.rotation = (Quat::IDENTITY.slerp(turn, s) * body.rotation).normalize();
+            body.translation += shift * s;
+        }
+        for leg in 0..self.legs {
+            let delta = motion.transform_point(self.foot(0, leg)) - self.foot(last, leg);
+            let swings = (1..keep).filter(|&f| !self.planted(f, leg)).count();
+            if swings == 0 {
+                // Never lifted: its correction can only slide it.
+                planted_shift = planted_shift.max(delta.length());
+            }
+            let mut done = 0usize;
+            for f in 1..keep {
+                let s = if swings == 0 {
+                    f as f32 / last as f32
+                } else {
+                    if !self.planted(f, leg) {
+                        done += 1;
+                    }
+                    done as f32 / swings as f32
+                };
+                let p = &mut self.feet[f * self.legs + leg];
+                let y = p.y;
+                *p += delta * s;
+                // A lifted foot at the ends may be corrected downward: never below the
+                // ground (y = 0) it was above.
+                if y >= 0.0 {
+                    p.y = p.y.max(0.0);
+                }
+            }
+        }
+        planted_shift
+    }
+
+    /// Keeps the first `frames` frames.
+    pub(super) fn truncate(&mut self, frames: usize) {
+        self.bodies.truncate(frames);
+        self.contacts.truncate(frames);
+        self.feet.truncate(frames * self.legs);
+    }
+
+    pub(super) fn planted(&self, frame: usize, leg: usize) -> bool {
+        self.contacts[frame][leg]
+    }
+
+    /// How far (metres) the farthest planted foot is beyond its leg's reach (`legs`, the run's).
+    /// Only walking legs: an arm holding its place is not on the ground, and may lag out of
+    /// reach.
+    pub(super) fn overreach(&self, legs: &[Leg]) -> f32 {
+        let mut worst = 0.0f32;
+        for (frame, body) in self.bodies.iter().enumerate() {
+            for (i, leg) in legs.iter().enumerate() {
+                if leg.kind == LimbKind::Leg && self.planted(frame, i) {
+                    let d = body
+                        .inverse_transform_point(self.foot(frame, i))
+                        .distance(leg.hip);
+                    worst = worst.max(d - (leg.upper + leg.lower));
+                }
+            }
+        }
+        worst
+    }
+}
+
+/// The frame of `range` with the same feet planted as frame 0 that has the smallest
+/// [`GaitRun::mismatch`] plus `penalty(frame)`; the best frame of the range regardless of
+/// contacts if none has them, the last frame if the range is empty.
+pub(super) fn best_cut(
+    run: &GaitRun,
+    range: core::ops::Range<usize>,
+    penalty: impl Fn(usize) -> f32,
+) -> usize {
+    let last = run.frames().saturating_sub(1);
+    let range = range.start.min(last).max(1)..range.end.min(last + 1);
+    let score = |f: usize| run.mismatch(f) + penalty(f);
+    // Frames of the range are frames of the run (from 1: frame 0 is there too).
+    let same = |f: &usize| run.contacts[*f] == run.contacts[0];
+    let best = |candidates: &mut dyn Iterator<Item = usize>| {
+        candidates.fold(None, |best: Option<(f32, usize)>, f| {
+            let e = score(f);
+            match best {
+                Some((b, _)) if b <= e => best,
+                _ => Some((e, f)),
+            }
+        })
+    };
+    best(&mut range.clone().filter(same))
+        .or_else(|| best(&mut range.clone()))
+        .map_or(last, |(_, f)| f)
+}

@@ -1,0 +1,348 @@
+//! Walkers' clips from the gait controller: `walk` (plain or cut and closed into a loop),
+//! `turn` (a full turn in place, its rate retried to complete at the cut) and `idle`; the
+//! controller run at [`CLIP_FPS`] on flat ground, and the clip from a run (the root's motion,
+//! the legs by two-bone IK, the neck and tail bent toward a turn).
+
+use alloc::vec::Vec;
+
+use glam::{Affine3A, Quat, Vec3};
+
+use creature_gait::{Leg, Plane, Pose, solve_two_bone};
+
+use super::floor::knee_above;
+use super::gait_run::{GaitRun, best_cut};
+use super::kinematics::{forward_kinematics, rotation_arc};
+use super::{CLIP_FPS, Clip, Track, loop_error};
+use crate::Error;
+use crate::d3::Creature;
+
+/// Seconds the controller runs before a clip's first frame, so the gait is in its steady
+/// rhythm.
+const WARM_UP: f32 = 1.0;
+
+/// A looping `walk` (see [`Creature::bake_walk_loop`]).
+pub(crate) fn walk_loop(c: &Creature) -> Result<Clip, Error> {
+    let setup = c.gait.as_ref().ok_or(Error::NoGait)?;
+    let run = c.simulate_gait(4.0, c.speed, 0.0)?;
+    let first = CLIP_FPS as usize;
+    let end = best_cut(&run, first..run.frames(), |_| 0.0);
+    let travel = Pose::from_yaw(Vec3::Z * (c.speed * end as f32 / CLIP_FPS), 0.0);
+    let run = c.closed_or_cut(run, end, &travel, &setup.legs);
+    c.clip_from_run("walk", &run, 0.0)
+}
+
+/// A full `turn` in place (see [`Creature::bake_turn`]).
+pub(crate) fn turn(c: &Creature) -> Result<Clip, Error> {
+    let setup = c.gait.as_ref().ok_or(Error::NoGait)?;
+    let full = core::f32::consts::TAU;
+    let window = (3.5 * CLIP_FPS) as usize..(4.5 * CLIP_FPS) as usize + 1;
+    // The turn's shortfall (or excess) at the cut is spread over the clip, which moves the
+    // hips over the planted feet: it weighs as far as it moves the farthest hip.
+    let radius = setup
+        .legs
+        .iter()
+        .map(|l| glam::Vec2::new(l.hip.x, l.hip.z).length())
+        .fold(0.0, f32::max);
+    // Cut at the frame near 4 s with the first frame's feet planted; then try again at
+    // the rate that completes the turn exactly at that frame (the steps shift with the
+    // rate), keeping the best of three.
+    // A try at `rate`: its score, run, cut and the rate that completes the turn at the cut.
+    let attempt = |rate: f32| -> Result<(f32, GaitRun, usize, f32), Error> {
+        let run = c.simulate_gait(5.0, 0.0, rate)?;
+        let shortfall = |f: usize| radius * (f as f32 / CLIP_FPS * rate - full).abs();
+        let end = best_cut(&run, window.clone(), shortfall);
+        let score = run.mismatch(end) + shortfall(end);
+        let next = full / (end.max(1) as f32 / CLIP_FPS);
+        Ok((score, run, end, next))
+    };
+    let mut rate = core::f32::consts::FRAC_PI_2;
+    let (mut score, run, end, mut next) = attempt(rate)?;
+    let mut best = (score, rate, run, end);
+    for _ in 1..3 {
+        if score <= 0.0 || next == rate {
+            break;
+        }
+        rate = next;
+        let (tried, run, end, after) = attempt(rate)?;
+        if tried < best.0 {
+            best = (tried, rate, run, end);
+        }
+        (score, next) = (tried, after);
+    }
+    let (_, rate, run, end) = best;
+    let run = c.closed_or_cut(run, end, &Pose::IDENTITY, &setup.legs);
+    c.clip_from_run("turn", &run, rate)
+}
+
+/// A clip of `seconds` moving forward at `speed` and turning at `yaw_rate` (see
+/// [`Creature::bake_walk`]).
+pub(crate) fn gait(
+    c: &Creature,
+    name: &'static str,
+    seconds: f32,
+    speed: f32,
+    yaw_rate: f32,
+) -> Result<Clip, Error> {
+    let run = c.simulate_gait(seconds, speed, yaw_rate)?;
+    c.clip_from_run(name, &run, yaw_rate)
+}
+
+impl Creature {
+    /// `run` cut after frame `end` with its loop closed by `motion`, unless closing it leaves a
+    /// planted foot further out of its leg's reach than the plain cut does (the spread
+    /// correction can stretch a leg that was nearly straight), or would slide a foot that
+    /// never lifts in the clip (a walker so slow that it takes no step in it): then the plain
+    /// cut, whose [`Clip::loop_error`] says how far it is from looping (`legs`: the run's).
+    fn closed_or_cut(&self, run: GaitRun, end: usize, motion: &Pose, legs: &[Leg]) -> GaitRun {
+        let mut closed = run.clone();
+        let planted_shift = closed.close_loop(end, motion);
+        let mut cut = run;
+        cut.truncate(end + 1);
+        let tolerance = 1e-4 * self.length;
+        if planted_shift <= tolerance && closed.overreach(legs) <= cut.overreach(legs) + tolerance {
+            closed
+        } else {
+            cut
+        }
+    }
+
+    /// Runs the gait controller at [`CLIP_FPS`] over flat ground for `seconds` after the
+    /// warm-up, moving forward at `speed` and turning at `yaw_rate`; records the reacted body
+    /// pose and the feet per frame, relative to the clip's starting place and heading.
+    fn simulate_gait(&self, seconds: f32, speed: f32, yaw_rate: f32) -> Result<GaitRun, Error> {
+        let max = 60.0;
+        let min = 1.0 / CLIP_FPS;
+        if !(min..=max).contains(&seconds) {
+            return Err(Error::OutOfRange {
+                what: "seconds",
+                value: seconds,
+                min,
+                max,
+            });
+        }
+        let setup = self.gait.as_ref().ok_or(Error::NoGait)?;
+        let mut controller = setup.controller()?;
+        let ground = Plane::horizontal(0.0);
+        let dt = 1.0 / CLIP_FPS;
+        let velocity = Vec3::Z * speed;
+        let spin = Vec3::Y * yaw_rate;
+        let warm_up = (WARM_UP * CLIP_FPS) as usize;
+        let frames = (seconds * CLIP_FPS + 0.5) as usize + 1;
+        let legs = setup.legs.len();
+        let mut run = GaitRun {
+            bodies: Vec::with_capacity(frames),
+            feet: Vec::with_capacity(frames * legs),
+            contacts: Vec::with_capacity(frames),
+            legs,
+        };
+        // The clip starts at the rest pose's place and heading: the warm-up's travel is
+        // taken off.
+        let start = Pose::from_yaw(
+            Vec3::Z * (warm_up as f32 * dt * speed),
+            warm_up as f32 * dt * yaw_rate,
+        );
+        let unstart = start.rotation.inverse();
+        let relative = |p: Vec3| unstart * (p - start.translation);
+        for step in 0..warm_up + frames {
+            let time = step as f32 * dt;
+            controller.update(
+                dt,
+                Pose::from_yaw(Vec3::Z * (time * speed), time * yaw_rate),
+                velocity,
+                spin,
+                &ground,
+            )?;
+            if step < warm_up {
+                continue;
+            }
+            let body = controller.reacted_pose();
+            run.bodies.push(Pose {
+                translation: relative(body.translation),
+                rotation: (unstart * body.rotation).normalize(),
+            });
+            let states = controller.leg_states();
+            // One state per leg (the controller's order): the run's frames hold `legs` each.
+            debug_assert_eq!(states.len(), legs, "one leg state per leg");
+            if states.len() != legs {
+                return Err(Error::Degenerate {
+                    what: "gait controller's leg states",
+                });
+            }
+            run.contacts
+                .push(states.iter().map(|s| s.planted).collect());
+            run.feet.extend(states.iter().map(|s| relative(s.foot)));
+        }
+        Ok(run)
+    }
+
+    /// A clip from a recorded gait run: the root's motion, each leg's hip translation, hip
+    /// and knee rotations by two-bone IK from the hip to the recorded foot (the leg's pole
+    /// bending the knee), and a foot rotation that keeps the sole level (turned with the
+    /// body's heading only); the neck and tail bent toward a turn at `yaw_rate`.
+    fn clip_from_run(
+        &self,
+        name: &'static str,
+        run: &GaitRun,
+        yaw_rate: f32,
+    ) -> Result<Clip, Error> {
+        let setup = self.gait.as_ref().ok_or(Error::NoGait)?;
+        let frames = run.frames();
+        let joints = &self.skeleton.joints;
+        let rest_root = self.rest_root();
+        let rest = |j: usize| joints.get(j).map_or(Vec3::ZERO, |j| j.position);
+
+        // Turning: the neck and tail bend toward the turn (constant over the clip).
+        let spine_rotations = self.turn_bend(yaw_rate);
+        let mut local: Vec<Affine3A> = self
+            .skeleton
+            .rest_translations()
+            .iter()
+            .map(|&t| Affine3A::from_translation(t))
+            .collect();
+        for &(j, q) in &spine_rotations {
+            let t = local
+                .get(j)
+                .map_or(Vec3::ZERO, |l| Vec3::from(l.translation));
+            if let Some(l) = local.get_mut(j) {
+                *l = Affine3A::from_rotation_translation(q, t);
+            }
+        }
+        let body_global = forward_kinematics(joints, &local);
+
+        let mut clip = Clip {
+            name,
+            fps: CLIP_FPS,
+            frames,
+            root_translation: Vec::with_capacity(frames),
+            root_rotation: Vec::with_capacity(frames),
+            tracks: Vec::with_capacity(3 * run.legs + spine_rotations.len()),
+            contacts: run.contacts.clone(),
+            loop_error: 0.0,
+        };
+        // Per leg: the hip's parent (a spine joint, maybe bent) in body space, the rest
+        // directions of the leg's two segments, and its three tracks.
+        let mut legs: Vec<LegTracks<'_>> = setup
+            .legs
+            .iter()
+            .zip(&setup.hip_joints)
+            .map(|(leg, &hip)| LegTracks {
+                leg,
+                hip,
+                parent: joints
+                    .get(hip)
+                    .and_then(|j| j.parent)
+                    .and_then(|p| body_global.get(p).copied())
+                    .unwrap_or(Affine3A::IDENTITY),
+                rest_upper: (rest(hip + 1) - rest(hip)).normalize_or(Vec3::NEG_Y),
+                rest_lower: (rest(hip + 2) - rest(hip + 1)).normalize_or(Vec3::NEG_Y),
+                knee_radius: self.ring_radius(hip + 1),
+                translations: Vec::with_capacity(frames),
+                rotations: core::array::from_fn(|_| Vec::with_capacity(frames)),
+            })
+            .collect();
+        // Nothing under the floor: a frame whose body would dip below it (its lean, bob or
+        // breathing, on a body that reaches down to the ground) leans less and, if need be,
+        // rises, before the legs are solved, so the feet stay planted.
+        let bodies = self.above_the_floor(&body_global, run, &setup.legs)?;
+        for (frame, body) in bodies.iter().enumerate() {
+            clip.root_translation
+                .push(body.translation + body.rotation * rest_root);
+            clip.root_rotation.push(body.rotation);
+            let forward = body.rotation * Vec3::Z;
+            let heading = Quat::from_rotation_y(glam::Vec2::new(forward.z, forward.x).to_angle());
+            let up = body.rotation.inverse() * Vec3::Y;
+            for (i, tracks) in legs.iter_mut().enumerate() {
+                let (leg, parent) = (tracks.leg, tracks.parent);
+                let (rest_upper, rest_lower) = (tracks.rest_upper, tracks.rest_lower);
+                let foot = body.inverse_transform_point(run.foot(frame, i));
+                let ik = solve_two_bone(leg.hip, foot, leg.upper, leg.lower, leg.pole);
+                let floor = tracks.knee_radius - body.translation.y;
+                let middle = knee_above(ik.root, ik.middle, ik.end, up, floor);
+                let upper = (middle - ik.root).normalize_or(rest_upper);
+                let hip_rotation = rotation_arc(rest_upper, upper);
+                let lower = (ik.end - middle).normalize_or(rest_lower);
+                let knee_rotation = rotation_arc(rest_lower, hip_rotation.inverse() * lower);
+                let parent_rotation = Quat::from_mat3a(&parent.matrix3).normalize();
+                tracks
+                    .translations
+                    .push(parent.inverse().transform_point3(ik.root));
+                let [hip, knee, foot] = &mut tracks.rotations;
+                hip.push((parent_rotation.inverse() * hip_rotation).normalize());
+                knee.push(knee_rotation.normalize());
+                // The foot stays level (its sole flat on the ground), turned with the body's
+                // heading only: its world rotation is the heading's yaw.
+                foot.push(
+                    ((body.rotation * hip_rotation * knee_rotation).inverse() * heading)
+                        .normalize(),
+                );
+            }
+        }
+        // Each leg's hip, knee and foot tracks, then the neck and tail bent toward a turn.
+        for tracks in legs {
+            let [hip, knee, foot] = tracks.rotations;
+            clip.tracks.push(Track {
+                joint: tracks.hip,
+                translations: Some(tracks.translations),
+                rotations: hip,
+            });
+            for (joint, rotations) in [(tracks.hip + 1, knee), (tracks.hip + 2, foot)] {
+                clip.tracks.push(Track {
+                    joint,
+                    translations: None,
+                    rotations,
+                });
+            }
+        }
+        for &(joint, q) in &spine_rotations {
+            clip.tracks.push(Track {
+                joint,
+                translations: None,
+                rotations: alloc::vec![q; frames],
+            });
+        }
+        clip.loop_error = loop_error(&clip);
+        Ok(clip)
+    }
+
+    /// Local rotations of the neck and tail joints bending toward a turn at `yaw_rate`.
+    fn turn_bend(&self, yaw_rate: f32) -> Vec<(usize, Quat)> {
+        if yaw_rate == 0.0 {
+            return Vec::new();
+        }
+        let total = 0.35 * yaw_rate.signum() * (yaw_rate.abs() / 1.5).min(1.0);
+        let spine = &self.rig.spine;
+        let root = self.rig.root();
+        let Some(c) = spine.iter().position(|&j| Some(j) == root) else {
+            return Vec::new();
+        };
+        let bones = spine.len().saturating_sub(1);
+        let neck: Vec<usize> = spine.iter().take(bones).skip(c + 1).copied().collect();
+        let tail = self.tail_chain();
+        let mut out = Vec::with_capacity(neck.len() + tail.len());
+        for &j in &neck {
+            out.push((j, Quat::from_rotation_y(total / neck.len() as f32)));
+        }
+        for &j in &tail {
+            out.push((j, Quat::from_rotation_y(-total / tail.len() as f32)));
+        }
+        out
+    }
+}
+
+/// One leg of a walking clip being baked: what solving it needs, and its tracks' values.
+struct LegTracks<'a> {
+    leg: &'a Leg,
+    /// The hip joint; the knee and the foot are the next two.
+    hip: usize,
+    /// The hip's parent (a spine joint, maybe bent) in body space.
+    parent: Affine3A,
+    /// The rest directions of the leg's upper and lower segments.
+    rest_upper: Vec3,
+    rest_lower: Vec3,
+    /// How far the knee's ring of vertices reaches (it stays this far above the floor).
+    knee_radius: f32,
+    /// The hip's translation per frame.
+    translations: Vec<Vec3>,
+    /// The hip's, the knee's and the foot's rotations per frame.
+    rotations: [Vec<Quat>; 3],
+}

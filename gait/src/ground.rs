@@ -377,10 +377,7 @@ impl HeightField {
 
     #[inline]
     fn sample(&self, i: usize, j: usize) -> f32 {
-        self.heights
-            .get(j * self.columns + i)
-            .copied()
-            .unwrap_or(0.0)
+        self.heights[j * self.columns + i]
     }
 
     /// The cell holding grid coordinates `(gx, gz)` (in cells from the origin) and the local

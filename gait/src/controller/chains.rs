@@ -51,21 +51,17 @@ impl Controller {
     }
 
     pub(super) fn reset_chain(&mut self, i: usize) {
-        let Some(chain) = self.chains.get(i) else {
-            return;
-        };
-        if let Some(s) = self.chain_states.get_mut(i) {
-            chain_rest(chain, &self.pose, 0.0, &mut s.rest);
-            s.velocities.iter_mut().for_each(|v| *v = Vec3::ZERO);
-            s.output.clone_from(&s.rest);
-            s.positions.clone_from(&s.rest);
-        }
+        let s = &mut self.chain_states[i];
+        chain_rest(&self.chains[i], &self.pose, 0.0, &mut s.rest);
+        s.velocities.iter_mut().for_each(|v| *v = Vec3::ZERO);
+        s.output.clone_from(&s.rest);
+        s.positions.clone_from(&s.rest);
     }
 
     pub(super) fn follow(&mut self, i: usize, dt: f32, pose: &Pose, angular_velocity: Vec3) {
-        let (Some(chain), Some(state)) = (self.chains.get(i), self.chain_states.get_mut(i)) else {
-            return;
-        };
+        let (chain, state) = (&self.chains[i], &mut self.chain_states[i]);
+        // A validated chain has a segment at least: a root and a joint.
+        debug_assert!(state.positions.len() >= 2 && state.positions.len() == state.rest.len());
         chain_rest(
             chain,
             pose,
@@ -79,9 +75,7 @@ impl Controller {
         let len = chain.segment_length;
         if dt > 0.0 {
             for _ in 0..substeps {
-                if let Some(root) = state.positions.first_mut() {
-                    *root = rest[0];
-                }
+                state.positions[0] = rest[0];
                 for k in 1..state.positions.len() {
                     let x = state.positions[k];
                     let v = state.velocities[k];
@@ -99,8 +93,8 @@ impl Controller {
                     state.positions[k] = fixed;
                 }
             }
-        } else if let Some(root) = state.positions.first_mut() {
-            *root = rest[0];
+        } else {
+            state.positions[0] = rest[0];
             for k in 1..state.positions.len() {
                 let parent = state.positions[k - 1];
                 let dir = (state.positions[k] - parent).normalize_or(Vec3::NEG_Z);

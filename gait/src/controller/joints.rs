@@ -3,7 +3,7 @@
 
 use glam::{Mat3A, Vec3, Vec4};
 
-use super::{Controller, LegState};
+use super::Controller;
 use crate::ik::{Lanes, SPARE, V3, solve_lanes};
 use crate::leg::{Leg, LimbKind};
 
@@ -23,13 +23,9 @@ pub(super) struct LegLanes {
 
 impl LegLanes {
     pub(super) fn new(legs: &[Leg]) -> Self {
-        let leg = |k: usize| legs.get(k).or(legs.first()).copied();
-        let lanes = [leg(0), leg(1), leg(2), leg(3)];
-        let get = |f: fn(&Leg) -> Vec3| lanes.map(|l| l.as_ref().map_or(Vec3::ZERO, f));
-        let len = |f: fn(&Leg) -> f32| {
-            let [a, b, c, d] = lanes.map(|l| l.as_ref().map_or(0.0, f));
-            Vec4::new(a, b, c, d)
-        };
+        let lanes: [&Leg; 4] = core::array::from_fn(|k| lane(legs, k));
+        let get = |f: fn(&Leg) -> Vec3| lanes.map(f);
+        let len = |f: fn(&Leg) -> f32| Vec4::from_array(lanes.map(f));
         Self {
             hip: V3::gather(get(|l| l.hip)),
             rest: V3::gather(get(|l| l.rest)),
@@ -44,6 +40,17 @@ impl LegLanes {
     }
 }
 
+/// Lane `k` of a group of one to four legs' items (`chunks(4)` of a per-leg slice): the
+/// item itself, or the group's first for a missing lane.
+#[inline(always)]
+pub(super) fn lane<T>(group: &[T], k: usize) -> &T {
+    debug_assert!(
+        (1..=4).contains(&group.len()),
+        "a group of one to four legs"
+    );
+    group.get(k).unwrap_or(&group[0])
+}
+
 impl Controller {
     /// The feet the action placed, four legs at a time (`feet`), for the reaction, the reach
     /// check and the IK; missing lanes repeat the first leg.
@@ -51,11 +58,7 @@ impl Controller {
         for (feet, states) in self.feet.iter_mut().zip(self.states.chunks(4)) {
             *feet = V3::gather(match states {
                 [a, b, c, d] => [a.foot, b.foot, c.foot, d.foot],
-                [first, ..] => {
-                    let foot = |k: usize| states.get(k).unwrap_or(first).foot;
-                    [foot(0), foot(1), foot(2), foot(3)]
-                }
-                [] => continue,
+                _ => core::array::from_fn(|k| lane(states, k).foot),
             });
         }
     }
@@ -72,7 +75,6 @@ impl Controller {
             }
         };
         // Four legs at a time, one per SIMD lane (see `solve_lanes`).
-        let mut spare = [SPARE; 3];
         for ((((lanes, hips), feet), states), rest) in self
             .leg_lanes
             .iter()
@@ -81,21 +83,14 @@ impl Controller {
             .zip(self.states.chunks_mut(4))
             .zip(self.rest_world.chunks(4))
         {
-            let target = |s: &LegState, r: Option<&Vec3>| match r {
-                Some(r) => r.lerp(s.foot, w),
-                None => s.foot,
-            };
             // Missing lanes repeat the first leg.
-            let targets = match &*states {
-                _ if w == 1.0 => *feet,
-                [first, ..] => {
-                    let lane = |k: usize| match states.get(k) {
-                        Some(s) => target(s, rest.get(k)),
-                        None => target(first, rest.first()),
-                    };
-                    V3::gather([lane(0), lane(1), lane(2), lane(3)])
-                }
-                [] => continue,
+            let targets = if w == 1.0 {
+                *feet
+            } else {
+                let states = &*states;
+                V3::gather(core::array::from_fn(|k| {
+                    lane(rest, k).lerp(lane(states, k).foot, w)
+                }))
             };
             let problem = Lanes {
                 root: if kept.is_some() {
@@ -113,15 +108,13 @@ impl Controller {
                     &problem,
                     [&mut a.joints, &mut b.joints, &mut c.joints, &mut d.joints],
                 ),
+                // The last group, of one to three legs: the missing lanes solved into spares.
                 _ => {
-                    let mut out = states
-                        .iter_mut()
-                        .map(|s| &mut s.joints)
-                        .chain(spare.iter_mut());
-                    if let (Some(a), Some(b), Some(c), Some(d)) =
-                        (out.next(), out.next(), out.next(), out.next())
-                    {
-                        solve_lanes(&problem, [a, b, c, d]);
+                    let mut out = [SPARE; 4];
+                    let [a, b, c, d] = &mut out;
+                    solve_lanes(&problem, [a, b, c, d]);
+                    for (state, joints) in states.iter_mut().zip(out) {
+                        state.joints = joints;
                     }
                 }
             }

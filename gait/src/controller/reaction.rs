@@ -3,6 +3,7 @@
 
 use glam::{BVec4A, Mat3A, Quat, Vec2, Vec3, Vec4};
 
+use super::joints::lane;
 use super::{Controller, LegState};
 use crate::ik::V3;
 use crate::leg::{LimbKind, Pose};
@@ -28,10 +29,7 @@ fn hip_rise(
     j: usize,
 ) -> f32 {
     let da = state.foot.y - rest_world.y;
-    let db = match (states.get(j), rests.get(j)) {
-        (Some(s), Some(r)) => s.foot.y - r.y,
-        _ => 0.0,
-    };
+    let db = states[j].foot.y - rests[j].y;
     da - db
 }
 
@@ -117,13 +115,9 @@ impl Controller {
         // Hip roll: the height difference between a foot and its partner (3D seed). A pair
         // with the same lever rolls by opposite angles: one arctangent per pair.
         for i in 0..self.legs.len() {
-            let (Some(pair), Some(state)) = (self.hip_pairs.get(i), self.states.get(i)) else {
-                continue;
-            };
-            let roll = match *pair {
-                HipPair::Own(j, width)
-                    if state.grounded && self.states.get(j).is_some_and(|s| s.grounded) =>
-                {
+            let state = &self.states[i];
+            let roll = match self.hip_pairs[i] {
+                HipPair::Own(j, width) if state.grounded && self.states[j].grounded => {
                     let rise = hip_rise(
                         state,
                         &self.rest_world[i],
@@ -133,9 +127,7 @@ impl Controller {
                     );
                     clamp_sym(o.hip_roll_gain * atan2(rise, width), o.hip_roll_limit)
                 }
-                HipPair::Mirror(j)
-                    if state.grounded && self.states.get(j).is_some_and(|s| s.grounded) =>
-                {
+                HipPair::Mirror(j) if state.grounded && self.states[j].grounded => {
                     let mirrored = -self.states[j].hip_roll;
                     self.states[i].hip_roll = mirrored;
                     continue;
@@ -194,10 +186,7 @@ impl Controller {
             *hips = lanes.hip.transform(&rotation, origin);
             // Four legs at a time: `foot.distance_squared(hip) > reach²` (arms: never), for the
             // planted feet (missing lanes repeat the first leg).
-            let Some(first) = states.first() else {
-                continue;
-            };
-            let planted = |k: usize| states.get(k).unwrap_or(first).planted;
+            let planted = |k: usize| lane(states, k).planted;
             let planted = BVec4A::new(planted(0), planted(1), planted(2), planted(3));
             let d = feet.sub(*hips);
             out |= (d.dot(d).cmpgt(lanes.reach2) & planted).any();

@@ -80,15 +80,15 @@ impl Controller {
         let hip_width: Vec<f32> = legs
             .iter()
             .enumerate()
-            .map(|(i, a)| match layout.partner[i].and_then(|j| legs.get(j)) {
+            .map(|(i, a)| match layout.partner[i].map(|j| &legs[j]) {
                 Some(b) => abs(a.hip.x - b.hip.x).max(1e-3 * a.size),
                 None => 0.0,
             })
             .collect();
         let hip_pairs = (0..legs.len())
             .map(|i| match layout.partner[i] {
-                Some(j) if j < i && hip_width.get(j) == hip_width.get(i) => HipPair::Mirror(j),
-                Some(j) => HipPair::Own(j, hip_width.get(i).copied().unwrap_or(0.0)),
+                Some(j) if j < i && hip_width[j] == hip_width[i] => HipPair::Mirror(j),
+                Some(j) => HipPair::Own(j, hip_width[i]),
                 None => HipPair::None,
             })
             .collect();

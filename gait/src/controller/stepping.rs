@@ -61,16 +61,10 @@ impl Controller {
             if still && motion.length() > still_limit {
                 still = false;
             }
-            let (Some(state), Some(rest_slot), Some(motion_slot), Some(want)) = (
-                self.states.get_mut(i),
-                self.rest_world.get_mut(i),
-                self.motion.get_mut(i),
-                self.wants.get_mut(i),
-            ) else {
-                continue;
-            };
-            *rest_slot = rest_world;
-            *motion_slot = motion;
+            self.rest_world[i] = rest_world;
+            self.motion[i] = motion;
+            let want = &mut self.wants[i];
+            let state = &mut self.states[i];
             state.prev_foot = state.foot;
             state.prev_planted = state.planted;
             state.prev_anchor = state.anchor;
@@ -254,9 +248,7 @@ impl Controller {
             }
             let leg = &self.legs[i];
             let sequenced = leg.kind == LimbKind::Leg;
-            let opposite_busy = self.layout.opposite[i]
-                .and_then(|j| self.states.get(j))
-                .is_some_and(|s| s.stepping);
+            let opposite_busy = self.layout.opposite[i].is_some_and(|j| self.states[j].stepping);
             let in_turn = !sequenced || (self.layout.groups[i] == active && !opposite_busy);
             let escape = sequenced && !in_turn && flags & ESCAPE != 0;
             if !(escape || (flags & WANT != 0 && in_turn)) {

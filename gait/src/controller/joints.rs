@@ -75,6 +75,7 @@ impl Controller {
             }
         };
         // Four legs at a time, one per SIMD lane (see `solve_lanes`).
+        let mut spare = [SPARE; 3];
         for ((((lanes, hips), feet), states), rest) in self
             .leg_lanes
             .iter()
@@ -103,21 +104,17 @@ impl Controller {
                 upper: lanes.upper,
                 lower: lanes.lower,
             };
-            match states {
-                [a, b, c, d] => solve_lanes(
-                    &problem,
-                    [&mut a.joints, &mut b.joints, &mut c.joints, &mut d.joints],
-                ),
-                // The last group, of one to three legs: the missing lanes solved into spares.
-                _ => {
-                    let mut out = [SPARE; 4];
-                    let [a, b, c, d] = &mut out;
-                    solve_lanes(&problem, [a, b, c, d]);
-                    for (state, joints) in states.iter_mut().zip(out) {
-                        state.joints = joints;
-                    }
-                }
-            }
+            // The last group may have one to three legs: its missing lanes are solved into
+            // spares (`chunks_mut(4)` gives no other lengths).
+            let [s0, s1, s2] = &mut spare;
+            let out = match states {
+                [a, b, c, d] => [&mut a.joints, &mut b.joints, &mut c.joints, &mut d.joints],
+                [a, b, c] => [&mut a.joints, &mut b.joints, &mut c.joints, s0],
+                [a, b] => [&mut a.joints, &mut b.joints, s0, s1],
+                [a] => [&mut a.joints, s0, s1, s2],
+                [] | [_, _, _, _, _, ..] => continue,
+            };
+            solve_lanes(&problem, out);
         }
     }
 }

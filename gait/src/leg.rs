@@ -359,17 +359,21 @@ pub(crate) fn layout(legs: &[Leg]) -> Result<Layout, GaitError> {
 
     let explicit = legs.iter().filter(|l| l.group.is_some()).count();
     if explicit > 0 {
-        if let Some(leg) = legs.iter().position(|l| l.group.is_none()) {
-            return Err(GaitError::MixedGroups { leg });
+        let mut groups: Vec<u8> = Vec::with_capacity(n);
+        for (leg, l) in legs.iter().enumerate() {
+            match l.group {
+                Some(group) => groups.push(group),
+                None => return Err(GaitError::MixedGroups { leg }),
+            }
         }
-        let groups: Vec<u8> = legs.iter().map(|l| l.group.unwrap_or(0)).collect();
         // Renumber to consecutive groups in ascending order of the caller's labels.
         let mut labels: Vec<u8> = groups.clone();
         labels.sort_unstable();
         labels.dedup();
         let groups = groups
             .iter()
-            .map(|g| labels.iter().position(|l| l == g).unwrap_or(0) as u8)
+            // `labels` is sorted and holds every group once: its index of `g`.
+            .map(|g| labels.partition_point(|l| l < g) as u8)
             .collect();
         return Ok(Layout {
             groups,

@@ -64,7 +64,7 @@ fn hull_margin(hull: &[Vec2], point: Vec2) -> Option<f32> {
     // Squared distances to the edges; one square root of the smallest (monotonic).
     let mut min_edge = f32::INFINITY;
     let mut inside = hull.len() >= 3;
-    let mut previous = hull.last().copied().unwrap_or(point);
+    let mut previous = hull[hull.len() - 1];
     for &b in hull {
         let a = previous;
         previous = b;

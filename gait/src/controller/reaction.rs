@@ -1,0 +1,225 @@
+//! Reaction: the body's bob, breathing, sway (yaw), pitch and roll from its feet, each leg's
+//! hip roll, and the reaction scaled back so no planted foot is out of reach.
+
+use glam::{BVec4A, Mat3A, Quat, Vec2, Vec3, Vec4};
+
+use super::joints::lane;
+use super::{Controller, LegState};
+use crate::ik::V3;
+use crate::leg::{LimbKind, Pose};
+use crate::math::{atan2, atan2_lanes, clamp_sym, quat_yxz_sin_cos, sin_cos_lanes, sin_turns_arg};
+
+/// A leg's hip roll (see `Controller::react`): none without a partner, else its own angle
+/// from the height difference to partner `j` over the lever, or the opposite of the partner's
+/// angle when the partner comes first with the same lever (one arctangent per pair).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) enum HipPair {
+    None,
+    Own(usize, f32),
+    Mirror(usize),
+}
+
+/// How much higher a foot stands above its rest height than partner `j`'s.
+#[inline(always)]
+fn hip_rise(
+    state: &LegState,
+    rest_world: &Vec3,
+    states: &[LegState],
+    rests: &[Vec3],
+    j: usize,
+) -> f32 {
+    let da = state.foot.y - rest_world.y;
+    let db = states[j].foot.y - rests[j].y;
+    da - db
+}
+
+/// Bisection steps of [`Controller::keep_within_reach`]: the reaction kept is within 2⁻¹⁰ of
+/// the most that keeps every planted foot in reach.
+const REACH_BISECTIONS: u32 = 10;
+
+impl Controller {
+    pub(super) fn react(&mut self, pose: &Pose, rotation: &Mat3A) {
+        self.foot_angles(pose, rotation);
+        let o = &self.options;
+        // Bob: the feet's mean height offset from rest. Sway: their mean top-view angle offset
+        // about the body's origin (Trifox). Pitch and roll: the slopes of the height offsets
+        // along the body's forward and left axes (a least-squares fit), so the body leans with
+        // lifted feet and with the ground, without a bias from feet trailing behind.
+        let mut count = 0usize;
+        let (mut height, mut yaw) = (0.0f32, 0.0f32);
+        let (mut ez, mut zz, mut ex, mut xx) = (0.0f32, 0.0f32, 0.0f32, 0.0f32);
+        let mut centre = Vec2::ZERO;
+        for (leg, state) in self.legs.iter().zip(&self.states) {
+            if leg.kind == LimbKind::Leg && state.grounded {
+                count += 1;
+                centre += Vec2::new(leg.rest.x, leg.rest.z);
+            }
+        }
+        if count > 0 {
+            centre /= count as f32;
+        }
+        for (((leg, state), rest_world), angles) in self
+            .legs
+            .iter()
+            .zip(&self.states)
+            .zip(&self.rest_world)
+            .zip(&self.angles)
+        {
+            if leg.kind != LimbKind::Leg || !state.grounded {
+                continue;
+            }
+            let e = state.foot.y - rest_world.y;
+            height += e;
+            yaw += angles;
+            let rest = leg.rest;
+            let (x, z) = (rest.x - centre.x, rest.z - centre.y);
+            ex += e * x;
+            xx += x * x;
+            ez += e * z;
+            zz += z * z;
+        }
+        let slope = |num: f32, den: f32| if den > 1e-12 { atan2(num, den) } else { 0.0 };
+        let (pitch, roll) = (-slope(ez, zz), slope(ex, xx));
+        let k = self.react_k;
+        let r = &mut self.reaction;
+        let (bob_t, yaw_t, pitch_t, roll_t) = if count == 0 {
+            (0.0, 0.0, 0.0, 0.0)
+        } else {
+            let n = count as f32;
+            let bob_limit = o.bob_limit * self.mean_size;
+            (
+                clamp_sym(o.bob_gain * height / n, bob_limit),
+                clamp_sym(o.sway_gain * yaw / n, o.sway_limit),
+                clamp_sym(o.sway_gain * pitch, o.sway_limit),
+                clamp_sym(o.sway_gain * roll, o.sway_limit),
+            )
+        };
+        r.bob = clamp_sym(r.bob + (bob_t - r.bob) * k, o.bob_limit * self.mean_size);
+        r.yaw = clamp_sym(r.yaw + (yaw_t - r.yaw) * k, o.sway_limit);
+        r.pitch = clamp_sym(r.pitch + (pitch_t - r.pitch) * k, o.sway_limit);
+        r.roll = clamp_sym(r.roll + (roll_t - r.roll) * k, o.sway_limit);
+        let w = self.blend;
+        // The breathing's sine and the rotation's three half-angle sines and cosines, four
+        // lanes at once (`sin_turns` and `quat_yxz` bit for bit).
+        let (sign, turn) = sin_turns_arg(self.idle_phase);
+        let (s, c) = sin_cos_lanes(Vec4::new(
+            0.5 * (r.yaw * w),
+            0.5 * (r.pitch * w),
+            0.5 * (r.roll * w),
+            turn,
+        ));
+        let breathe = o.breathe_amplitude * self.mean_size * (sign * s.w);
+        r.offset = Vec3::Y * ((r.bob + breathe) * w);
+        r.rotation = quat_yxz_sin_cos(s, c);
+
+        // Hip roll: the height difference between a foot and its partner (3D seed). A pair
+        // with the same lever rolls by opposite angles: one arctangent per pair.
+        for i in 0..self.legs.len() {
+            let state = &self.states[i];
+            let roll = match self.hip_pairs[i] {
+                HipPair::Own(j, width) if state.grounded && self.states[j].grounded => {
+                    let rise = hip_rise(
+                        state,
+                        &self.rest_world[i],
+                        &self.states,
+                        &self.rest_world,
+                        j,
+                    );
+                    clamp_sym(o.hip_roll_gain * atan2(rise, width), o.hip_roll_limit)
+                }
+                HipPair::Mirror(j) if state.grounded && self.states[j].grounded => {
+                    let mirrored = -self.states[j].hip_roll;
+                    self.states[i].hip_roll = mirrored;
+                    continue;
+                }
+                _ => 0.0,
+            };
+            self.states[i].hip_roll = roll * self.blend;
+        }
+    }
+
+    /// Each foot's angle from its leg's rest direction, seen from above about the body's origin
+    /// (measured from +Z toward +X), four legs at a time (see `atan2_lanes`); computed for every
+    /// leg, used for those on the ground.
+    fn foot_angles(&mut self, pose: &Pose, rotation: &Mat3A) {
+        let inverse = rotation.transpose();
+        let t = pose.translation;
+        let t = V3 {
+            x: Vec4::splat(t.x),
+            y: Vec4::splat(t.y),
+            z: Vec4::splat(t.z),
+        };
+        for ((lanes, angles), feet) in self
+            .leg_lanes
+            .iter()
+            .zip(self.angles.chunks_mut(4))
+            .zip(&self.feet)
+        {
+            let local = feet.sub(t).rotate(&inverse);
+            let rest = lanes.rest;
+            let cross = rest.z * local.x - rest.x * local.z;
+            let dot = rest.z * local.z + rest.x * local.x;
+            for (angle, yaw) in angles.iter_mut().zip(atan2_lanes(cross, dot).to_array()) {
+                *angle = yaw;
+            }
+        }
+    }
+
+    /// Scales the body's reaction (bob, breathing, sway) back toward none, as little as needed,
+    /// so that no planted foot is beyond its leg's reach from the reacted hip: on a long body a
+    /// small pitch or roll moves the far hips a long way. A foot out of reach of the unreacted
+    /// body already steps (see `action`).
+    pub(super) fn keep_within_reach(&mut self, pose: &Pose) {
+        let reaction = self.reaction;
+        // The reacted body's hips, four legs at a time; kept for the IK when every planted foot
+        // is within reach of them (as usual), which then need not place them again.
+        let rotation = Mat3A::from_quat((pose.rotation * reaction.rotation).normalize());
+        let origin = pose.translation + reaction.offset;
+        let mut out = false;
+        for (((lanes, hips), feet), states) in self
+            .leg_lanes
+            .iter()
+            .zip(&mut self.hips)
+            .zip(&self.feet)
+            .zip(self.states.chunks(4))
+        {
+            *hips = lanes.hip.transform(&rotation, origin);
+            // Four legs at a time: `foot.distance_squared(hip) > reach²` (arms: never), for the
+            // planted feet (missing lanes repeat the first leg).
+            let planted = |k: usize| lane(states, k).planted;
+            let planted = BVec4A::new(planted(0), planted(1), planted(2), planted(3));
+            let d = feet.sub(*hips);
+            out |= (d.dot(d).cmpgt(lanes.reach2) & planted).any();
+        }
+        if !out {
+            self.reacted_rotation = Some(rotation);
+            return;
+        }
+        let out_of_reach = |offset: Vec3, rotation: Quat| {
+            let rotation = Mat3A::from_quat((pose.rotation * rotation).normalize());
+            let origin = pose.translation + offset;
+            self.legs.iter().zip(&self.states).any(|(leg, state)| {
+                let reach = leg.upper + leg.lower;
+                leg.kind == LimbKind::Leg
+                    && state.planted
+                    && state.foot.distance_squared(rotation * leg.hip + origin) > reach * reach
+            })
+        };
+        if !out_of_reach(reaction.offset, reaction.rotation) {
+            return;
+        }
+        // Bisection on the share of the reaction kept: 0 (none) to 1 (all).
+        let (mut low, mut high) = (0.0f32, 1.0f32);
+        for _ in 0..REACH_BISECTIONS {
+            let mid = 0.5 * (low + high);
+            let rotation = Quat::IDENTITY.slerp(reaction.rotation, mid);
+            if out_of_reach(reaction.offset * mid, rotation) {
+                high = mid;
+            } else {
+                low = mid;
+            }
+        }
+        self.reaction.offset = reaction.offset * low;
+        self.reaction.rotation = Quat::IDENTITY.slerp(reaction.rotation, low).normalize();
+    }
+}

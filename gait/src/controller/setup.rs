@@ -1,0 +1,196 @@
+//! Building a [`Controller`] and changing its settings between updates.
+
+use alloc::vec::Vec;
+
+use glam::{Quat, Vec3, Vec3A};
+
+use super::{BodyReaction, Controller, HipPair, LegLanes, LegState, Look};
+use crate::error::{GaitError, finite, finite3, in_range};
+use crate::leg::{Leg, LimbKind, Pose, layout};
+use crate::math::{abs, cos};
+use crate::metrics::GaitMetrics;
+use crate::options::GaitOptions;
+
+impl Controller {
+    /// A controller for `legs` (any number ≥ 1, arms included) with `options`. The feet are
+    /// placed on the ground at the first [`update`](Self::update) (or by
+    /// [`reset`](Self::reset)). A body without legs takes [`chains_only`](Self::chains_only).
+    ///
+    /// # Errors
+    /// [`GaitError::NoLegs`], the first leg's error from [`Leg::validate`],
+    /// [`GaitError::MixedGroups`], or the options' error from [`GaitOptions::validate`].
+    pub fn new(legs: &[Leg], options: &GaitOptions) -> Result<Self, GaitError> {
+        if legs.is_empty() {
+            return Err(GaitError::NoLegs);
+        }
+        for (i, leg) in legs.iter().enumerate() {
+            leg.validate(i)?;
+        }
+        let mean_size = legs.iter().map(|l| l.size).sum::<f32>() / legs.len() as f32;
+        Self::build(legs, mean_size, options)
+    }
+
+    /// A controller without legs, for bodies that fly or swim: it drives follow-through
+    /// [`Chain`](crate::Chain)s (dangling legs, tails, fins: add them with
+    /// [`add_chain`](Self::add_chain)), breathing and the head's look-at, with no stepping and no
+    /// body reaction to feet.
+    /// `size` (metres) stands in for the mean leg size of [`new`](Self::new): it scales the
+    /// breathing amplitude and the look-at distance.
+    ///
+    /// ```
+    /// use creature_gait::glam::Vec3;
+    /// use creature_gait::{Chain, Controller, GaitOptions, Plane, Pose};
+    ///
+    /// // A hovering body with one dangling leg: gravity pulls it down, it swings behind when
+    /// // the body flies forward.
+    /// let mut c = Controller::chains_only(0.5, &GaitOptions::DEFAULT)?;
+    /// let leg = c.add_chain(Chain::new(Vec3::new(0.1, 0.0, 0.0), Vec3::NEG_Y, 2, 0.2).with_gravity(9.81))?;
+    /// let ground = Plane::horizontal(-10.0);
+    /// for i in 0..60 {
+    ///     let t = i as f32 / 30.0;
+    ///     c.update(1.0 / 30.0, Pose::from_yaw(Vec3::Z * (2.0 * t), 0.0), Vec3::Z * 2.0, Vec3::ZERO, &ground)?;
+    /// }
+    /// let joints = c.chain(leg)?;
+    /// assert_eq!(joints.len(), 3);
+    /// // The tip trails behind its root.
+    /// assert!(joints[2].z < joints[0].z);
+    /// # Ok::<(), creature_gait::GaitError>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`GaitError::NonFinite`] or [`GaitError::NotPositive`] for `size`, or the options' error
+    /// from [`GaitOptions::validate`].
+    pub fn chains_only(size: f32, options: &GaitOptions) -> Result<Self, GaitError> {
+        finite(size, "size", 0)?;
+        if !(size > 0.0) {
+            return Err(GaitError::NotPositive {
+                what: "size",
+                index: 0,
+                value: size,
+            });
+        }
+        Self::build(&[], size, options)
+    }
+
+    fn build(legs: &[Leg], mean_size: f32, options: &GaitOptions) -> Result<Self, GaitError> {
+        options.validate()?;
+        let layout = layout(legs)?;
+        let swing_fraction = 1.0 / f32::from(layout.group_count.max(2));
+        // Each leg's hip-roll lever: the hips' X distance to its partner (or a floor).
+        let hip_width: Vec<f32> = legs
+            .iter()
+            .enumerate()
+            .map(|(i, a)| match layout.partner[i].map(|j| &legs[j]) {
+                Some(b) => abs(a.hip.x - b.hip.x).max(1e-3 * a.size),
+                None => 0.0,
+            })
+            .collect();
+        let hip_pairs = (0..legs.len())
+            .map(|i| match layout.partner[i] {
+                Some(j) if j < i && hip_width[j] == hip_width[i] => HipPair::Mirror(j),
+                Some(j) => HipPair::Own(j, hip_width[i]),
+                None => HipPair::None,
+            })
+            .collect();
+        Ok(Self {
+            legs: legs.to_vec(),
+            options: *options,
+            layout,
+            states: legs.iter().map(|l| LegState::new(l.rest)).collect(),
+            chains: Vec::new(),
+            chain_states: Vec::new(),
+            initialized: false,
+            active_group: 0,
+            turn_taken: false,
+            mean_size,
+            swing_fraction,
+            pose: Pose::IDENTITY,
+            reaction: BodyReaction::NEUTRAL,
+            look: Look {
+                rotation: Quat::IDENTITY,
+                target: Vec3::Z,
+                yaw: 0.0,
+                pitch: 0.0,
+            },
+            look_target: None,
+            head: Vec3::ZERO,
+            idle_phase: 0.0,
+            blend: 1.0,
+            blend_target: 1.0,
+            blend_rate: 0.0,
+            metrics: GaitMetrics::default(),
+            wants: alloc::vec![0; legs.len()],
+            motion: alloc::vec![Vec3::ZERO; legs.len()],
+            rest_world: legs.iter().map(|l| l.rest).collect(),
+            hip_pairs,
+            has_arms: legs.iter().any(|l| l.kind == LimbKind::Arm),
+            cos_turn: cos(options.max_turn_angle),
+            smoothing_dt: -1.0,
+            react_k: 0.0,
+            look_k: 0.0,
+            look_cache: None,
+            leg_lanes: legs.chunks(4).map(LegLanes::new).collect(),
+            angles: alloc::vec![0.0; legs.len()],
+            strayed: alloc::vec![(0.0, 0.0); legs.len()],
+            hips: legs.chunks(4).map(|l| LegLanes::new(l).hip).collect(),
+            feet: legs.chunks(4).map(|l| LegLanes::new(l).rest).collect(),
+            reacted_rotation: None,
+            centre_of_mass: Vec3A::from(options.centre_of_mass),
+        })
+    }
+
+    /// Sets the head's position in body space (the look-at's origin). Default zero.
+    ///
+    /// # Errors
+    /// [`GaitError::NonFinite`] for a non-finite position.
+    pub fn set_head(&mut self, head: Vec3) -> Result<(), GaitError> {
+        finite3(head, "head", 0)?;
+        self.head = head;
+        self.look_cache = None;
+        Ok(())
+    }
+
+    /// Makes the head look at a world point (`Some`) or where the body turns (`None`,
+    /// default). The gaze is smoothed and limited by the options either way.
+    ///
+    /// # Errors
+    /// [`GaitError::NonFinite`] for a non-finite point.
+    pub fn set_look_target(&mut self, target: Option<Vec3>) -> Result<(), GaitError> {
+        if let Some(t) = target {
+            finite3(t, "look target", 0)?;
+        }
+        self.look_target = target;
+        Ok(())
+    }
+
+    /// Sets the procedural layer's blend weight at once: 1 (default) is fully procedural,
+    /// 0 is the plain rest pose (feet at their rest positions, no reaction, head forward,
+    /// chains rigid), ready for an authored animation to take over.
+    ///
+    /// # Errors
+    /// [`GaitError::OutOfRange`] outside `[0, 1]`.
+    pub fn set_blend(&mut self, weight: f32) -> Result<(), GaitError> {
+        in_range(weight, "blend weight", 0.0, 1.0)?;
+        self.blend = weight;
+        self.blend_target = weight;
+        self.blend_rate = 0.0;
+        Ok(())
+    }
+
+    /// Ramps the blend weight toward `weight` over the following updates, at the rate of
+    /// [`GaitOptions::blend_time`] for a full 0 → 1 change (instantly when that is 0).
+    ///
+    /// # Errors
+    /// [`GaitError::OutOfRange`] outside `[0, 1]`.
+    pub fn blend_to(&mut self, weight: f32) -> Result<(), GaitError> {
+        in_range(weight, "blend weight", 0.0, 1.0)?;
+        self.blend_target = weight;
+        if self.options.blend_time <= 0.0 {
+            self.blend = weight;
+            self.blend_rate = 0.0;
+        } else {
+            self.blend_rate = 1.0 / self.options.blend_time;
+        }
+        Ok(())
+    }
+}

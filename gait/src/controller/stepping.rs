@@ -1,0 +1,387 @@
+//! Action and sequencing: each leg's ground ray and anchor, which planted feet want to step,
+//! the leg groups' turns, and the steps themselves (start, progress, landing).
+
+use glam::{Mat3A, Vec3};
+
+use super::{Controller, horizontal};
+use crate::ground::Ground;
+use crate::leg::{Leg, LimbKind, Pose};
+use crate::math::{abs, sin_turns, sqrt};
+use crate::options::GaitOptions;
+
+const WANT: u8 = 1;
+const ESCAPE: u8 = 2;
+
+impl Controller {
+    pub(super) fn action<G: Ground + ?Sized>(
+        &mut self,
+        dt: f32,
+        pose: &Pose,
+        rotation: &Mat3A,
+        velocity: Vec3,
+        angular_velocity: Vec3,
+        ground: &G,
+    ) {
+        let o = &self.options;
+        let forward = horizontal(pose.rotation * Vec3::Z)
+            .try_normalize()
+            .unwrap_or(Vec3::Z);
+        let body = pose.translation;
+        let rotation = *rotation;
+        let speed_factor = o.speed_multiplier.max(1.0);
+        let arm_idle = if self.has_arms {
+            sin_turns(self.idle_phase)
+        } else {
+            0.0
+        };
+
+        // Is the body still? (Every rest position slower than the threshold.)
+        let still_limit = o.still_speed * self.mean_size;
+        let mut still = true;
+
+        // 1. Anchors, and progress of the steps under way.
+        let mut steps_started = 0usize;
+        let mut escapes_started = 0usize;
+        for (i, leg) in self.legs.iter().enumerate() {
+            let rest_world = rotation * leg.rest + body;
+            // `cast_anchor` without the normal, which only a step whose target stays at the
+            // anchor uses: it is cast again then (`anchor_normal`).
+            let (anchor, grounded) = if leg.kind == LimbKind::Arm {
+                (rest_world, true)
+            } else {
+                let (origin, max_distance) = down_ray(rest_world, leg.size, o);
+                match ground.cast_down_point(origin, max_distance) {
+                    Some(point) => (point, true),
+                    None => (rest_world, false),
+                }
+            };
+            let anchor_normal =
+                || cast_down(ground, rest_world, leg.size, o).map_or(Vec3::Y, |(_, n)| n);
+            let motion = horizontal(velocity + angular_velocity.cross(rest_world - body));
+            if still && motion.length() > still_limit {
+                still = false;
+            }
+            self.rest_world[i] = rest_world;
+            self.motion[i] = motion;
+            let want = &mut self.wants[i];
+            let state = &mut self.states[i];
+            state.prev_foot = state.foot;
+            state.prev_planted = state.planted;
+            state.prev_anchor = state.anchor;
+            state.anchor = anchor;
+            let was_grounded = state.grounded;
+            state.grounded = grounded;
+            if leg.kind == LimbKind::Leg && !grounded {
+                // Nothing under the leg: it dangles at its rest position.
+                state.foot = anchor;
+                state.normal = Vec3::Y;
+                state.stepping = false;
+                state.planted = false;
+                state.progress = 1.0;
+                continue;
+            }
+            if state.stepping {
+                let (target, target_normal) = step_target(
+                    leg,
+                    o,
+                    anchor,
+                    anchor_normal,
+                    motion,
+                    forward,
+                    rest_world.y,
+                    ground,
+                );
+                state.step_target = target;
+                let moved = horizontal(anchor - state.prev_anchor).length();
+                let by_motion = moved / state.swing_length.max(1e-6);
+                state.progress = (state.progress + by_motion.max(o.settle_rate * dt)).min(1.0);
+                if state.progress >= 1.0 {
+                    state.foot = target;
+                    state.normal = target_normal;
+                    state.stepping = false;
+                    state.escaping = false;
+                    state.planted = true;
+                } else {
+                    let lift = o.height_curve.evaluate(state.progress) * state.lift;
+                    state.foot = state.step_start.lerp(target, state.progress) + Vec3::Y * lift;
+                    state.normal = target_normal;
+                }
+            } else if leg.kind == LimbKind::Arm {
+                // Arms hold their place in XZ and follow the body's height, idling gently.
+                state.foot.y = anchor.y + arm_idle * o.arm_idle_amplitude * leg.size;
+            } else if !was_grounded {
+                // Ground came back under a dangling leg: force a step onto it.
+                *want = WANT | ESCAPE;
+                continue;
+            }
+            *want = 0;
+        }
+
+        // 2. Which planted legs want to step.
+        for ((((leg, state), want), motion), strayed) in self
+            .legs
+            .iter()
+            .zip(&self.states)
+            .zip(&mut self.wants)
+            .zip(&self.motion)
+            .zip(&mut self.strayed)
+        {
+            if state.stepping || (leg.kind == LimbKind::Leg && !state.grounded) {
+                *want = 0;
+                continue;
+            }
+            if *want != 0 {
+                continue; // forced above
+            }
+            let stray = horizontal(state.foot - state.anchor);
+            let distance = stray.length();
+            let d = if distance > 1e-9 {
+                stray.dot(forward) / distance
+            } else {
+                0.0
+            };
+            let reach_here = o.reach.evaluate(d);
+            *strayed = (distance, reach_here);
+            let allowed = reach_here * leg.size;
+            let mut flags = if distance > allowed { WANT } else { 0 };
+            // Turning (in place): the foot's direction from the body has turned too far from the
+            // rest direction. Only for a foot that trails its rest position's motion: one that
+            // landed ahead (at the overshoot) is left to the reach, or it would step again at
+            // once. |atan2(cross, dot)| > max_turn_angle ⟺
+            // dot < cos(max_turn_angle) · |(cross, dot)|, without the arctangent.
+            if flags == 0 && distance > 0.1 * allowed && stray.dot(*motion) < 0.0 {
+                let from_body = horizontal(state.foot - body);
+                let rest_dir = horizontal(state.anchor - body);
+                let tiny = 1e-6 * leg.size * leg.size;
+                if from_body.length_squared() > tiny && rest_dir.length_squared() > tiny {
+                    let cross = from_body.cross(rest_dir).y;
+                    let dot = from_body.dot(rest_dir);
+                    if dot < self.cos_turn * sqrt(cross * cross + dot * dot) {
+                        flags = WANT;
+                    }
+                }
+            }
+            if flags == 0 && still && distance > o.settle_distance * leg.size {
+                flags = WANT;
+            }
+            if distance > o.escape_factor * allowed {
+                flags |= ESCAPE;
+            }
+            // Out of the leg's reach (the body moved on while the foot waited for its group,
+            // e.g. the outer legs of a long body turning in place): step now, out of turn,
+            // rather than overstretch.
+            let reach = leg.upper + leg.lower;
+            if leg.kind == LimbKind::Leg
+                && state.foot.distance_squared(rotation * leg.hip + body) > reach * reach
+            {
+                flags |= WANT | ESCAPE;
+            }
+            *want = flags;
+        }
+
+        // 3. Sequencing: the active group keeps the turn while any of its legs steps. One pass
+        //    finds what step 4 needs of the group that then has the turn, this one or the next.
+        //    (Plain boolean arithmetic, no branches: which legs step and want to varies too
+        //    much to predict.)
+        let count = self.layout.group_count.max(1);
+        let active = self.active_group;
+        let next = (active + 1) % count;
+        let (mut group_stepping, mut group_wants, mut next_moves) = (false, false, false);
+        for (((leg, state), want), group) in self
+            .legs
+            .iter()
+            .zip(&self.states)
+            .zip(&self.wants)
+            .zip(&self.layout.groups)
+        {
+            let sequenced = leg.kind == LimbKind::Leg;
+            let wants = want & WANT != 0;
+            group_stepping |= sequenced & (*group == active) & state.stepping;
+            group_wants |= sequenced & (*group == active) & wants;
+            next_moves |= sequenced & (*group == next) & (state.stepping | wants);
+        }
+        let advance = !group_stepping && (self.turn_taken || !group_wants);
+        if advance {
+            self.active_group = next;
+            self.turn_taken = false;
+        }
+        let active = self.active_group;
+
+        // 4. Start the steps that are allowed. Once the active group moves, its other legs that
+        //    trail behind their rest position by more than `group_join` of their reach join it,
+        //    so a group steps together instead of leaving a leg to wait a whole cycle. Feet
+        //    that are ahead (just landed) never join: they would step again at once.
+        let group_moves = if advance {
+            next_moves
+        } else {
+            group_stepping | group_wants
+        };
+        if group_moves {
+            for (((((leg, state), want), group), motion), &(distance, reach_here)) in self
+                .legs
+                .iter()
+                .zip(&self.states)
+                .zip(&mut self.wants)
+                .zip(&self.layout.groups)
+                .zip(&self.motion)
+                .zip(&self.strayed)
+            {
+                let idle = (leg.kind == LimbKind::Leg)
+                    & (*group == active)
+                    & !state.stepping
+                    & state.grounded
+                    & (*want == 0);
+                let stray = horizontal(state.foot - state.anchor);
+                let trailing = stray.dot(*motion) < 0.0;
+                // The stray's length and the reach in its direction, as step 2 found them
+                // (every idle leg went through it, and no foot has moved since).
+                let far = distance > o.group_join * reach_here * leg.size;
+                if idle & trailing & far {
+                    *want = WANT;
+                }
+            }
+        }
+        for i in 0..self.legs.len() {
+            let flags = self.wants[i];
+            if flags == 0 {
+                continue;
+            }
+            let leg = &self.legs[i];
+            let sequenced = leg.kind == LimbKind::Leg;
+            let opposite_busy = self.layout.opposite[i].is_some_and(|j| self.states[j].stepping);
+            let in_turn = !sequenced || (self.layout.groups[i] == active && !opposite_busy);
+            let escape = sequenced && !in_turn && flags & ESCAPE != 0;
+            if !(escape || (flags & WANT != 0 && in_turn)) {
+                continue;
+            }
+            let state = &mut self.states[i];
+            let normal = state.normal;
+            let (target, target_normal) = step_target(
+                leg,
+                o,
+                state.anchor,
+                || normal,
+                self.motion[i],
+                forward,
+                self.rest_world[i].y,
+                ground,
+            );
+            state.stepping = true;
+            state.planted = false;
+            state.escaping = escape;
+            state.progress = 0.0;
+            state.step_start = state.foot;
+            state.step_target = target;
+            state.normal = target_normal;
+            state.lift = o.step_height * leg.size * speed_factor;
+            state.swing_length = horizontal(target - state.foot)
+                .length()
+                .max(0.05 * leg.size)
+                * self.swing_fraction;
+            state.steps = state.steps.saturating_add(1);
+            if sequenced {
+                steps_started += 1;
+                if escape {
+                    state.escapes = state.escapes.saturating_add(1);
+                    escapes_started += 1;
+                } else {
+                    self.turn_taken = true;
+                }
+            }
+        }
+        self.metrics.steps_started = steps_started;
+        self.metrics.escapes_started = escapes_started;
+    }
+}
+
+/// The ray hit under a leg's rest position (`rest_world`): `(point, normal, grounded)`; arms
+/// and misses give the rest position itself.
+#[inline(always)]
+pub(super) fn cast_anchor<G: Ground + ?Sized>(
+    leg: &Leg,
+    rest_world: Vec3,
+    o: &GaitOptions,
+    ground: &G,
+) -> (Vec3, Vec3, bool) {
+    if leg.kind == LimbKind::Arm {
+        return (rest_world, Vec3::Y, true);
+    }
+    match cast_down(ground, rest_world, leg.size, o) {
+        Some((point, normal)) => (point, normal, true),
+        None => (rest_world, Vec3::Y, false),
+    }
+}
+
+/// A ray straight down from above `point`: `(hit point, unit normal)` or `None`; hits with
+/// non-finite fields are ignored.
+#[inline(always)]
+fn cast_down<G: Ground + ?Sized>(
+    ground: &G,
+    point: Vec3,
+    size: f32,
+    o: &GaitOptions,
+) -> Option<(Vec3, Vec3)> {
+    let (origin, max_distance) = down_ray(point, size, o);
+    let hit = ground.cast_down(origin, max_distance)?;
+    // `hit.is_valid()`, then unit normals (as `HeightField` and `Plane` give) kept and others
+    // normalised; a normal that passes as a unit is finite and long enough already.
+    let n = hit.normal;
+    let n2 = n.length_squared();
+    let normal = if abs(n2 - 1.0) <= 1e-6 {
+        n
+    } else if n.is_finite() && n2 > 1e-12 {
+        n.normalize_or(Vec3::Y)
+    } else {
+        return None;
+    };
+    if !(hit.point.is_finite() && hit.distance.is_finite()) {
+        return None;
+    }
+    Some((hit.point, normal))
+}
+
+/// The ray of [`cast_down`]: its origin above `point` and its length.
+#[inline(always)]
+fn down_ray(point: Vec3, size: f32, o: &GaitOptions) -> (Vec3, f32) {
+    let above = o.cast_height * size;
+    (point + Vec3::Y * above, above + o.cast_depth * size)
+}
+
+/// Where a step should land: ahead of the anchor along the anchor's horizontal `motion`, by the
+/// reach in that direction × overshoot (ramped in with speed, × the speed multiplier, capped at
+/// the reach), projected onto the ground from `rest_y` (the rest position's height) or the
+/// anchor, whichever is higher.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn step_target<G: Ground + ?Sized>(
+    leg: &Leg,
+    o: &GaitOptions,
+    anchor: Vec3,
+    anchor_normal: impl FnOnce() -> Vec3,
+    motion: Vec3,
+    forward: Vec3,
+    rest_y: f32,
+    ground: &G,
+) -> (Vec3, Vec3) {
+    let speed = motion.length();
+    let mut target = anchor;
+    if speed > 1e-6 {
+        let dir = motion / speed;
+        let reach = o.reach.evaluate(dir.dot(forward)) * leg.size;
+        let ramp = (speed / (o.overshoot_speed * leg.size)).min(1.0);
+        let length = (reach * o.overshoot * ramp * o.speed_multiplier.max(1.0)).min(reach);
+        target += dir * length;
+    }
+    if leg.kind == LimbKind::Arm {
+        return (target, Vec3::Y);
+    }
+    if target == anchor {
+        return (anchor, anchor_normal());
+    }
+    // Cast from the rest height so steep ground ahead is found from above.
+    let probe = Vec3::new(target.x, rest_y.max(anchor.y), target.z);
+    match cast_down(ground, probe, leg.size, o) {
+        Some(hit) => hit,
+        None => (anchor, anchor_normal()),
+    }
+}

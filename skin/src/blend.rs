@@ -79,8 +79,7 @@ pub fn skin_positions(
             let mut deltas: Vec<Delta> = transforms.iter().map(Delta::new).collect();
             deltas.push(Delta::POISON);
             if !linear_positions(rest, influences, &deltas, out) {
-                // Without the poisoned stand-in pushed last.
-                let deltas = &deltas[..transforms.len()];
+                let deltas = deltas.get(..transforms.len()).unwrap_or_default();
                 // Something needs a closer look: redo every vertex with every check, naming the
                 // first problem, in vertex order. (Valid vertices get the same bits again.)
                 for (i, ((&p, inf), o)) in

@@ -6,7 +6,7 @@ use alloc::vec::Vec;
 
 use glam::{Vec3, Vec3A, Vec4};
 
-use crate::error::RigError;
+use crate::error::AutorigError;
 use crate::options::{RigOptions, RootAt};
 use crate::skeleton::{Joint, Rig, Socket};
 
@@ -85,26 +85,26 @@ pub const MAX_COORDINATE: f32 = 1.0e15;
 /// // Swimmers: rooted at the head.
 /// let swimmer = rig(&positions, &[], &RigOptions::default().with_root(RootAt::Head))?;
 /// assert_eq!(swimmer.root(), Some(swimmer.head));
-/// # Ok::<(), creature_autorig::RigError>(())
+/// # Ok::<(), creature_autorig::AutorigError>(())
 /// ```
 ///
 /// # Errors
-/// - [`RigError::InvalidOption`] / [`RigError::InvalidBoneCount`] for bad options;
-/// - [`RigError::NoVertices`] if there are no vertices (or no triangle uses any);
-/// - [`RigError::NonFinite`] / [`RigError::CoordinateTooLarge`] for a bad vertex;
-/// - [`RigError::IndexOutOfRange`] for a triangle naming a missing vertex;
-/// - [`RigError::AllCoincident`], [`RigError::Collinear`] or [`RigError::NoLengthAlongZ`] when
+/// - [`AutorigError::InvalidOption`] / [`AutorigError::InvalidBoneCount`] for bad options;
+/// - [`AutorigError::NoVertices`] if there are no vertices (or no triangle uses any);
+/// - [`AutorigError::NonFinite`] / [`AutorigError::CoordinateTooLarge`] for a bad vertex;
+/// - [`AutorigError::IndexOutOfRange`] for a triangle naming a missing vertex;
+/// - [`AutorigError::AllCoincident`], [`AutorigError::Collinear`] or [`AutorigError::NoLengthAlongZ`] when
 ///   the body has no head–tail axis or no cross-section.
 pub fn rig(
     positions: &[Vec3],
     triangles: &[[u32; 3]],
     options: &RigOptions,
-) -> Result<Rig, RigError> {
+) -> Result<Rig, AutorigError> {
     options.validate()?;
     let body = Body::new(positions, triangles)?;
     let (tail_point, head_point) = body.tips(options.centre_tolerance)?;
-    let tail = body.points.get(tail_point).copied().unwrap_or(body.min);
-    let head = body.points.get(head_point).copied().unwrap_or(body.max);
+    // `tips` returns indices into `points`.
+    let (tail, head) = (body.points[tail_point], body.points[head_point]);
     let chord = head - tail;
     let length = chord.length();
     let axis = chord / length;
@@ -157,8 +157,9 @@ pub fn rig(
     }
 
     let (joints, spine) = link(&points, centre);
-    let head_joint = spine.last().copied().unwrap_or(0);
-    let tail_joint = spine.first().copied().unwrap_or(0);
+    // One spine entry per point: `bones + 1` of them, and `validate` keeps `bones >= 2`.
+    debug_assert!(spine.len() >= 3);
+    let (tail_joint, head_joint) = (spine[0], spine[spine.len() - 1]);
     let sockets = sockets(&slabs, &joints, &spine, axis, tail);
     Ok(Rig {
         joints,
@@ -198,7 +199,7 @@ struct Body<'a> {
 }
 
 impl<'a> Body<'a> {
-    fn new(positions: &'a [Vec3], triangles: &[[u32; 3]]) -> Result<Self, RigError> {
+    fn new(positions: &'a [Vec3], triangles: &[[u32; 3]]) -> Result<Self, AutorigError> {
         // One pass: validate every vertex and take the bounding box of them all.
         let limit = Vec3A::splat(MAX_COORDINATE);
         let mut min = Vec3A::INFINITY;
@@ -208,14 +209,14 @@ impl<'a> Body<'a> {
             // False for NaN too.
             if !q.abs().cmple(limit).all() {
                 if !p.is_finite() {
-                    return Err(RigError::NonFinite { index });
+                    return Err(AutorigError::NonFinite { index });
                 }
                 let value = p
                     .to_array()
                     .into_iter()
                     .find(|v| v.abs() > MAX_COORDINATE)
                     .unwrap_or(p.x);
-                return Err(RigError::CoordinateTooLarge { index, value });
+                return Err(AutorigError::CoordinateTooLarge { index, value });
             }
             min = min.min(q);
             max = max.max(q);
@@ -238,7 +239,7 @@ impl<'a> Body<'a> {
                         .copied()
                         .find(|&i| i as usize >= n)
                         .unwrap_or(tri[0]);
-                    return Err(RigError::IndexOutOfRange {
+                    return Err(AutorigError::IndexOutOfRange {
                         triangle,
                         index,
                         vertices: n,
@@ -255,8 +256,9 @@ impl<'a> Body<'a> {
                     .filter(|(_, (_, u))| **u)
                     .map(|(i, (&p, _))| (p, u32::try_from(i).unwrap_or(u32::MAX)))
                     .unzip();
-                // The box of the vertices that count.
-                let start = points.first().copied().unwrap_or(Vec3::ZERO);
+                // The box of the vertices that count (at least the three of the first
+                // triangle, all in range).
+                let start = points[0];
                 (min, max) = points
                     .iter()
                     .fold((start, start), |(lo, hi), &p| (lo.min(p), hi.max(p)));
@@ -264,10 +266,10 @@ impl<'a> Body<'a> {
             }
         };
         if points.is_empty() {
-            return Err(RigError::NoVertices);
+            return Err(AutorigError::NoVertices);
         }
         if min == max {
-            return Err(RigError::AllCoincident);
+            return Err(AutorigError::AllCoincident);
         }
         Ok(Self {
             points,
@@ -282,7 +284,8 @@ impl<'a> Body<'a> {
     #[inline]
     fn id(&self, i: usize) -> u32 {
         match &self.ids {
-            Some(ids) => ids.get(i).copied().unwrap_or(u32::MAX),
+            // One id per point.
+            Some(ids) => ids[i],
             None => u32::try_from(i).unwrap_or(u32::MAX),
         }
     }
@@ -292,10 +295,10 @@ impl<'a> Body<'a> {
     /// the tube around the Z line through the centre of that end (the centroid of the vertices
     /// within a tenth of the body's length of it, weighted from 1 at the very end down to 0 a
     /// tenth in).
-    fn tips(&self, tolerance: f32) -> Result<(usize, usize), RigError> {
+    fn tips(&self, tolerance: f32) -> Result<(usize, usize), AutorigError> {
         let extent = self.max - self.min;
         if !(extent.z > 0.0) {
-            return Err(RigError::NoLengthAlongZ);
+            return Err(AutorigError::NoLengthAlongZ);
         }
         // The centres (in X and Y) of the rearmost and frontmost tenth of the body.
         let inv_depth = 1.0 / (END_DEPTH * extent.z);
@@ -349,14 +352,14 @@ impl<'a> Body<'a> {
             if half_width >= 2.0 * full {
                 // Every vertex is inside both tubes and still no two Zs differ: cannot happen
                 // when extent.z > 0, but never loop forever.
-                return Err(RigError::NoLengthAlongZ);
+                return Err(AutorigError::NoLengthAlongZ);
             }
             half_width = (half_width * 2.0).max(f32::MIN_POSITIVE);
         }
     }
 
     /// Rejects bodies whose vertices all lie on the tail–head line.
-    fn check_cross_section(&self, tail: Vec3, axis: Vec3, length: f32) -> Result<(), RigError> {
+    fn check_cross_section(&self, tail: Vec3, axis: Vec3, length: f32) -> Result<(), AutorigError> {
         let tolerance = 1e-6 * length;
         let off_axis = self.points.iter().any(|&p| {
             let rel = p - tail;
@@ -365,7 +368,7 @@ impl<'a> Body<'a> {
         if off_axis {
             Ok(())
         } else {
-            Err(RigError::Collinear)
+            Err(AutorigError::Collinear)
         }
     }
 }
@@ -422,13 +425,10 @@ impl Slabs {
         for (i, ((&p, &a), &k)) in body.points.iter().zip(&along).zip(&slab).enumerate() {
             let at = next[usize::from(k)];
             next[usize::from(k)] += 1;
-            if let (Some(o), Some(q), Some(s)) =
-                (order.get_mut(at), points.get_mut(at), sorted.get_mut(at))
-            {
-                *o = body.id(i);
-                *q = p;
-                *s = a;
-            }
+            // `at` < `n`: the counting sort hands out each of `0..n` once.
+            order[at] = body.id(i);
+            points[at] = p;
+            sorted[at] = a;
         }
         Self {
             starts,
@@ -449,10 +449,9 @@ impl Slabs {
         let last = self.count() - 1;
         let first = ((from * self.inv_width).max(0.0) as usize).min(last);
         let end = ((to * self.inv_width).max(0.0) as usize).min(last);
-        match (self.starts.get(first), self.starts.get(end + 1)) {
-            (Some(&a), Some(&b)) if a <= b => a..b,
-            _ => 0..0,
-        }
+        // `starts` has `count + 1` entries and `first, end <= count - 1`.
+        let (a, b) = (self.starts[first], self.starts[end + 1]);
+        if a <= b { a..b } else { 0..0 }
     }
 
     /// Tail vertex, cross-section centroids, head vertex.
@@ -470,17 +469,11 @@ impl Slabs {
         // and last slabs to a phantom one beyond the ends as well, which is never read.
         let mut sums = vec![Vec4::ZERO; count + 2];
         for slab in 0..count {
-            let (Some(&from), Some(&to)) = (self.starts.get(slab), self.starts.get(slab + 1))
-            else {
-                continue;
-            };
-            let (Some(ps), Some(ss), Some(window)) = (
-                self.points.get(from..to),
-                self.along.get(from..to),
-                sums.get_mut(slab..slab + 3),
-            ) else {
-                continue;
-            };
+            // `starts` has `count + 1` non-decreasing entries, the last `points.len()`;
+            // `sums` has `count + 2`.
+            let (from, to) = (self.starts[slab], self.starts[slab + 1]);
+            let (ps, ss) = (&self.points[from..to], &self.along[from..to]);
+            let window = &mut sums[slab..slab + 3];
             // The centres of slabs `slab - 1`, `slab` and `slab + 1`, as `centre` computes them.
             let k = slab as f32;
             let centres = [k - 0.5, k + 0.5, k + 1.5].map(|c| c * self.width);
@@ -494,7 +487,7 @@ impl Slabs {
             }
             window.copy_from_slice(&acc);
         }
-        let sums = sums.get(1..=count).unwrap_or_default();
+        let sums = &sums[1..=count];
         let mut points = Vec::with_capacity(count + 2);
         points.push(tail);
         // A slab whose window only grazes a few vertices would add a point wherever those
@@ -541,8 +534,9 @@ impl MedialLine {
         }
     }
 
+    /// Never empty: the line has at least its tail and head points.
     fn length(&self) -> f32 {
-        self.arc.last().copied().unwrap_or(0.0)
+        self.arc[self.arc.len() - 1]
     }
 
     /// The point at arc length `a`.
@@ -559,7 +553,8 @@ impl MedialLine {
                 }
             }
             (None, Some(&p)) => p,
-            _ => self.points.last().copied().unwrap_or(Vec3::ZERO),
+            // Beyond the last point (the line has at least its tail and head points).
+            _ => self.points[self.points.len() - 1],
         }
     }
 
@@ -639,12 +634,9 @@ fn sockets(
     let bones = spine.len().saturating_sub(1);
     let mut out = Vec::with_capacity(bones.saturating_sub(2));
     for bone in 1..bones.saturating_sub(1) {
-        let (Some(&a), Some(&b)) = (spine.get(bone), spine.get(bone + 1)) else {
-            continue;
-        };
-        let (Some(ja), Some(jb)) = (joints.get(a), joints.get(b)) else {
-            continue;
-        };
+        // `bone + 1 < spine.len()`, and spine entries are joint indices.
+        let (a, b) = (spine[bone], spine[bone + 1]);
+        let (ja, jb) = (&joints[a], &joints[b]);
         // The carrying joint is the parent of the other end.
         let joint = if jb.parent == Some(a) { a } else { b };
         if let Some(socket) = socket_for(slabs, bone, joint, ja.position, jb.position, axis, tail) {
@@ -720,7 +712,7 @@ fn socket_for(
         gathered = 0..slabs.points.len();
     }
     let first = gathered.start;
-    let candidates = slabs.points.get(gathered).unwrap_or_default();
+    let candidates = &slabs.points[gathered];
     let half = 0.5 * length;
     let scan = |beside_only: bool| {
         let mut found = Extremes::EMPTY;

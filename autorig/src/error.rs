@@ -8,7 +8,7 @@ use core::fmt;
 /// change in the input.
 #[derive(Debug, Clone, PartialEq)]
 #[non_exhaustive]
-pub enum RigError {
+pub enum AutorigError {
     /// No vertices were given (or no triangle uses any).
     NoVertices,
     /// A vertex position was NaN or infinite.
@@ -56,7 +56,7 @@ pub enum RigError {
     },
 }
 
-impl fmt::Display for RigError {
+impl fmt::Display for AutorigError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match *self {
             Self::NoVertices => write!(
@@ -110,7 +110,7 @@ impl fmt::Display for RigError {
     }
 }
 
-impl core::error::Error for RigError {}
+impl core::error::Error for AutorigError {}
 
 #[cfg(test)]
 mod tests {
@@ -120,7 +120,7 @@ mod tests {
 
     #[test]
     fn messages_say_what_to_fix() {
-        let msg = RigError::IndexOutOfRange {
+        let msg = AutorigError::IndexOutOfRange {
             triangle: 3,
             index: 99,
             vertices: 10,
@@ -130,15 +130,15 @@ mod tests {
             msg.contains("triangle 3") && msg.contains("only 10"),
             "{msg}"
         );
-        let msg = RigError::InvalidBoneCount { min: 5, max: 2 }.to_string();
+        let msg = AutorigError::InvalidBoneCount { min: 5, max: 2 }.to_string();
         assert!(msg.contains("2 <= min_bones"), "{msg}");
-        let msg = RigError::NoLengthAlongZ.to_string();
+        let msg = AutorigError::NoLengthAlongZ.to_string();
         assert!(msg.contains("along Z"), "{msg}");
     }
 
     #[test]
     fn error_trait_is_implemented_without_std() {
         fn takes_error(_: &dyn core::error::Error) {}
-        takes_error(&RigError::NoVertices);
+        takes_error(&AutorigError::NoVertices);
     }
 }

@@ -21,7 +21,7 @@ mod skeleton;
 pub mod strategies;
 
 pub use build::{MAX_COORDINATE, rig};
-pub use error::RigError;
+pub use error::AutorigError;
 pub use options::{RigOptions, RootAt};
 pub use skeleton::{Joint, Rig, Socket};
 

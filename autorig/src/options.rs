@@ -1,6 +1,6 @@
 //! Rigging options.
 
-use crate::error::RigError;
+use crate::error::AutorigError;
 
 /// Where the spine's root joint sits.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -93,19 +93,19 @@ impl RigOptions {
     /// Checks every option; [`rig`](crate::rig) calls this first.
     ///
     /// # Errors
-    /// [`RigError::InvalidOption`] or [`RigError::InvalidBoneCount`].
-    pub fn validate(&self) -> Result<(), RigError> {
+    /// [`AutorigError::InvalidOption`] or [`AutorigError::InvalidBoneCount`].
+    pub fn validate(&self) -> Result<(), AutorigError> {
         for (what, value) in [
             ("centre_tolerance", self.centre_tolerance),
             ("bone_length", self.bone_length),
         ] {
             if !(value.is_finite() && value > 0.0) {
-                return Err(RigError::InvalidOption { what, value });
+                return Err(AutorigError::InvalidOption { what, value });
             }
         }
         if self.min_bones < 2 || self.min_bones > self.max_bones || self.max_bones > Self::MAX_BONES
         {
-            return Err(RigError::InvalidBoneCount {
+            return Err(AutorigError::InvalidBoneCount {
                 min: self.min_bones,
                 max: self.max_bones,
             });
@@ -143,7 +143,7 @@ mod tests {
     fn bad_options_are_errors() {
         assert_eq!(
             RigOptions::DEFAULT.with_bone_length(0.0).validate(),
-            Err(RigError::InvalidOption {
+            Err(AutorigError::InvalidOption {
                 what: "bone_length",
                 value: 0.0
             })
@@ -152,7 +152,7 @@ mod tests {
             RigOptions::DEFAULT
                 .with_centre_tolerance(f32::NAN)
                 .validate(),
-            Err(RigError::InvalidOption {
+            Err(AutorigError::InvalidOption {
                 what: "centre_tolerance",
                 ..
             })
@@ -160,7 +160,7 @@ mod tests {
         for (min, max) in [(1, 5), (6, 5), (2, 2000)] {
             assert_eq!(
                 RigOptions::DEFAULT.with_bone_count(min, max).validate(),
-                Err(RigError::InvalidBoneCount { min, max })
+                Err(AutorigError::InvalidBoneCount { min, max })
             );
         }
     }

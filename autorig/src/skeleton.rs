@@ -151,7 +151,7 @@ impl Rig {
     ///     assert_eq!(joint, i);
     ///     assert_eq!(segment, segments[i]);
     /// }
-    /// # Ok::<(), creature_autorig::RigError>(())
+    /// # Ok::<(), creature_autorig::AutorigError>(())
     /// ```
     #[must_use]
     pub fn bone_segments(&self) -> Vec<[Vec3; 2]> {

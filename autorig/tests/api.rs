@@ -7,7 +7,7 @@ mod support;
 
 use approx::assert_abs_diff_eq;
 use creature_autorig::glam::{Quat, Vec3};
-use creature_autorig::{Rig, RigError, RigOptions, RootAt, rig};
+use creature_autorig::{AutorigError, Rig, RigOptions, RootAt, rig};
 
 use support::capsule_mesh;
 
@@ -217,24 +217,24 @@ fn rigging_is_deterministic() {
 fn bad_input_is_an_error() {
     let (mut positions, mut triangles) = capsule();
     let options = RigOptions::default();
-    assert_eq!(rig(&[], &[], &options), Err(RigError::NoVertices));
+    assert_eq!(rig(&[], &[], &options), Err(AutorigError::NoVertices));
     assert_eq!(
         rig(&[Vec3::ONE; 5], &[], &options),
-        Err(RigError::AllCoincident)
+        Err(AutorigError::AllCoincident)
     );
     let line: Vec<Vec3> = (0..10)
         .map(|i| Vec3::new(0.1, 0.2, 1.0) * i as f32)
         .collect();
-    assert_eq!(rig(&line, &[], &options), Err(RigError::Collinear));
+    assert_eq!(rig(&line, &[], &options), Err(AutorigError::Collinear));
     let disc: Vec<Vec3> = (0..10)
         .map(|i| Vec3::new((i as f32).cos(), (i as f32).sin(), 3.0))
         .collect();
-    assert_eq!(rig(&disc, &[], &options), Err(RigError::NoLengthAlongZ));
+    assert_eq!(rig(&disc, &[], &options), Err(AutorigError::NoLengthAlongZ));
     triangles.push([0, 1, 9999]);
     let err = rig(&positions, &triangles, &options).unwrap_err();
     assert_eq!(
         err,
-        RigError::IndexOutOfRange {
+        AutorigError::IndexOutOfRange {
             triangle: triangles.len() - 1,
             index: 9999,
             vertices: positions.len()
@@ -245,12 +245,12 @@ fn bad_input_is_an_error() {
     positions[17].z = f32::NAN;
     assert_eq!(
         rig(&positions, &triangles, &options),
-        Err(RigError::NonFinite { index: 17 })
+        Err(AutorigError::NonFinite { index: 17 })
     );
     positions[17].z = 1e30;
     assert_eq!(
         rig(&positions, &triangles, &options),
-        Err(RigError::CoordinateTooLarge {
+        Err(AutorigError::CoordinateTooLarge {
             index: 17,
             value: 1e30
         })
@@ -261,7 +261,7 @@ fn bad_input_is_an_error() {
             &triangles,
             &RigOptions::default().with_bone_length(-1.0)
         ),
-        Err(RigError::InvalidOption { .. })
+        Err(AutorigError::InvalidOption { .. })
     ));
 }
 

@@ -1,7 +1,7 @@
 //! Property tests of the invariants the crate promises, driven by its public strategies.
 
 use creature_autorig::glam::Vec3;
-use creature_autorig::{RigError, RigOptions, rig, strategies};
+use creature_autorig::{AutorigError, RigOptions, rig, strategies};
 use proptest::prelude::*;
 use proptest::test_runner::FileFailurePersistence;
 
@@ -83,7 +83,7 @@ proptest! {
     fn non_finite_vertices_are_errors(((positions, triangles), index) in strategies::non_finite_body()) {
         prop_assert_eq!(
             rig(&positions, &triangles, &RigOptions::default()),
-            Err(RigError::NonFinite { index })
+            Err(AutorigError::NonFinite { index })
         );
     }
 
@@ -91,7 +91,7 @@ proptest! {
     fn bad_triangles_are_errors(((positions, triangles), triangle) in strategies::bad_triangles()) {
         let result = rig(&positions, &triangles, &RigOptions::default());
         prop_assert!(
-            matches!(result, Err(RigError::IndexOutOfRange { triangle: t, .. }) if t == triangle),
+            matches!(result, Err(AutorigError::IndexOutOfRange { triangle: t, .. }) if t == triangle),
             "{:?}", result
         );
     }
@@ -102,7 +102,7 @@ proptest! {
         prop_assert!(
             matches!(
                 result,
-                Err(RigError::AllCoincident | RigError::Collinear | RigError::NoLengthAlongZ)
+                Err(AutorigError::AllCoincident | AutorigError::Collinear | AutorigError::NoLengthAlongZ)
             ),
             "{:?}", result
         );

@@ -4,35 +4,15 @@
 //!
 //! Run: `cargo run -p creature-limbs --example plan -- [seed]` (default seed 7).
 
-use core::convert::Infallible;
-
 use creature_limbs::glam::Vec3;
-use creature_limbs::rand_core::TryRng;
 use creature_limbs::{Body, CreatureKind, HeadEnd, LimbsError, Plan, PlanOptions, SpineBone, plan};
 
-/// SplitMix64: any `rand_core` 0.10 generator works; this one needs no dependency.
-struct SplitMix(u64);
+// SplitMix64: any `rand_core` 0.10 generator works; this one needs no dependency (the
+// README writes it out).
+#[path = "../tests/support/split_mix.rs"]
+mod split_mix;
 
-impl TryRng for SplitMix {
-    type Error = Infallible;
-    fn try_next_u32(&mut self) -> Result<u32, Infallible> {
-        Ok((self.try_next_u64()? >> 32) as u32)
-    }
-    fn try_next_u64(&mut self) -> Result<u64, Infallible> {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        Ok(z ^ (z >> 31))
-    }
-    fn try_fill_bytes(&mut self, dst: &mut [u8]) -> Result<(), Infallible> {
-        for chunk in dst.chunks_mut(8) {
-            let bytes = self.try_next_u64()?.to_le_bytes();
-            chunk.copy_from_slice(&bytes[..chunk.len()]);
-        }
-        Ok(())
-    }
-}
+use split_mix::SplitMix;
 
 /// Ten bones along +Z, the head at the last one, with hips (bone 2) and a chest (bone 7).
 /// glTF's convention: right-handed, +Y up, facing +Z, so the left socket is on +X.

@@ -16,6 +16,7 @@ pub const MAX_EXTENT: f32 = 1.0e6;
 
 /// What kind of creature the limbs are planned for.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[non_exhaustive]
 pub enum CreatureKind {
     /// Walks on legs, maybe with arms: placement keeps it statically stable.
     Walker,

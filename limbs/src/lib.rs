@@ -18,6 +18,10 @@ mod options;
 mod plan;
 mod planner;
 mod random;
+// The tests' generator, shared with the integration tests, bench and example.
+#[cfg(test)]
+#[path = "../tests/support/split_mix.rs"]
+mod split_mix;
 #[cfg(feature = "proptest")]
 #[cfg_attr(docsrs, doc(cfg(feature = "proptest")))]
 pub mod strategies;

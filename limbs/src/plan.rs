@@ -8,6 +8,7 @@ use crate::CreatureKind;
 
 /// What a limb is.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[non_exhaustive]
 pub enum LimbKind {
     /// A walking leg (walkers) or a hanging leg (fliers): a two-bone IK chain.
     Leg,
@@ -27,6 +28,7 @@ pub enum LimbKind {
 
 /// Which socket of its bone a limb attaches to.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[non_exhaustive]
 pub enum Socket {
     /// [`SpineBone::left`](crate::SpineBone::left).
     Left,
@@ -53,6 +55,7 @@ pub enum Side {
 
 /// Which way leg knees bend, chosen once per creature.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[non_exhaustive]
 pub enum Knee {
     /// Knees point toward the head (a human's).
     Forward,
@@ -121,6 +124,7 @@ pub struct Limb {
 /// planner had to rebuild the layout. It always describes the legs in [`Plan::limbs`]; pairs
 /// added to a rule's layout are also listed as [`Repair::AddedPair`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[non_exhaustive]
 pub enum WalkerLayout {
     /// Long or nearly uniform body: as many non-overlapping leg pairs as fit (the seed's first
     /// rule).

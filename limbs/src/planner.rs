@@ -1063,7 +1063,7 @@ mod tests {
 
     use super::*;
     use crate::SpineBone;
-    use crate::random::tests::SplitMix;
+    use crate::split_mix::SplitMix;
 
     /// A straight body facing +Z (left on +X), bones 0.5 apart.
     fn body(widths: &[f32], clearances: &[f32]) -> Body {

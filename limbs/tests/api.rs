@@ -25,6 +25,7 @@ fn socket_point(body: &Body, limb: &Limb) -> Vec3 {
         Socket::Left => b.left,
         Socket::Right => b.right,
         Socket::Top | Socket::Tip => b.top,
+        other => unreachable!("a socket this test does not know: {other:?}"),
     }
 }
 

@@ -166,6 +166,7 @@ fn walker_checks(body: &Body, options: &PlanOptions, p: &Plan) -> Result<(), Tes
         WalkerLayout::Biped => prop_assert_eq!(p.leg_pairs(), 1),
         WalkerLayout::TwoWide | WalkerLayout::Balanced => prop_assert!(p.leg_pairs() >= 2),
         WalkerLayout::Fill | WalkerLayout::Rebuilt => {}
+        other => prop_assert!(false, "a layout this test does not know: {other:?}"),
     }
     // Repairs are truthful.
     let mut lifted = false;

@@ -89,7 +89,10 @@ impl Influences {
     pub fn quantize_u8(&self) -> [u8; MAX_INFLUENCES] {
         let q = largest_remainder(&self.weights, u8::MAX.into());
         // Each value is at most the total, 255.
-        q.map(|v| u8::try_from(v).unwrap_or(u8::MAX))
+        q.map(|v| {
+            debug_assert!(v <= u32::from(u8::MAX));
+            v as u8
+        })
     }
 
     /// Weights as glTF normalised unsigned shorts, summing to exactly 65535. See
@@ -97,7 +100,11 @@ impl Influences {
     #[must_use]
     pub fn quantize_u16(&self) -> [u16; MAX_INFLUENCES] {
         let q = largest_remainder(&self.weights, u16::MAX.into());
-        q.map(|v| u16::try_from(v).unwrap_or(u16::MAX))
+        // Each value is at most the total, 65535.
+        q.map(|v| {
+            debug_assert!(v <= u32::from(u16::MAX));
+            v as u16
+        })
     }
 
     /// Sorts the slots by weight, largest first (ties by joint index, smallest first), and

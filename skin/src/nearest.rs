@@ -302,7 +302,8 @@ fn bind_all(
     let used = k.min(segments.len()).min(MAX_INFLUENCES);
     let mut out = Vec::with_capacity(vertices.len());
     for block in vertices.chunks(4) {
-        let last = block.last().copied().unwrap_or(Vec3::ZERO);
+        // Chunks are never empty; a short last block repeats its last vertex in the spare lanes.
+        let last = block[block.len() - 1];
         let lane = |i: usize| block.get(i).copied().unwrap_or(last);
         let (a, b, c, d) = (lane(0), lane(1), lane(2), lane(3));
         let p = [

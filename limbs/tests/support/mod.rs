@@ -2,36 +2,11 @@
 #![allow(dead_code, unreachable_pub)]
 
 pub mod reference;
-
-use core::convert::Infallible;
+mod split_mix;
 
 use creature_limbs::glam::{Vec2, Vec3};
-use creature_limbs::rand_core::TryRng;
 use creature_limbs::{Body, HeadEnd, LimbKind, Plan, PlanOptions, SpineBone, support_margin};
-
-/// SplitMix64: a tiny deterministic generator for tests.
-pub struct SplitMix(pub u64);
-
-impl TryRng for SplitMix {
-    type Error = Infallible;
-    fn try_next_u32(&mut self) -> Result<u32, Infallible> {
-        Ok((self.try_next_u64()? >> 32) as u32)
-    }
-    fn try_next_u64(&mut self) -> Result<u64, Infallible> {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        Ok(z ^ (z >> 31))
-    }
-    fn try_fill_bytes(&mut self, dst: &mut [u8]) -> Result<(), Infallible> {
-        for chunk in dst.chunks_mut(8) {
-            let bytes = self.try_next_u64()?.to_le_bytes();
-            chunk.copy_from_slice(&bytes[..chunk.len()]);
-        }
-        Ok(())
-    }
-}
+pub(crate) use split_mix::SplitMix;
 
 /// A straight body along +Z: bone `i` at `along = i * spacing` with the given widths and
 /// clearances, side sockets at half the width, ground at y = 0. The creature faces its head:

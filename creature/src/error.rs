@@ -5,7 +5,7 @@ use core::fmt;
 
 use glam::Vec2;
 
-use creature_autorig::RigError;
+use creature_autorig::AutorigError;
 use creature_ffd::FfdError;
 use creature_gait::GaitError;
 use creature_limbs::LimbsError;
@@ -78,9 +78,15 @@ pub enum Error {
         /// Its centre.
         center: Vec2,
     },
-    /// The outline or mesh came out degenerate (for example a zero-height bounding box).
+    /// The outline, mesh or rig came out degenerate (for example a zero-height bounding box).
     Degenerate {
         /// What was degenerate.
+        what: &'static str,
+    },
+    /// A creature kind, limb type or socket that this version of the facade has no entry for:
+    /// the `creature-limbs` in use is newer than this `creature`.
+    Unsupported {
+        /// What has no entry, e.g. `"limb type"`.
         what: &'static str,
     },
     /// A walking clip was asked of a creature without a gait set-up (fliers and swimmers):
@@ -102,7 +108,7 @@ pub enum Error {
     /// From `creature-ffd`.
     Ffd(FfdError),
     /// From `creature-autorig`.
-    Rig(RigError),
+    Rig(AutorigError),
     /// From `creature-limbs`.
     Limbs(LimbsError),
     /// From `creature-gait`.
@@ -149,6 +155,10 @@ impl fmt::Display for Error {
                 "ball {ball} of bone {bone} at {center} lies outside the outline: lower outline_step or thicken the bone"
             ),
             Self::Degenerate { what } => write!(f, "the {what} is degenerate"),
+            Self::Unsupported { what } => write!(
+                f,
+                "this {what} is new to this version of creature: update creature to the release made for your creature-limbs"
+            ),
             Self::NoGait => write!(
                 f,
                 "this creature has no gait set-up: only walkers walk (use bake_clips for fliers and swimmers)"
@@ -195,7 +205,7 @@ wrap! {
     MarchError => March,
     SkinError => Skin,
     FfdError => Ffd,
-    RigError => Rig,
+    AutorigError => Rig,
     LimbsError => Limbs,
     GaitError => Gait,
 }

@@ -44,6 +44,7 @@ fn kinds_are_honoured_and_random_draws_all_three() {
             CreatureKind::Walker => 0,
             CreatureKind::Flier => 1,
             CreatureKind::Swimmer => 2,
+            other => panic!("a default creature of an unexpected kind: {other:?}"),
         }] = true;
     }
     assert_eq!(seen, [true; 3]);

@@ -321,6 +321,11 @@ impl Creature {
                     clip::swim(self, "swim", self.speed)
                 ]
             }
+            _ => {
+                return Err(Error::Unsupported {
+                    what: "creature kind",
+                });
+            }
         })
     }
 }

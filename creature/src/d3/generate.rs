@@ -383,7 +383,7 @@ fn add_limbs(
             positions[socket.right_vertex as usize],
             positions[socket.top_vertex as usize],
             tail.position,
-        );
+        )?;
         let joint = if limb.socket == creature_limbs::Socket::Tip {
             // A tail fin hangs on the joint before the tail tip (the rig roots at the centre
             // or the head, so the tip always has one).

@@ -351,14 +351,12 @@ pub(crate) const LIMB_SHAPES: [LimbShape; 7] = [
 /// The row of `kind` in [`LIMB_SHAPES`].
 ///
 /// # Errors
-/// [`Error::Degenerate`] for a limb type the table has no row for.
+/// [`Error::Unsupported`] for a limb type the table has no row for.
 pub(crate) fn limb_shape(kind: LimbKind) -> Result<&'static LimbShape, Error> {
     LIMB_SHAPES
         .iter()
         .find(|s| s.kind == kind)
-        .ok_or(Error::Degenerate {
-            what: "limb (its type has no row in the facade's limb shapes)",
-        })
+        .ok_or(Error::Unsupported { what: "limb type" })
 }
 
 /// Adds one limb's joints (parent: the mount's joint) and its mesh; joints are appended to
@@ -476,12 +474,24 @@ fn chain_joints(
 }
 
 /// The socket point a limb attaches to.
-pub(crate) fn socket_point(socket: Socket, left: Vec3, right: Vec3, top: Vec3, tip: Vec3) -> Vec3 {
+///
+/// # Errors
+/// [`Error::Unsupported`] for a socket the planner has and this facade does not.
+pub(crate) fn socket_point(
+    socket: Socket,
+    left: Vec3,
+    right: Vec3,
+    top: Vec3,
+    tip: Vec3,
+) -> Result<Vec3, Error> {
     match socket {
-        Socket::Left => left,
-        Socket::Right => right,
-        Socket::Top => top,
-        Socket::Tip => tip,
+        Socket::Left => Ok(left),
+        Socket::Right => Ok(right),
+        Socket::Top => Ok(top),
+        Socket::Tip => Ok(tip),
+        _ => Err(Error::Unsupported {
+            what: "limb socket",
+        }),
     }
 }
 

@@ -330,6 +330,13 @@ fn doc(w: &Workspace) -> Result<(), String> {
 
 fn package(w: &Workspace) -> Result<(), String> {
     forget_packaged_sources(&w.no_std_packages())?;
+    // The packaged crates are verified in a target folder of their own, from which our
+    // crates' earlier builds are forgotten first: cargo takes a registry crate's build as
+    // fresh whenever its name and version match, so a second run in the same folder would
+    // build the facade against the previous run's micro-crates and fail on any API changed
+    // since (a fresh clone has no earlier build).
+    let verify = w.root.join("target").join("package-verify");
+    forget_packaged_builds(&verify)?;
     let mut c = w.cargo();
     // --allow-dirty: a developer's tree may have uncommitted files; CI's clone is clean anyway.
     c.args([
@@ -339,8 +346,31 @@ fn package(w: &Workspace) -> Result<(), String> {
         "xtask",
         "--allow-dirty",
         "--locked",
+        "--target-dir",
     ]);
+    c.arg(&verify);
     run(c)
+}
+
+/// Removes the fingerprints of this workspace's crates (`creature` and `creature-*`) from a
+/// package verification's target folder, so that cargo builds them again.
+fn forget_packaged_builds(verify: &Path) -> Result<(), String> {
+    let Ok(profiles) = fs::read_dir(verify) else {
+        return Ok(());
+    };
+    for profile in profiles.flatten() {
+        let Ok(entries) = fs::read_dir(profile.path().join(".fingerprint")) else {
+            continue;
+        };
+        for entry in entries.flatten() {
+            let name = entry.file_name().to_string_lossy().into_owned();
+            if name.starts_with("creature-") {
+                fs::remove_dir_all(entry.path())
+                    .map_err(|e| format!("cannot remove {}: {e}", entry.path().display()))?;
+            }
+        }
+    }
+    Ok(())
 }
 
 /// Removes this workspace's crates from the sources cargo extracted out of earlier

@@ -77,3 +77,33 @@ fn empty_creatures_do_not_export() {
     let c = creature::d2::Creature::default();
     assert!(matches!(export::glb_2d(&c), Err(Error::Export { .. })));
 }
+
+/// Issue 17, finding 4: a size whose byte count overflows was taken for an empty image and
+/// encoded as a PNG declaring 2³¹ × 2³¹ pixels.
+#[test]
+fn regression_image_png_rejects_a_size_whose_byte_count_overflows() {
+    let huge = creature::Image {
+        width: 1 << 31,
+        height: 1 << 31,
+        rgba: Vec::new(),
+    };
+    assert!(matches!(
+        export::image_png(&huge),
+        Err(Error::Export { .. })
+    ));
+}
+
+/// Issue 17, finding 9: rounding made the longer side of some previews one pixel larger than
+/// the size asked for (90 × 55 at size 89 for this creature; 14 of 855 sizes).
+#[test]
+fn regression_a_preview_is_never_larger_than_its_size() {
+    let c = generate_2d(0, &d2::Params::DEFAULT.with_texture_size(16)).unwrap();
+    let options = PreviewOptions::DEFAULT
+        .with_textured(false)
+        .with_outline(false)
+        .with_eyes(false);
+    for size in (16..=200).chain([255, 256, 511, 512, 870]) {
+        let image = export::preview_2d(&c, &options.with_size(size)).unwrap();
+        assert_eq!(image.width.max(image.height), size, "size {size}");
+    }
+}

@@ -114,8 +114,9 @@ impl Leg {
     ///
     /// # Errors
     /// [`GaitError::NonFinite`] for a non-finite position or pole, [`GaitError::NotPositive`]
-    /// for a segment length or size that is not positive, [`GaitError::ZeroVector`] for a
-    /// zero pole.
+    /// for a segment length or size that is not positive, [`GaitError::OutOfRange`] for a
+    /// coordinate, length or size beyond [`MAX_COORDINATE`](crate::MAX_COORDINATE),
+    /// [`GaitError::ZeroVector`] for a zero pole.
     pub fn validate(&self, index: usize) -> Result<(), GaitError> {
         finite3(self.hip, "leg hip", index)?;
         finite3(self.rest, "leg rest position", index)?;
@@ -124,6 +125,18 @@ impl Leg {
         positive(self.lower, "lower segment of leg", index)?;
         positive(self.size, "size of leg", index)?;
         positive(self.upper + self.lower, "length of leg", index)?;
+        // Poses are capped at MAX_COORDINATE; so are the legs, whose squared lengths and hull
+        // areas would otherwise overflow to infinity and NaN.
+        let max = crate::MAX_COORDINATE;
+        crate::error::in_range(self.hip.abs().max_element(), "leg hip coordinate", 0.0, max)?;
+        crate::error::in_range(
+            self.rest.abs().max_element(),
+            "leg rest coordinate",
+            0.0,
+            max,
+        )?;
+        crate::error::in_range(self.upper + self.lower, "length of leg", 0.0, max)?;
+        crate::error::in_range(self.size, "size of leg", 0.0, max)?;
         if self.pole.length_squared() < 1e-12 {
             return Err(GaitError::ZeroVector {
                 what: "leg pole",
@@ -210,7 +223,8 @@ impl Chain {
     /// # Errors
     /// [`GaitError::NonFinite`], [`GaitError::ZeroVector`] (direction),
     /// [`GaitError::NotPositive`] (segment length, zero segments) or
-    /// [`GaitError::OutOfRange`] (segments, stiffness, damping, gravity, turn bend).
+    /// [`GaitError::OutOfRange`] (segments, a root coordinate or the chain's length beyond
+    /// [`MAX_COORDINATE`](crate::MAX_COORDINATE), stiffness, damping, gravity, turn bend).
     pub fn validate(&self, index: usize) -> Result<(), GaitError> {
         finite3(self.root, "chain root", index)?;
         finite3(self.direction, "chain direction", index)?;
@@ -228,6 +242,19 @@ impl Chain {
                 value: 0.0,
             });
         }
+        let max = crate::MAX_COORDINATE;
+        crate::error::in_range(
+            self.root.abs().max_element(),
+            "chain root coordinate",
+            0.0,
+            max,
+        )?;
+        crate::error::in_range(
+            self.segment_length * self.segments as f32,
+            "length of chain",
+            0.0,
+            max,
+        )?;
         if self.segments > MAX_CHAIN_SEGMENTS {
             return Err(GaitError::OutOfRange {
                 what: "chain segments",

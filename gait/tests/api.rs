@@ -568,3 +568,77 @@ fn metrics_do_not_depend_on_when_they_are_asked() {
     assert!(worst_skate <= 1e-4);
     assert!(once.metrics().stability_margin.is_some());
 }
+
+// ----- regressions of issue 17 (fuzzing) ------------------------------------------------------
+
+/// Finding 5: a finite quaternion whose squared length overflows gave NaN in the reacted pose
+/// and the knees (after a first update) or a misleading zero-vector error (on the first).
+#[test]
+fn regression_a_huge_finite_quaternion_is_normalised_not_nan() {
+    let g = Plane::horizontal(0.0);
+    let huge = Quat::from_xyzw(-3.226_371_5e19, -1.0, -1.0, -1.0);
+    for first in [true, false] {
+        let mut c = quadruped();
+        if !first {
+            c.update(DT, standing(), Vec3::ZERO, Vec3::ZERO, &g)
+                .unwrap();
+        }
+        c.update(
+            DT,
+            Pose::new(Vec3::new(0.0, 0.8, 0.0), huge),
+            Vec3::ZERO,
+            Vec3::ZERO,
+            &g,
+        )
+        .unwrap();
+        let pose = c.reacted_pose();
+        assert!(
+            pose.rotation.is_finite() && pose.rotation.is_normalized(),
+            "{pose:?}"
+        );
+        for state in c.leg_states() {
+            assert!(
+                state.joints.middle.is_finite() && state.foot.is_finite(),
+                "{state:?}"
+            );
+        }
+    }
+}
+
+/// Finding 6: legs and chains had no size bound while poses are capped at `MAX_COORDINATE`:
+/// `f32::MAX` lengths and far hips gave NaN joints and an infinite stability margin.
+#[test]
+fn regression_legs_and_chains_beyond_max_coordinate_are_errors() {
+    let hip = Vec3::new(0.2, 0.0, 0.3);
+    let rest = Vec3::new(0.3, -0.8, 0.3);
+    let out_of_range =
+        |r: Result<Controller, GaitError>| matches!(r, Err(GaitError::OutOfRange { .. }));
+    let new = |leg: Leg| Controller::new(&[leg], &GaitOptions::DEFAULT);
+    assert!(out_of_range(new(Leg::new(hip, rest, f32::MAX, 1.66))));
+    assert!(out_of_range(new(Leg::new(
+        Vec3::new(0.0, 0.0, 1e30),
+        rest,
+        0.5,
+        0.5
+    ))));
+    assert!(out_of_range(new(Leg::new(
+        hip,
+        Vec3::splat(-1e30),
+        0.5,
+        0.5
+    ))));
+    assert!(new(Leg::new(hip, rest, 0.5, 0.5)).is_ok());
+    let mut c = quadruped();
+    assert!(matches!(
+        c.add_chain(Chain::new(Vec3::ZERO, Vec3::NEG_Z, 3, f32::MAX)),
+        Err(GaitError::OutOfRange { .. })
+    ));
+    assert!(matches!(
+        c.add_chain(Chain::new(Vec3::splat(1e30), Vec3::NEG_Z, 3, 0.2)),
+        Err(GaitError::OutOfRange { .. })
+    ));
+    assert!(
+        c.add_chain(Chain::new(Vec3::ZERO, Vec3::NEG_Z, 3, 0.2))
+            .is_ok()
+    );
+}

@@ -78,8 +78,11 @@ pub(crate) fn export_error(format: &'static str, message: impl ToString) -> Erro
 #[cfg(feature = "export")]
 #[cfg_attr(docsrs, doc(cfg(feature = "export")))]
 pub fn image_png(image: &Image) -> Result<Vec<u8>, Error> {
-    let expected = image.width as usize * image.height as usize * 4;
-    if image.rgba.len() != expected || image.width == 0 || image.height == 0 {
+    // Checked: a size whose byte count overflows `usize` is not this data's size.
+    let expected = (image.width as usize)
+        .checked_mul(image.height as usize)
+        .and_then(|pixels| pixels.checked_mul(4));
+    if expected != Some(image.rgba.len()) || image.width == 0 || image.height == 0 {
         return Err(export_error("png", "image size and data length disagree"));
     }
     let mut out = Vec::new();

@@ -117,8 +117,14 @@ impl View {
         let extent = (max - min).max(Vec2::splat(1e-3));
         let margin = (size as f32 * 0.04).max(2.0);
         let scale = (size as f32 - 2.0 * margin) / extent.max_element();
-        let w = (extent.x * scale + 2.0 * margin).ceil().max(1.0) as u32;
-        let h = (extent.y * scale + 2.0 * margin).ceil().max(1.0) as u32;
+        // The longer side is `size` exactly; rounding may put it a hair above, which `ceil`
+        // would turn into a whole extra pixel.
+        let side = |length: f32| {
+            (length * scale + 2.0 * margin)
+                .ceil()
+                .clamp(1.0, size as f32) as u32
+        };
+        let (w, h) = (side(extent.x), side(extent.y));
         (
             Self {
                 min,

@@ -14,7 +14,7 @@
 
 use alloc::vec::Vec;
 
-use glam::{Mat3A, Quat, Vec3, Vec3A};
+use glam::{Mat3A, Quat, Vec3, Vec3A, Vec4};
 
 use crate::error::{GaitError, finite, finite3, in_range};
 use crate::ground::Ground;
@@ -407,6 +407,13 @@ fn validate_pose(pose: Pose) -> Result<Pose, GaitError> {
     let len2 = pose.rotation.length_squared();
     if len2 == 1.0 || len2 == 1.0 + f32::EPSILON {
         return Ok(pose);
+    }
+    if len2 == f32::INFINITY {
+        // Finite components whose squares overflow: scaled by the largest first, the length
+        // is between 1 and 2 and the division exact enough.
+        let scaled = Vec4::from(pose.rotation) / Vec4::from(pose.rotation).abs().max_element();
+        let rotation = Quat::from_vec4(scaled / scaled.length());
+        return Ok(Pose::new(pose.translation, rotation));
     }
     let len = sqrt(len2);
     if !(len > 1e-6) {

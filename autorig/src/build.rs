@@ -94,7 +94,8 @@ pub const MAX_COORDINATE: f32 = 1.0e15;
 /// - [`AutorigError::NonFinite`] / [`AutorigError::CoordinateTooLarge`] for a bad vertex;
 /// - [`AutorigError::IndexOutOfRange`] for a triangle naming a missing vertex;
 /// - [`AutorigError::AllCoincident`], [`AutorigError::Collinear`] or [`AutorigError::NoLengthAlongZ`] when
-///   the body has no head–tail axis or no cross-section.
+///   the body has no head–tail axis or no cross-section, or is so short that its joints
+///   coincide (then its bones could not all get their sockets).
 pub fn rig(
     positions: &[Vec3],
     triangles: &[[u32; 3]],
@@ -160,7 +161,7 @@ pub fn rig(
     // One spine entry per point: `bones + 1` of them, and `validate` keeps `bones >= 2`.
     debug_assert!(spine.len() >= 3);
     let (tail_joint, head_joint) = (spine[0], spine[spine.len() - 1]);
-    let sockets = sockets(&slabs, &joints, &spine, axis, tail);
+    let sockets = sockets(&slabs, &joints, &spine, axis, tail)?;
     Ok(Rig {
         joints,
         spine,
@@ -624,13 +625,17 @@ fn link(points: &[Vec3], centre: usize) -> (Vec<Joint>, Vec<usize>) {
 }
 
 /// The sockets of every spine bone but the first and last.
+///
+/// # Errors
+/// [`AutorigError::NoLengthAlongZ`] when a bone finds no vertex for a socket: a body so short
+/// (under about 1e-38 along Z) that its joints coincide in `f32`.
 fn sockets(
     slabs: &Slabs,
     joints: &[Joint],
     spine: &[usize],
     axis: Vec3,
     tail: Vec3,
-) -> Vec<Socket> {
+) -> Result<Vec<Socket>, AutorigError> {
     let bones = spine.len().saturating_sub(1);
     let mut out = Vec::with_capacity(bones.saturating_sub(2));
     for bone in 1..bones.saturating_sub(1) {
@@ -639,11 +644,11 @@ fn sockets(
         let (ja, jb) = (&joints[a], &joints[b]);
         // The carrying joint is the parent of the other end.
         let joint = if jb.parent == Some(a) { a } else { b };
-        if let Some(socket) = socket_for(slabs, bone, joint, ja.position, jb.position, axis, tail) {
-            out.push(socket);
-        }
+        let socket = socket_for(slabs, bone, joint, ja.position, jb.position, axis, tail)
+            .ok_or(AutorigError::NoLengthAlongZ)?;
+        out.push(socket);
     }
-    out
+    Ok(out)
 }
 
 /// The best vertex for each of a socket's three directions, and the lowest Y, over a set of

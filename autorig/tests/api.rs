@@ -303,3 +303,31 @@ fn bones_with_no_vertex_beside_them_still_get_sockets() {
         assert_abs_diff_eq!(s.width, 0.6, epsilon = 1e-5);
     }
 }
+
+/// Issue 17, finding 10: a body 1e-45 across rigged "fine" with four coincident bones and no
+/// sockets at all, though every bone but the first and last promises one. A body too small
+/// to give its bones a length is an error, as one of 1e-30 already was.
+#[test]
+fn regression_a_body_too_small_for_its_bones_is_an_error_not_a_rig_without_sockets() {
+    let positions = [Vec3::ZERO, Vec3::splat(1e-45)];
+    let options = RigOptions::DEFAULT.with_bone_count(4, 4);
+    match rig(&positions, &[], &options) {
+        Ok(r) => {
+            let bones = r.spine.len() - 1;
+            assert_eq!(
+                r.sockets.len(),
+                bones - 2,
+                "one socket per inner bone: {r:?}"
+            );
+        }
+        Err(e) => assert!(
+            matches!(
+                e,
+                AutorigError::NoLengthAlongZ
+                    | AutorigError::AllCoincident
+                    | AutorigError::Collinear
+            ),
+            "{e:?}"
+        ),
+    }
+}

@@ -282,3 +282,27 @@ fn every_kind_bakes_two_clips_that_loop() {
     }
     println!("loop errors: {errors:?}");
 }
+
+/// Issue 17: `generate`'s docs said valid params never give `NoStableLayout`; extreme limb
+/// options validate and still can (the docs now say so). The error is typed, not a panic.
+#[test]
+fn regression_extreme_valid_limb_options_give_a_typed_error() {
+    let limbs = d3::Params::DEFAULT
+        .limbs
+        .with_min_margin(1.0)
+        .with_sweep(100.0);
+    let params = d3::Params::DEFAULT
+        .with_kind(d3::Kind::Walker)
+        .with_limbs(limbs);
+    params.validate().unwrap();
+    let result = generate(0, &params);
+    assert!(
+        matches!(
+            result,
+            Err(Error::Limbs(
+                creature::limbs::LimbsError::NoStableLayout { .. }
+            ))
+        ),
+        "{result:?}"
+    );
+}

@@ -620,6 +620,38 @@ fn min_angle_deg(a: Vec2, b: Vec2, c: Vec2) -> f32 {
 /// the shortest edge (it is acute: at most 60°), and the twice-area is taken at the corner
 /// between the two shorter edges, where it loses the least to rounding.
 fn min_angle_tan(a: Vec2, b: Vec2, c: Vec2) -> (f32, f32) {
+    let (y, x) = min_angle_tan_f32(a, b, c);
+    if y.is_finite() && x.is_finite() {
+        return (y, x);
+    }
+    // Coordinates so large that the edges' products overflow `f32`: the same in `f64`, scaled
+    // back into `f32` with the ratio kept.
+    let [a, b, c] = [a, b, c].map(|p| p.as_dvec2());
+    let corners = [
+        (b - a, c - a, (c - b).length_squared()),
+        (c - b, a - b, (a - c).length_squared()),
+        (a - c, b - c, (b - a).length_squared()),
+    ];
+    let smallest = corners
+        .iter()
+        .fold(corners[0], |s, &k| if k.2 < s.2 { k } else { s });
+    let widest = corners
+        .iter()
+        .fold(corners[0], |w, &k| if k.2 > w.2 { k } else { w });
+    let (y, x) = (
+        widest.0.perp_dot(widest.1).abs(),
+        smallest.0.dot(smallest.1),
+    );
+    let m = y.abs().max(x.abs());
+    if m > 0.0 && m.is_finite() {
+        ((y / m) as f32, (x / m) as f32)
+    } else {
+        (0.0, 1.0)
+    }
+}
+
+/// [`min_angle_tan`] in `f32`, exact enough for every mesh of coordinates below about 1e18.
+fn min_angle_tan_f32(a: Vec2, b: Vec2, c: Vec2) -> (f32, f32) {
     // Corner `k`: its two edges, and the squared length of the edge opposite it.
     let corners = [
         (b - a, c - a, (c - b).length_squared()),
@@ -795,6 +827,29 @@ mod tests {
         // Counts may differ only for angles within rounding of the limits.
         assert!(q.below_20.abs_diff(below.0) <= 1 && q.below_limit.abs_diff(below.1) <= 1);
         assert!((q.min_angle - smallest).abs() < 1e-2);
+    }
+
+    /// Issue 17, finding 12: a vertex at `x = f32::MAX` overflowed the edges' products, and
+    /// the quality reported 45° for a triangle whose smallest angle is about 0.
+    #[test]
+    fn regression_min_angle_at_huge_coordinates() {
+        let positions = [Vec2::ZERO, Vec2::new(0.0, f32::MAX), Vec2::new(1e19, 0.0)];
+        let q = quality(&positions, &[[0, 1, 2]], 20.0, true);
+        assert!(
+            q.min_angle.is_finite() && q.min_angle < 1e-3,
+            "{}",
+            q.min_angle
+        );
+        assert_eq!((q.below_20, q.below_limit), (1, 1));
+        assert!(!q.refinement_complete);
+        // A huge but well-shaped triangle keeps its angles.
+        let big = [
+            Vec2::new(-3e38, 0.0),
+            Vec2::new(3e38, 0.0),
+            Vec2::new(0.0, 3e38),
+        ];
+        let q = quality(&big, &[[0, 1, 2]], 20.0, true);
+        assert!((q.min_angle - 45.0).abs() < 1e-3, "{}", q.min_angle);
     }
 
     #[test]

@@ -53,8 +53,12 @@ const HEAD_RES: (usize, usize) = (5, 8);
 ///
 /// # Errors
 /// A parameter error from [`Params::validate`]; [`Error::Degenerate`] if the lattice would
-/// fold; the sub-crates' errors (rig, skin, limbs) wrapped — with valid params these do not
-/// happen for any seed the sweep has tried.
+/// fold; the sub-crates' errors (rig, skin, limbs, gait) wrapped. With the default parameters
+/// (any kind) these do not happen for any seed the sweep has tried; limb options at the far
+/// end of their ranges can ask for more than a body allows (a `min_margin` of 1 with a
+/// `sweep` of 100 leaves no stable layout:
+/// [`LimbsError::NoStableLayout`](crate::limbs::LimbsError::NoStableLayout) wrapped in
+/// [`Error::Limbs`]).
 pub fn generate(seed: u64, params: &Params) -> Result<Creature, Error> {
     params.validate()?;
     let mut rng = rng_for(seed);

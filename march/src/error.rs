@@ -70,6 +70,16 @@ pub enum MarchError {
         /// Cells visited when it stopped.
         cells: usize,
     },
+    /// The interior lattice would hold more points than
+    /// [`MAX_INTERIOR_POINTS`](crate::MAX_INTERIOR_POINTS): the
+    /// [`interior_spacing`](crate::MeshOptions::interior_spacing) is too small for the rings'
+    /// extent.
+    InteriorTooDense {
+        /// About how many points the lattice would hold.
+        points: f32,
+        /// The most it may hold.
+        max: usize,
+    },
     /// A ring has fewer than three points.
     TooFewPoints {
         /// Index of the ring.
@@ -127,6 +137,11 @@ impl fmt::Display for MarchError {
                 f,
                 "hint {index} lies {steps} steps from the origin: keep hints within {max} steps, \
                  or use a larger step"
+            ),
+            Self::InteriorTooDense { points, max } => write!(
+                f,
+                "the interior lattice would hold about {points} points, more than {max}: raise \
+                 interior_spacing (or set it to 0 for no interior points)"
             ),
             Self::BudgetExceeded { hint, cells } => {
                 if hint == usize::MAX {

@@ -8,6 +8,10 @@ use glam::Vec2;
 use crate::cdt::{Cdt, CdtError, FIRST_VERTEX, NONE};
 use crate::{MarchError, Ring};
 
+/// The most interior points [`triangulate`] puts on its lattice (about 4 million, 32 MiB of
+/// points); see [`MeshOptions::interior_spacing`].
+pub const MAX_INTERIOR_POINTS: usize = 1 << 22;
+
 /// Options for [`triangulate`].
 ///
 /// Lengths are in the rings' units; the defaults suit the 2D seed's creatures (pixels, outline
@@ -24,7 +28,8 @@ use crate::{MarchError, Ring};
 pub struct MeshOptions {
     /// Spacing of the interior points, which lie on a uniform sheared (triangular) lattice:
     /// rows `spacing × √3/2` apart, each shifted by half a spacing from the one below. 0 adds
-    /// no interior points. Default 20 (the seed's, in its pixel units).
+    /// no interior points. Default 20 (the seed's, in its pixel units). A spacing that would
+    /// put more than [`MAX_INTERIOR_POINTS`] in the rings' bounding box is an error.
     pub interior_spacing: f32,
     /// Interior points closer than `clearance × interior_spacing` to any ring edge are
     /// dropped, so they cannot make slivers against the outline. From 0 to 2. Default 0.5.
@@ -234,7 +239,7 @@ fn mesh_rings(outline: &[&[Vec2]], options: &MeshOptions) -> Result<Mesh2, March
     let mut points: Vec<Vec2> = Vec::with_capacity(2 * outline_len);
     points.extend(outline.iter().flat_map(|r| r.iter().copied()));
     if options.interior_spacing > 0.0 {
-        interior_points(outline, options, &mut points);
+        interior_points(outline, options, &mut points)?;
     }
     let count = points.len();
     let budget = options
@@ -383,12 +388,29 @@ fn morton_key(p: Vec2, lo: Vec2, hi: Vec2) -> u32 {
 /// bands — was tried with the spade-based mesher this crate had before its own: the cost grows
 /// with the vertex count, and the graded set, 810 points before and 1,095 after refinement on
 /// the bench creature against 993 from this lattice, was slower.)
-fn interior_points(rings: &[&[Vec2]], options: &MeshOptions, out: &mut Vec<Vec2>) {
+///
+/// # Errors
+/// [`MarchError::InteriorTooDense`] when the lattice over the rings' bounding box would hold
+/// more than [`MAX_INTERIOR_POINTS`].
+fn interior_points(
+    rings: &[&[Vec2]],
+    options: &MeshOptions,
+    out: &mut Vec<Vec2>,
+) -> Result<(), MarchError> {
     let Some((lo, hi)) = crate::ring::bounds(&rings.concat()) else {
-        return;
+        return Ok(());
     };
     let spacing = options.interior_spacing;
     let row = spacing * 0.866_025_4;
+    // Checked before any row is counted: in `f64`, where a tiny spacing cannot overflow.
+    let lattice = (f64::from(hi.x - lo.x) / f64::from(spacing) + 1.0)
+        * (f64::from(hi.y - lo.y) / f64::from(row) + 1.0);
+    if !(lattice <= MAX_INTERIOR_POINTS as f64) {
+        return Err(MarchError::InteriorTooDense {
+            points: lattice as f32,
+            max: MAX_INTERIOR_POINTS,
+        });
+    }
     let clearance = (options.clearance * spacing).max(spacing * 1e-4);
     let segments: Vec<(Vec2, Vec2)> = rings
         .iter()
@@ -438,6 +460,7 @@ fn interior_points(rings: &[&[Vec2]], options: &MeshOptions, out: &mut Vec<Vec2>
             }
         }
     }
+    Ok(())
 }
 
 /// A uniform grid of segment indices, for clearance queries.
@@ -827,6 +850,36 @@ mod tests {
         // Counts may differ only for angles within rounding of the limits.
         assert!(q.below_20.abs_diff(below.0) <= 1 && q.below_limit.abs_diff(below.1) <= 1);
         assert!((q.min_angle - smallest).abs() < 1e-2);
+    }
+
+    /// Issue 17, finding 3: a tiny `interior_spacing` passed validation, then overflowed the
+    /// row count (1e-30 on a 10 × 10 square) or tried to allocate gigabytes (1e-3 on a
+    /// 100 × 100 one). Now a typed error before any row is counted.
+    #[test]
+    fn regression_a_too_dense_interior_lattice_is_an_error() {
+        let square = |s: f32| Ring {
+            points: alloc::vec![
+                Vec2::ZERO,
+                Vec2::new(s, 0.0),
+                Vec2::new(s, s),
+                Vec2::new(0.0, s)
+            ],
+            hole: false,
+            parent: None,
+        };
+        for (side, spacing) in [(10.0, 1e-30), (100.0, 1e-3), (100.0, 0.04)] {
+            let options = MeshOptions::DEFAULT.with_interior_spacing(spacing);
+            assert!(options.validate().is_ok());
+            assert!(
+                matches!(
+                    triangulate(&[square(side)], &options),
+                    Err(MarchError::InteriorTooDense { .. })
+                ),
+                "{side} {spacing}"
+            );
+        }
+        let fine = MeshOptions::DEFAULT.with_interior_spacing(1.0);
+        assert!(triangulate(&[square(100.0)], &fine).is_ok());
     }
 
     /// Issue 17, finding 12: a vertex at `x = f32::MAX` overflowed the edges' products, and

@@ -186,7 +186,10 @@ impl Lattice {
                 determinant,
             });
         }
-        Ok((j.inverse().transpose() * normal).normalize_or_zero())
+        Ok(crate::math::normalize_or(
+            j.inverse().transpose() * normal,
+            Vec3::ZERO,
+        ))
     }
 
     /// Samples the Jacobian determinant on a `samples_per_axis³` grid spanning the lattice

@@ -267,3 +267,23 @@ fn general_kernel_agrees_with_the_reference() {
         }
     }
 }
+
+/// Issue 17, finding 8: a tiny normal came out of `deform_normal` 0.992 long (its squared
+/// length underflowed), though the docs promise a unit normal.
+#[test]
+fn regression_deform_normal_is_unit_for_tiny_and_huge_normals() {
+    let lattice = Lattice::new(Vec3::ZERO, [Vec3::X, Vec3::Y, Vec3::Z], [1, 1, 1]).unwrap();
+    for normal in [
+        Vec3::new(2e-22, 0.0, 0.0),
+        Vec3::new(1e-30, -3e-31, 2e-30),
+        Vec3::new(3e37, -2e38, 1e38),
+    ] {
+        let n = lattice.deform_normal(Vec3::splat(0.5), normal).unwrap();
+        assert!(n.is_normalized(), "{normal} -> {n} ({})", n.length());
+        assert!(n.dot(normal.signum()) > 0.0 || normal.x.signum() == n.x.signum());
+    }
+    assert_eq!(
+        lattice.deform_normal(Vec3::splat(0.5), Vec3::ZERO).unwrap(),
+        Vec3::ZERO
+    );
+}

@@ -152,7 +152,7 @@ pub fn skin_normals(
         .enumerate()
     {
         let n = finite_input("normal", i, n)?;
-        let rest = n.normalize_or_zero();
+        let rest = crate::math::normalize_or(n, Vec3A::ZERO);
         let moved = match blend {
             Blend::Linear => {
                 let sum = weight_sum(i, inf, transforms.len())?;
@@ -169,13 +169,13 @@ pub fn skin_normals(
                         m.x_axis.cross(m.y_axis),
                     );
                     let sign = if m.determinant() < 0.0 { -1.0 } else { 1.0 };
-                    (cofactor * n * sign).normalize_or(rest)
+                    crate::math::normalize_or(cofactor * n * sign, rest)
                 } else {
                     rest
                 }
             }
             Blend::DualQuaternion => match blend_dual(i, inf, &dual)? {
-                Some((r, _)) => (r * n).normalize_or(rest),
+                Some((r, _)) => crate::math::normalize_or(r * n, rest),
                 None => rest,
             },
         };

@@ -177,3 +177,26 @@ fn errors_name_the_culprit() {
     );
     assert!(err.to_string().contains("vertex 7"));
 }
+
+/// Issue 17, finding 8: linear skinning of normals returned 0.9978 or 1.0139 long for tiny
+/// normals and extreme matrices (squared lengths outside the normal `f32` range).
+#[test]
+fn regression_skinned_normals_are_unit_at_extreme_scales() {
+    let influences = [Influences::single(0)];
+    for (scale, normal) in [
+        (1.0, Vec3::new(2e-22, 1e-22, 0.0)),
+        (1e15, Vec3::new(0.3, -0.5, 0.8)),
+        (1e12, Vec3::new(2e-22, 0.0, 1e-22)),
+    ] {
+        let transforms = [Affine3A::from_scale(Vec3::new(scale, 2.0 * scale, scale))];
+        for blend in [Blend::Linear] {
+            let mut out = [Vec3::ZERO];
+            skin_normals(&[normal], &influences, &transforms, blend, &mut out).unwrap();
+            assert!(
+                out[0].is_normalized(),
+                "{scale} {normal} {blend:?}: {}",
+                out[0].length()
+            );
+        }
+    }
+}

@@ -189,14 +189,12 @@ fn regression_skinned_normals_are_unit_at_extreme_scales() {
         (1e12, Vec3::new(2e-22, 0.0, 1e-22)),
     ] {
         let transforms = [Affine3A::from_scale(Vec3::new(scale, 2.0 * scale, scale))];
-        for blend in [Blend::Linear] {
-            let mut out = [Vec3::ZERO];
-            skin_normals(&[normal], &influences, &transforms, blend, &mut out).unwrap();
-            assert!(
-                out[0].is_normalized(),
-                "{scale} {normal} {blend:?}: {}",
-                out[0].length()
-            );
-        }
+        let mut out = [Vec3::ZERO];
+        skin_normals(&[normal], &influences, &transforms, Blend::Linear, &mut out).unwrap();
+        assert!(
+            out[0].is_normalized(),
+            "{scale} {normal} Linear: {}",
+            out[0].length()
+        );
     }
 }

@@ -1,6 +1,5 @@
 //! The 2D creature as a skinned glTF 2.0 binary.
 
-use alloc::collections::BTreeMap;
 use alloc::format;
 use alloc::vec;
 use alloc::vec::Vec;
@@ -9,7 +8,7 @@ use glam::Mat4;
 use gltf_json as json;
 use json::validation::Checked;
 
-use super::gltf::{Bin, accessor, check_skinned_mesh, f32_bytes, new_root};
+use super::gltf::{Bin, accessor, check_skinned_mesh, f32_bytes, new_root, push_mesh};
 use super::image_png;
 use crate::Error;
 use crate::image::Image;
@@ -110,32 +109,19 @@ pub fn glb_2d(creature: &crate::d2::Creature) -> Result<Vec<u8>, Error> {
     }
     let material = root.push(material);
 
-    let mut attributes = BTreeMap::new();
-    for (semantic, index) in [
-        (json::mesh::Semantic::Positions, positions),
-        (json::mesh::Semantic::Normals, normals),
-        (json::mesh::Semantic::Tangents, tangents),
-        (json::mesh::Semantic::TexCoords(0), uvs),
-        (json::mesh::Semantic::Joints(0), joints),
-        (json::mesh::Semantic::Weights(0), weights),
-    ] {
-        attributes.insert(Checked::Valid(semantic), index);
-    }
-    let mesh = root.push(json::Mesh {
-        name: Some("creature".into()),
-        primitives: vec![json::mesh::Primitive {
-            attributes,
-            indices: Some(indices),
-            material: Some(material),
-            mode: Checked::Valid(json::mesh::Mode::Triangles),
-            targets: None,
-            extensions: None,
-            extras: Default::default(),
-        }],
-        weights: None,
-        extensions: None,
-        extras: Default::default(),
-    });
+    let mesh = push_mesh(
+        &mut root,
+        &[
+            (json::mesh::Semantic::Positions, positions),
+            (json::mesh::Semantic::Normals, normals),
+            (json::mesh::Semantic::Tangents, tangents),
+            (json::mesh::Semantic::TexCoords(0), uvs),
+            (json::mesh::Semantic::Joints(0), joints),
+            (json::mesh::Semantic::Weights(0), weights),
+        ],
+        indices,
+        material,
+    );
 
     // Joints: one node per bone, children listed on their parents.
     let first_joint = root.nodes.len() as u32;

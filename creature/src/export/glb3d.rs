@@ -1,6 +1,5 @@
 //! glTF 2.0 binary export of a 3D creature (feature `export`).
 
-use alloc::collections::BTreeMap;
 use alloc::format;
 use alloc::vec;
 use alloc::vec::Vec;
@@ -9,7 +8,7 @@ use gltf_json as json;
 use json::validation::Checked;
 
 use super::export_error;
-use super::gltf::{Bin, accessor, check_skinned_mesh, f32_bytes, new_root};
+use super::gltf::{Bin, accessor, check_skinned_mesh, f32_bytes, new_root, push_mesh};
 use crate::Error;
 use crate::d3::Clip;
 use crate::d3::Creature;
@@ -93,31 +92,18 @@ pub fn glb_3d(creature: &Creature, clips: &[Clip]) -> Result<Vec<u8>, Error> {
     material.pbr_metallic_roughness.roughness_factor = json::material::StrengthFactor(0.9);
     let material = root.push(material);
 
-    let mut attributes = BTreeMap::new();
-    for (semantic, index) in [
-        (json::mesh::Semantic::Positions, positions),
-        (json::mesh::Semantic::Normals, normals),
-        (json::mesh::Semantic::Colors(0), colours),
-        (json::mesh::Semantic::Joints(0), joints),
-        (json::mesh::Semantic::Weights(0), weights),
-    ] {
-        attributes.insert(Checked::Valid(semantic), index);
-    }
-    let mesh = root.push(json::Mesh {
-        name: Some("creature".into()),
-        primitives: vec![json::mesh::Primitive {
-            attributes,
-            indices: Some(indices),
-            material: Some(material),
-            mode: Checked::Valid(json::mesh::Mode::Triangles),
-            targets: None,
-            extensions: None,
-            extras: Default::default(),
-        }],
-        weights: None,
-        extensions: None,
-        extras: Default::default(),
-    });
+    let mesh = push_mesh(
+        &mut root,
+        &[
+            (json::mesh::Semantic::Positions, positions),
+            (json::mesh::Semantic::Normals, normals),
+            (json::mesh::Semantic::Colors(0), colours),
+            (json::mesh::Semantic::Joints(0), joints),
+            (json::mesh::Semantic::Weights(0), weights),
+        ],
+        indices,
+        material,
+    );
 
     // Joints: one node per joint, children listed on their parents.
     let first_joint = root.nodes.len() as u32;

@@ -23,6 +23,35 @@ pub(crate) fn new_root() -> json::Root {
     }
 }
 
+/// The creature's one mesh: a single triangle primitive with `attributes`, `indices` and
+/// `material`.
+pub(crate) fn push_mesh(
+    root: &mut json::Root,
+    attributes: &[(json::mesh::Semantic, json::Index<json::Accessor>)],
+    indices: json::Index<json::Accessor>,
+    material: json::Index<json::Material>,
+) -> json::Index<json::Mesh> {
+    let attributes = attributes
+        .iter()
+        .map(|(semantic, index)| (Checked::Valid(semantic.clone()), *index))
+        .collect();
+    root.push(json::Mesh {
+        name: Some("creature".into()),
+        primitives: alloc::vec![json::mesh::Primitive {
+            attributes,
+            indices: Some(indices),
+            material: Some(material),
+            mode: Checked::Valid(json::mesh::Mode::Triangles),
+            targets: None,
+            extensions: None,
+            extras: Default::default(),
+        }],
+        weights: None,
+        extensions: None,
+        extras: Default::default(),
+    })
+}
+
 /// The checks every skinned mesh passes before export: `vertices` vertices (none missing from
 /// an attribute: the caller compares the lengths in `attributes_agree`), triangles indexing
 /// them, and a skeleton of 1 to 65,535 joints.

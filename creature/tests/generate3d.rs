@@ -306,3 +306,63 @@ fn regression_extreme_valid_limb_options_give_a_typed_error() {
         "{result:?}"
     );
 }
+
+#[test]
+fn joints_are_named_by_what_they_are() {
+    for kind in [d3::Kind::Walker, d3::Kind::Flier, d3::Kind::Swimmer] {
+        for seed in 0..6 {
+            let params = d3::Params::DEFAULT.with_kind(kind).with_clips(false);
+            let c = generate(seed, &params).unwrap();
+            let joints = &c.skeleton.joints;
+            let name = |i: usize| joints[i].name.as_str();
+            let mut names: Vec<&str> = joints.iter().map(|j| j.name.as_str()).collect();
+            names.sort_unstable();
+            names.dedup();
+            assert_eq!(names.len(), joints.len(), "{kind:?} {seed}: names repeat");
+            let root = joints.iter().position(|j| j.parent.is_none()).unwrap();
+            assert_eq!(name(root), "spine_0");
+            assert_eq!(
+                joints.iter().any(|j| j.name == "head"),
+                kind != d3::Kind::Swimmer,
+                "{kind:?} {seed}"
+            );
+            for (i, j) in joints.iter().enumerate() {
+                match j.part {
+                    d3::Part::Spine => assert!(
+                        ["spine_", "tail_", "head"]
+                            .iter()
+                            .any(|p| j.name.starts_with(p)),
+                        "{}",
+                        j.name
+                    ),
+                    d3::Part::Limb(_) => {
+                        let limb = [
+                            "leg_",
+                            "arm_",
+                            "wing_",
+                            "fin_dorsal_",
+                            "fin_pectoral_",
+                            "fin_tail_",
+                        ];
+                        assert!(limb.iter().any(|p| j.name.starts_with(p)), "{}", j.name);
+                    }
+                    _ => unreachable!(),
+                }
+                // A knee's parent is its hip, a foot's its knee, on the same leg.
+                if let Some(leg) = j.name.strip_suffix("_foot") {
+                    let knee = j.parent.unwrap();
+                    assert_eq!(name(knee), format!("{leg}_knee"));
+                    assert_eq!(name(joints[knee].parent.unwrap()), format!("{leg}_hip"));
+                    // The left side is +X.
+                    let side = j.name.as_bytes()[4];
+                    let x = joints[i].position.x - joints[root].position.x;
+                    assert!(side != b'l' || x > 0.0, "{} at x {x}", j.name);
+                    assert!(side != b'r' || x < 0.0, "{} at x {x}", j.name);
+                }
+            }
+            if kind == d3::Kind::Walker {
+                assert!(joints.iter().any(|j| j.name == "leg_l0_foot"), "{names:?}");
+            }
+        }
+    }
+}

@@ -1,6 +1,7 @@
 //! The 3D creature as plain data, and its clip baking and posing methods (the bakers are in
 //! the `clip` module).
 
+use alloc::string::String;
 use alloc::vec::Vec;
 
 use glam::{Affine3A, Mat4, Vec3};
@@ -42,8 +43,18 @@ pub enum Part {
 }
 
 /// One joint of the skeleton, in its rest pose.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct Joint {
+    /// What the joint is, unique in the skeleton (the glTF node's name). The spine, from its
+    /// root toward the head: `spine_0` (the root), `spine_1`, …, then `head` (the joint that
+    /// carries the head, on kinds with one) and `head_end`; from the root toward the tail:
+    /// `tail_1`, …, `tail_end`. Limbs: `<limb>_<side><n>_<segment>`, where `<limb>` is `leg`,
+    /// `arm`, `wing`, `fin_dorsal`, `fin_pectoral` or `fin_tail`; `<side>` is `l` (the
+    /// creature's left, +X), `r` or `c` (the midline); `<n>` counts that limb type's limbs on
+    /// that side from the front; and `<segment>` is `hip`, `knee`, `foot` for legs, `shoulder`,
+    /// `elbow`, `hand` for arms, and `1`, `2`, … from the body out along wings and fins. For
+    /// example `leg_l0_foot` is the front left foot.
+    pub name: String,
     /// Rest position in model space.
     pub position: Vec3,
     /// Parent joint, `None` for the root.

@@ -1,6 +1,8 @@
 //! `generate`: the 3D seed's pipeline — blended pill body, FFD, body scale, auto-rig, skinning,
 //! spine bend, head, limbs, ground clearance.
 
+use alloc::format;
+use alloc::string::String;
 use alloc::vec::Vec;
 
 use glam::{Affine3A, Quat, Vec3};
@@ -14,7 +16,7 @@ use creature_skin::{Blend, nearest_k, skin_positions};
 
 use super::body::{BASE_RADIUS, base_body, pill_triangles};
 use super::limbs::{
-    Bind, LegChain, LimbStyle, MeshBuilder, Mount, add_limb, limb_shape, socket_point,
+    Bind, LegChain, LimbNames, LimbStyle, MeshBuilder, Mount, add_limb, limb_shape, socket_point,
 };
 use super::{GaitSetup, Kind, Params};
 use crate::Error;
@@ -365,10 +367,13 @@ fn add_limbs(
     let limb_body = Body::new(bones, body.length, HeadEnd::Last);
     let limb_plan = plan(&limb_body, spec.limbs, &params.limbs, rng)?;
 
+    let mut names = spine_names(body_rig, spec.neck_and_head);
     let mut joints: Vec<Joint> = body_rig
         .joints
         .iter()
-        .map(|j| Joint {
+        .zip(&mut names)
+        .map(|(j, name)| Joint {
+            name: core::mem::take(name),
             position: j.position,
             parent: j.parent,
             part: Part::Spine,
@@ -378,6 +383,7 @@ fn add_limbs(
     let limb_colour = body_colour * 0.8;
     let membrane_colour = body_colour * 0.5 + Vec3::splat(0.45);
     let mut chains = Vec::new();
+    let mut limb_names = LimbNames::default();
     for (index, limb) in limb_plan.limbs.iter().enumerate() {
         // The planner places limbs on the sockets it was given, one per body bone.
         let socket = &body_rig.sockets[limb.bone];
@@ -406,6 +412,7 @@ fn add_limbs(
         let chain = add_limb(
             mesh,
             &mut joints,
+            &mut limb_names,
             index,
             limb,
             shape,
@@ -430,6 +437,46 @@ fn add_limbs(
         joints,
         chains,
     })
+}
+
+/// The spine joints' names, by joint index (see [`Joint::name`]): `spine_0` at the root,
+/// `spine_k` toward the head end, whose joint before the tip is `head` on kinds with a head and
+/// whose tip is `head_end`; `tail_k` toward the tail end (`spine_k` when the root is at the head
+/// end), whose tip is `tail_end`.
+fn spine_names(body: &creature_autorig::Rig, has_head: bool) -> Vec<String> {
+    let mut names = alloc::vec![String::new(); body.joints.len()];
+    let spine = &body.spine;
+    let Some(c) = body.root().and_then(|r| spine.iter().position(|&j| j == r)) else {
+        // Rigs built by `rig` root on their spine; name by index otherwise.
+        for (i, name) in names.iter_mut().enumerate() {
+            *name = format!("spine_{i}");
+        }
+        return names;
+    };
+    let n = spine.len();
+    let hind = if c == n - 1 { "spine" } else { "tail" };
+    for (k, &j) in spine.iter().enumerate() {
+        names[j] = if k == c {
+            "spine_0".into()
+        } else if k > c && k == n - 1 {
+            "head_end".into()
+        } else if k > c && k == n - 2 && has_head {
+            "head".into()
+        } else if k > c {
+            format!("spine_{}", k - c)
+        } else if k == 0 {
+            "tail_end".into()
+        } else {
+            format!("{hind}_{}", c - k)
+        };
+    }
+    // Joints off the spine (none in rigs built by `rig`).
+    for (i, name) in names.iter_mut().enumerate() {
+        if name.is_empty() {
+            *name = format!("joint_{i}");
+        }
+    }
+    names
 }
 
 /// Stage 9: the ground to `y = 0` (the plan's lift applied) and nothing under it; moves the

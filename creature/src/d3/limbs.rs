@@ -2,6 +2,8 @@
 //! arms (two-bone IK with the plan's knee direction), thin membranes on bone chains for wings,
 //! fins and tails.
 
+use alloc::format;
+use alloc::string::String;
 use alloc::vec::Vec;
 use core::f32::consts::{PI, TAU};
 
@@ -220,6 +222,8 @@ pub(crate) struct LegChain {
 #[derive(Clone, Copy)]
 pub(crate) struct LimbShape {
     pub(crate) kind: LimbKind,
+    /// The first part of its joints' names (`leg` in `leg_l0_knee`).
+    name: &'static str,
     /// Drawn in the limb colour (legs, arms) or the lighter membrane colour (wings, fins).
     pub(crate) membrane_colour: bool,
     build: Build,
@@ -238,6 +242,8 @@ enum Build {
 /// A two-bone limb's rest pose.
 #[derive(Clone, Copy)]
 struct TwoBone {
+    /// The last part of the three joints' names (`hip`, `knee`, `foot`).
+    segments: [&'static str; 3],
     /// Whether the end goes to the plan's foot point when the plan has one (legs that stand).
     to_foot: bool,
     /// The unit direction from the hip to the rest end otherwise, from the outward sign.
@@ -274,8 +280,10 @@ fn leg_pole(knee: Option<Knee>, out: f32) -> Vec3 {
 pub(crate) const LIMB_SHAPES: [LimbShape; 7] = [
     LimbShape {
         kind: LimbKind::Leg,
+        name: "leg",
         membrane_colour: false,
         build: Build::TwoBone(TwoBone {
+            segments: ["hip", "knee", "foot"],
             to_foot: true,
             // A flier's dangling leg: down and a little back.
             rest_direction: |out| Vec3::new(0.15 * out, -1.0, -0.35).normalize(),
@@ -284,8 +292,10 @@ pub(crate) const LIMB_SHAPES: [LimbShape; 7] = [
     },
     LimbShape {
         kind: LimbKind::Arm,
+        name: "arm",
         membrane_colour: false,
         build: Build::TwoBone(TwoBone {
+            segments: ["shoulder", "elbow", "hand"],
             to_foot: false,
             rest_direction: |out| Vec3::new(0.2 * out, -0.5, 1.0).normalize(),
             pole: |_, _| Vec3::new(0.0, -1.0, -0.3),
@@ -293,6 +303,7 @@ pub(crate) const LIMB_SHAPES: [LimbShape; 7] = [
     },
     LimbShape {
         kind: LimbKind::BuzzingWing,
+        name: "wing",
         membrane_colour: true,
         build: Build::Membrane(MembraneShape {
             along: |out| Vec3::new(out, 0.35, -0.25).normalize_or(Vec3::X),
@@ -304,6 +315,7 @@ pub(crate) const LIMB_SHAPES: [LimbShape; 7] = [
     },
     LimbShape {
         kind: LimbKind::FlappingWing,
+        name: "wing",
         membrane_colour: true,
         build: Build::Membrane(MembraneShape {
             along: |out| Vec3::new(out, 0.05, 0.0).normalize_or(Vec3::X),
@@ -315,6 +327,7 @@ pub(crate) const LIMB_SHAPES: [LimbShape; 7] = [
     },
     LimbShape {
         kind: LimbKind::DorsalFin,
+        name: "fin_dorsal",
         membrane_colour: true,
         build: Build::Membrane(MembraneShape {
             along: |_| Vec3::new(0.0, 1.0, -0.5).normalize(),
@@ -326,6 +339,7 @@ pub(crate) const LIMB_SHAPES: [LimbShape; 7] = [
     },
     LimbShape {
         kind: LimbKind::PectoralFin,
+        name: "fin_pectoral",
         membrane_colour: true,
         build: Build::Membrane(MembraneShape {
             along: |out| Vec3::new(out, -0.3, -0.3).normalize_or(Vec3::NEG_Y),
@@ -337,6 +351,7 @@ pub(crate) const LIMB_SHAPES: [LimbShape; 7] = [
     },
     LimbShape {
         kind: LimbKind::Tail,
+        name: "fin_tail",
         membrane_colour: true,
         build: Build::Membrane(MembraneShape {
             along: |_| Vec3::NEG_Z,
@@ -359,11 +374,29 @@ pub(crate) fn limb_shape(kind: LimbKind) -> Result<&'static LimbShape, Error> {
         .ok_or(Error::Unsupported { what: "limb type" })
 }
 
+/// Numbers limbs of one type on one side in the order they are built, for joint names.
+#[derive(Debug, Default)]
+pub(crate) struct LimbNames {
+    seen: Vec<(&'static str, char)>,
+}
+
+impl LimbNames {
+    /// The next limb's name prefix, e.g. `leg_l0`.
+    fn next(&mut self, name: &'static str, side: char) -> String {
+        let n = self.seen.iter().filter(|&&s| s == (name, side)).count();
+        self.seen.push((name, side));
+        format!("{name}_{side}{n}")
+    }
+}
+
 /// Adds one limb's joints (parent: the mount's joint) and its mesh; joints are appended to
-/// `joints`, with the limb's index in the plan in their part. Legs and arms return their chain.
+/// `joints`, with the limb's index in the plan in their part and names from `names`. Legs and
+/// arms return their chain.
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn add_limb(
     mesh: &mut MeshBuilder,
     joints: &mut Vec<Joint>,
+    names: &mut LimbNames,
     limb_index: usize,
     limb: &Limb,
     shape: &LimbShape,
@@ -386,9 +419,16 @@ pub(crate) fn add_limb(
     };
     let length = limb.length.max(1e-4);
     let base = joints.len();
-    let mut push_joint = |position: Vec3, parent: usize| -> u16 {
+    let side = match out {
+        o if o > 0.0 => 'l',
+        o if o < 0.0 => 'r',
+        _ => 'c',
+    };
+    let prefix = names.next(shape.name, side);
+    let mut push_joint = |position: Vec3, parent: usize, segment: &str| -> u16 {
         let index = joints.len();
         joints.push(Joint {
+            name: format!("{prefix}_{segment}"),
             position,
             parent: Some(parent),
             part: Part::Limb(limb_index),
@@ -406,9 +446,10 @@ pub(crate) fn add_limb(
             let reach = hip.distance(end);
             let segment = KNEE_SLACK * 0.5 * reach.max(1e-4);
             let ik = solve_two_bone(hip, end, segment, segment, pole);
-            let hip_joint = push_joint(hip, mount.joint);
-            let knee_joint = push_joint(ik.middle, base);
-            let foot_joint = push_joint(ik.end, base + 1);
+            let [hip_name, knee_name, foot_name] = bone.segments;
+            let hip_joint = push_joint(hip, mount.joint, hip_name);
+            let knee_joint = push_joint(ik.middle, base, knee_name);
+            let foot_joint = push_joint(ik.end, base + 1, foot_name);
             let r = (0.09 * length).min(0.2 * mount.width).max(1e-3);
             mesh.tube(
                 &[hip, ik.middle, ik.end],
@@ -455,7 +496,7 @@ pub(crate) fn add_limb(
 
 /// `bones` joints evenly spaced from the mount along `along`, each the parent of the next.
 fn chain_joints(
-    push_joint: &mut impl FnMut(Vec3, usize) -> u16,
+    push_joint: &mut impl FnMut(Vec3, usize, &str) -> u16,
     mount: Mount,
     along: Vec3,
     length: f32,
@@ -468,6 +509,7 @@ fn chain_joints(
             push_joint(
                 mount.point + along * (length * k as f32 / bones as f32),
                 parent,
+                &format!("{}", k + 1),
             )
         })
         .collect()
@@ -544,6 +586,7 @@ mod tests {
     fn build(limb: &Limb, point: Vec3) -> (MeshBuilder, Vec<Joint>) {
         let mut mesh = MeshBuilder::default();
         let mut joints = alloc::vec![Joint {
+            name: "spine_0".into(),
             position: Vec3::ZERO,
             parent: None,
             part: Part::Spine,
@@ -560,7 +603,16 @@ mod tests {
             colour: Vec3::ONE,
         };
         let shape = limb_shape(limb.kind).expect("every planner limb type has a row");
-        let chain = add_limb(&mut mesh, &mut joints, 0, limb, shape, mount, style);
+        let chain = add_limb(
+            &mut mesh,
+            &mut joints,
+            &mut LimbNames::default(),
+            0,
+            limb,
+            shape,
+            mount,
+            style,
+        );
         assert!(chain.is_none(), "wings have no leg chain");
         (mesh, joints)
     }

@@ -1,6 +1,5 @@
 //! glTF 2.0 binary export of a 3D creature (feature `export`).
 
-use alloc::format;
 use alloc::vec;
 use alloc::vec::Vec;
 
@@ -114,11 +113,15 @@ pub fn glb_3d(creature: &Creature, clips: &[Clip]) -> Result<Vec<u8>, Error> {
         }
     }
     let translations = creature.skeleton.rest_translations();
-    for (i, t) in translations.iter().enumerate() {
-        let list = children.get_mut(i).map(core::mem::take).unwrap_or_default();
+    for ((t, list), joint) in translations
+        .iter()
+        .zip(&mut children)
+        .zip(&creature.skeleton.joints)
+    {
+        let list = core::mem::take(list);
         root.push(json::Node {
             children: (!list.is_empty()).then_some(list),
-            name: Some(format!("joint{i}")),
+            name: Some(joint.name.clone()),
             translation: Some(t.to_array()),
             ..Default::default()
         });

@@ -302,7 +302,8 @@ pub fn audit(model: &Model, limits: &Limits) -> Result<Report, AuditError> {
         what: "no spine_0 joint",
     })?;
     let walker = model.clips.iter().any(|c| c.name == "walk");
-    let legs = legs(model, &rest);
+    let dominant = dominant(model);
+    let legs = legs(model, &dominant, &rest);
     let edges = edges(model, length);
 
     let mut report = Report {
@@ -361,7 +362,14 @@ pub fn audit(model: &Model, limits: &Limits) -> Result<Report, AuditError> {
             below.max(-depth / length, frame, || format!("vertex {at}"));
             for &(a, b, rest) in &edges {
                 let ratio = p[a].distance(p[b]) / rest;
-                let at = || format!("edge {a}-{b}");
+                let at = || {
+                    let (ja, jb) = (dominant[a], dominant[b]);
+                    format!(
+                        "edge {a}-{b} ({} to {})",
+                        model.joint_name(ja),
+                        model.joint_name(jb)
+                    )
+                };
                 stretch.max(ratio, frame, at);
                 squash.min(ratio, frame, at);
             }
@@ -536,16 +544,7 @@ fn horizontal(v: Vec3) -> f32 {
 
 /// The legs named `leg_<side><n>_hip`, `_knee`, `_foot`, with their feet's vertices and mesh
 /// radii.
-fn legs(model: &Model, rest: &[Vec3]) -> Vec<Leg> {
-    let dominant: Vec<usize> = model
-        .joints
-        .iter()
-        .zip(&model.weights)
-        .map(|(j, w)| {
-            let k = (0..4).fold(0, |k, i| if w[i] > w[k] { i } else { k });
-            usize::from(j[k])
-        })
-        .collect();
+fn legs(model: &Model, dominant: &[usize], rest: &[Vec3]) -> Vec<Leg> {
     let mut legs = Vec::new();
     for j in 0..model.skin.len() {
         let Some(prefix) = model.joint_name(j).strip_suffix("_hip") else {
@@ -592,6 +591,19 @@ fn legs(model: &Model, rest: &[Vec3]) -> Vec<Leg> {
         });
     }
     legs
+}
+
+/// Each vertex's most weighted joint (the first of equals).
+fn dominant(model: &Model) -> Vec<usize> {
+    model
+        .joints
+        .iter()
+        .zip(&model.weights)
+        .map(|(j, w)| {
+            let k = (0..4).fold(0, |k, i| if w[i] > w[k] { i } else { k });
+            usize::from(j[k])
+        })
+        .collect()
 }
 
 /// How deep two legs' segments overlap as capsules (≤ 0: apart).

@@ -38,7 +38,8 @@ tasks:
   package      cargo package --workspace: every publishable crate packages and builds alone
   bench-build  cargo bench --workspace --no-run: benches keep compiling
   tidy         project rules: README and CHANGELOG per crate, no #[should_panic]
-  sweep        10,000 seeds of `creature::generate_2d` in release, every creature checked
+  sweep        10,000 seeds of `creature::generate_2d` and of each 3D kind in release, every
+               creature checked; the 3D ones also exported and audited (`tests/audit.rs`)
   gltf         generate a few creatures with the `generate` example and verify their .glb
 
 not part of ci:
@@ -49,6 +50,9 @@ not part of ci:
                target/gltf-validator) on every .glb under DIR; fails on any error or
                warning, and when node or npm is missing
   gallery      render 16 creatures (seeds 0-15) into creature/gallery.png
+  audit DIR    audit every 3D creature .glb under DIR as a viewer plays it (creature-audit:
+               tipping, planted feet, crossing legs, jerks, ground, skin stretch); prints each
+               file's failures and the count per check; fails when any file fails
 
 environment:
   CREATURE_NO_STD_FALLBACK=1   skip the embedded target and use the host staticlib check
@@ -87,6 +91,13 @@ fn main() -> ExitCode {
         "ci" => ci(&workspace),
         "bless" => step("bless", bless, &workspace),
         "gallery" => step("gallery", gallery, &workspace),
+        "audit" => match args.get(1) {
+            Some(dir) => {
+                let dir = PathBuf::from(dir);
+                step("audit", |_| audit_dir(&dir), &workspace)
+            }
+            None => Err(format!("audit needs a folder\n\n{USAGE}")),
+        },
         "verify-gltf" => match args.get(1) {
             Some(dir) => {
                 let dir = PathBuf::from(dir);
@@ -675,7 +686,70 @@ fn sweep(w: &Workspace) -> Result<(), String> {
         "--nocapture",
     ]);
     c.env("CREATURE_SWEEP_SEEDS", "10000");
+    run(c)?;
+    let mut c = w.cargo();
+    c.args([
+        "test",
+        "--release",
+        "--locked",
+        "-p",
+        "creature",
+        "--test",
+        "audit",
+        "--",
+        "--nocapture",
+    ]);
+    c.env("CREATURE_AUDIT_SEEDS", "10000");
     run(c)
+}
+
+/// `cargo xtask audit DIR`: every `.glb` under `dir` through `creature-audit`.
+fn audit_dir(dir: &Path) -> Result<(), String> {
+    use creature_audit::{Check, Limits, audit_glb};
+    let mut files = Vec::new();
+    collect_files(dir, "glb", &mut files);
+    files.sort();
+    if files.is_empty() {
+        return Err(format!("no .glb files under {}", dir.display()));
+    }
+    let mut counts = [0usize; Check::ALL.len()];
+    let (mut failed, mut skipped) = (0, 0);
+    for file in &files {
+        let bytes = fs::read(file).map_err(|e| format!("{}: {e}", file.display()))?;
+        let report = match audit_glb(&bytes, &Limits::DEFAULT) {
+            Ok(r) => r,
+            Err(e) => {
+                // 2D creatures and other files without a named 3D spine.
+                println!("{}: skipped: {e}", file.display());
+                skipped += 1;
+                continue;
+            }
+        };
+        if report.passes() {
+            println!("{}: passes", file.display());
+            continue;
+        }
+        failed += 1;
+        println!("{}: FAILS", file.display());
+        for m in report.failures() {
+            println!("    {m}");
+        }
+        for (k, check) in Check::ALL.iter().enumerate() {
+            counts[k] += usize::from(report.fails(*check));
+        }
+    }
+    println!(
+        "\naudit: {} files, {} audited, {failed} fail",
+        files.len(),
+        files.len() - skipped
+    );
+    for (check, n) in Check::ALL.iter().zip(counts) {
+        println!("  {:<22} {n}", check.name());
+    }
+    if failed > 0 {
+        return Err(format!("{failed} creatures fail the audit"));
+    }
+    Ok(())
 }
 
 /// Freshly generated `.glb` files through the Khronos validator.

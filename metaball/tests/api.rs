@@ -633,3 +633,33 @@ fn falloff_radii_are_never_nan_or_infinite() {
         epsilon = 1e-5
     );
 }
+
+/// Issue 17, finding 2: with a `cell_size` the grid of two tiny balls far from the origin
+/// shrank to one cell whose far edge rounded onto a ball's centre, and a point there (just past
+/// the edge after rounding) found no cell: `value` read 0 where `value_exact` read 1.65,
+/// `contains` was false and the shares empty.
+#[test]
+fn tiny_far_balls_are_found_with_an_explicit_cell_size() {
+    let balls = [
+        Ball2::new(Vec2::new(-10000.0, -9998.779), 1e-5, 0),
+        Ball2::new(Vec2::new(-10000.0, -9998.781), 1e-5, 1),
+    ];
+    for cell_size in [Some(1.0), Some(1e-3), Some(1e-9), None] {
+        let options = FieldOptions::DEFAULT.with_cell_size(cell_size);
+        let field = Field2::with_options(&balls, &options).unwrap();
+        for ball in &balls {
+            let c = ball.center;
+            let exact = field.value_exact(c);
+            assert!(exact > 1.0, "{cell_size:?} {c}: {exact}");
+            let culled = field.value(c);
+            assert!(
+                (culled - exact).abs() <= field.error_bound() + 1e-6 * exact,
+                "{cell_size:?} {c}: culled {culled}, exact {exact}"
+            );
+            assert!(field.contains(c), "{cell_size:?} {c}");
+            assert!(!field.shares(c, 2).is_empty(), "{cell_size:?} {c}");
+            let (v, _) = field.value_and_gradient(c);
+            assert_eq!(v.to_bits(), culled.to_bits());
+        }
+    }
+}

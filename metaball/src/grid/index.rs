@@ -78,6 +78,8 @@ impl<const D: usize> Core<D> {
             bounds: (lo, hi),
             value_error,
             gradient_error,
+            sample_error: 0.0,
+            cutoff_exponent: 0.0,
         };
         if cutoffs.is_empty() {
             // No ball reaches epsilon anywhere: the culled field is zero everywhere.
@@ -144,6 +146,16 @@ impl<const D: usize> Core<D> {
         core.inv_cell = 1.0 / cell;
         core.dims = dims;
         core.fill(&padded);
+        if let Some((_, sharpness)) = core.separable {
+            let most = core
+                .starts
+                .windows(2)
+                .map(|w| w[1] - w[0])
+                .max()
+                .unwrap_or(0);
+            core.cutoff_exponent = sharpness * q_cut;
+            core.sample_error = super::sample_error_bound(core.cutoff_exponent, most);
+        }
         core
     }
 
@@ -267,6 +279,10 @@ impl<const D: usize> Core<D> {
 
     pub(crate) fn gradient_error(&self) -> f32 {
         self.gradient_error
+    }
+
+    pub(crate) fn sample_error(&self) -> f32 {
+        self.sample_error
     }
 
     pub(crate) fn cell_size(&self) -> f32 {

@@ -101,6 +101,18 @@ pub enum FfdError {
         /// Newton iterations spent.
         iterations: u32,
     },
+    /// A lattice corner or control point had a coordinate beyond
+    /// ±[`MAX_COORDINATE`](crate::MAX_COORDINATE) (or one that overflowed `f32` when a slice was
+    /// moved or a lattice's corners were added up).
+    CoordinateTooLarge {
+        /// Which input: `"lattice corner"` (the index is the corner's, bit `a` set for the far
+        /// end of axis `a`) or `"control point"` (the index is its storage index).
+        what: &'static str,
+        /// Position of the point in its list.
+        index: usize,
+        /// The offending coordinate.
+        value: f32,
+    },
     /// A deformed point overflowed `f32` (a point far outside the lattice, extrapolated).
     NonFiniteResult {
         /// Index of the input point (0 for a single point).
@@ -181,6 +193,12 @@ impl fmt::Display for FfdError {
                  iterations (residual {residual:e}): the point may be outside the deformed \
                  lattice or the lattice folds; raise max_iterations or loosen the tolerance"
             ),
+            Self::CoordinateTooLarge { what, index, value } => write!(
+                f,
+                "{what} {index} has coordinate {value:e}: keep lattices and control points \
+                 within ±{:e} (scale the model down or move it nearer the origin)",
+                crate::MAX_COORDINATE
+            ),
             Self::NonFiniteResult { index } => write!(
                 f,
                 "point {index} deformed to a non-finite position: it lies too far outside the \
@@ -223,6 +241,13 @@ mod tests {
         }
         .to_string();
         assert!(msg.contains("0 to 10"), "{msg}");
+        let msg = FfdError::CoordinateTooLarge {
+            what: "control point",
+            index: 4,
+            value: -3e38,
+        }
+        .to_string();
+        assert!(msg.contains("within ±1e15"), "{msg}");
     }
 
     #[test]

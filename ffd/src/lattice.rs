@@ -22,6 +22,16 @@ const SMALL_DEPTH: usize = 16;
 /// Smallest accepted `|S · (T × U)| / (|S| |T| |U|)`: below it the lattice counts as flat.
 pub const MIN_VOLUME_RATIO: f32 = 1e-6;
 
+/// The largest magnitude of any coordinate of a lattice corner or control point.
+///
+/// With every grid and control point within `±1e15`, a control point's offset from its grid
+/// position is at most `2e15` per coordinate, and the Bernstein sum inside the lattice (weights
+/// in `[0, 1]` summing to 1) keeps every deformed point within about `3e15`: far from `f32`'s
+/// range, so [`Lattice::deform`] is finite everywhere inside. Closer to `f32::MAX` the offsets
+/// and their sums overflowed (regression: a slice moved to `−f32::MAX` gave NaN inside, where
+/// its weight is 0). The same bound as `creature-skin`'s and `creature-autorig`'s.
+pub const MAX_COORDINATE: f32 = 1.0e15;
+
 /// What [`Lattice::deform`] does with a point whose local `(s, t, u)` lies outside `[0, 1]^3`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 #[non_exhaustive]
@@ -111,8 +121,9 @@ impl Lattice {
     /// # Errors
     /// [`FfdError::NonFinite`] for a NaN or infinite origin or axis,
     /// [`FfdError::ZeroDivisions`] / [`FfdError::TooManyDivisions`] for divisions outside
-    /// `1..=MAX_DIVISIONS`, and [`FfdError::DegenerateAxes`] when the axes span (almost) no
-    /// volume (see [`MIN_VOLUME_RATIO`]).
+    /// `1..=MAX_DIVISIONS`, [`FfdError::DegenerateAxes`] when the axes span (almost) no
+    /// volume (see [`MIN_VOLUME_RATIO`]), and [`FfdError::CoordinateTooLarge`] when a corner of
+    /// the lattice lies beyond ±[`MAX_COORDINATE`].
     ///
     /// ```
     /// use creature_ffd::{glam::Vec3, FfdError, Lattice};
@@ -162,6 +173,16 @@ impl Lattice {
         };
         if !(volume_ratio >= MIN_VOLUME_RATIO) || !volume.is_finite() {
             return Err(FfdError::DegenerateAxes { volume_ratio });
+        }
+        // Every grid point is a convex combination of the corners.
+        for corner in 0..8 {
+            let mut p = origin;
+            for (a, axis) in axes.iter().enumerate() {
+                if corner & (1 << a) != 0 {
+                    p += *axis;
+                }
+            }
+            check_coordinates("lattice corner", corner, p)?;
         }
         let tu = t.cross(u);
         let us = u.cross(s);
@@ -304,8 +325,9 @@ impl Lattice {
     /// Moves control point `[i, j, k]` to `p`.
     ///
     /// # Errors
-    /// [`FfdError::IndexOutOfRange`] for an index past the divisions and [`FfdError::NonFinite`]
-    /// for a NaN or infinite `p`; the lattice is unchanged then.
+    /// [`FfdError::IndexOutOfRange`] for an index past the divisions, [`FfdError::NonFinite`]
+    /// for a NaN or infinite `p` and [`FfdError::CoordinateTooLarge`] for a coordinate beyond
+    /// ±[`MAX_COORDINATE`]; the lattice is unchanged then.
     pub fn set_control_point(&mut self, index: [usize; 3], p: Vec3) -> Result<(), FfdError> {
         let idx = self.index_of(index).ok_or(FfdError::IndexOutOfRange {
             index,
@@ -317,6 +339,7 @@ impl Lattice {
                 index: Some(idx),
             });
         }
+        check_coordinates("control point", idx, p)?;
         self.write(idx, index, p);
         Ok(())
     }
@@ -379,7 +402,9 @@ impl Lattice {
     /// The deformed position of `p`: the trivariate Bernstein sum over the control points.
     ///
     /// Points outside the lattice follow the [`OutsidePolicy`]. An undeformed lattice returns
-    /// `p` exactly. A non-finite `p` is returned unchanged. With [`OutsidePolicy::Extrapolate`], a
+    /// `p` exactly. A non-finite `p` is returned unchanged. Inside the lattice the result is
+    /// always finite (control points are kept within ±[`MAX_COORDINATE`]). With
+    /// [`OutsidePolicy::Extrapolate`], a
     /// point so far outside that the Bernstein polynomial overflows `f32` (local coordinates
     /// beyond roughly ±10^(38/degree)) comes back non-finite (NaN or infinite): use
     /// [`Lattice::try_deform`] to have both cases reported as errors, or
@@ -631,6 +656,19 @@ impl Lattice {
 fn quadratic_basis(x: f32) -> [f32; 3] {
     let y = 1.0 - x;
     [y * y, 2.0 * x * y, x * x]
+}
+
+/// [`FfdError::CoordinateTooLarge`] naming the first coordinate of `p` (finite) beyond
+/// ±[`MAX_COORDINATE`]; `index` is the point's.
+pub(crate) fn check_coordinates(what: &'static str, index: usize, p: Vec3) -> Result<(), FfdError> {
+    match p
+        .to_array()
+        .into_iter()
+        .find(|c| !(math::abs(*c) <= MAX_COORDINATE))
+    {
+        Some(value) => Err(FfdError::CoordinateTooLarge { what, index, value }),
+        None => Ok(()),
+    }
 }
 
 /// Whether local coordinates lie in the closed unit cube.

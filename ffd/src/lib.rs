@@ -24,7 +24,7 @@ pub mod strategies;
 
 pub use analysis::{FoldReport, InverseOptions, MAX_FOLD_SAMPLES, SINGULAR_DETERMINANT};
 pub use error::FfdError;
-pub use lattice::{Axis, Lattice, MAX_DIVISIONS, MIN_VOLUME_RATIO, OutsidePolicy};
+pub use lattice::{Axis, Lattice, MAX_COORDINATE, MAX_DIVISIONS, MIN_VOLUME_RATIO, OutsidePolicy};
 
 /// The `glam` version this crate's signatures use.
 pub use glam;

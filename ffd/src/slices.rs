@@ -22,7 +22,7 @@ use alloc::vec::Vec;
 use glam::{Vec3, Vec3A};
 
 use crate::error::FfdError;
-use crate::lattice::{Axis, Lattice};
+use crate::lattice::{Axis, Lattice, check_coordinates};
 
 impl Lattice {
     /// Number of slices along `axis` (its divisions + 1).
@@ -81,7 +81,8 @@ impl Lattice {
     /// # Errors
     /// [`FfdError::SliceOutOfRange`], [`FfdError::NonFinite`] for a non-finite scale and
     /// [`FfdError::NotPositive`] for a factor at or below zero (which would crush or mirror the
-    /// slice). The lattice is unchanged on error.
+    /// slice), and [`FfdError::CoordinateTooLarge`] when a scaled control point would lie
+    /// beyond ±[`MAX_COORDINATE`](crate::MAX_COORDINATE). The lattice is unchanged on error.
     ///
     /// ```
     /// use creature_ffd::{glam::Vec3, Axis, Lattice};
@@ -123,8 +124,9 @@ impl Lattice {
     /// Moves one slice's control points by a world-space `offset`.
     ///
     /// # Errors
-    /// [`FfdError::SliceOutOfRange`], and [`FfdError::NonFinite`] for a non-finite offset. The
-    /// lattice is unchanged on error.
+    /// [`FfdError::SliceOutOfRange`], [`FfdError::NonFinite`] for a non-finite offset, and
+    /// [`FfdError::CoordinateTooLarge`] when a moved control point would lie beyond
+    /// ±[`MAX_COORDINATE`](crate::MAX_COORDINATE). The lattice is unchanged on error.
     pub fn translate_slice(
         &mut self,
         axis: Axis,
@@ -149,8 +151,9 @@ impl Lattice {
     ///
     /// # Errors
     /// [`FfdError::WrongLength`] unless `gaps.len()` equals the axis' divisions,
-    /// [`FfdError::NonFinite`] / [`FfdError::NotPositive`] naming the first bad gap. The lattice
-    /// is unchanged on error.
+    /// [`FfdError::NonFinite`] / [`FfdError::NotPositive`] naming the first bad gap, and
+    /// [`FfdError::CoordinateTooLarge`] when the gaps would move a control point beyond
+    /// ±[`MAX_COORDINATE`](crate::MAX_COORDINATE). The lattice is unchanged on error.
     ///
     /// ```
     /// use creature_ffd::{glam::Vec3, Axis, Lattice};
@@ -193,12 +196,18 @@ impl Lattice {
         let along = |lattice: &Lattice, p: Vec3| lattice.local_coords(p)[axis.index()] * length;
         let start = along(self, self.slice_center(axis, 0)?);
         let mut target = start;
+        // Every slice's new points first (a slice's centre depends on its own points only), so
+        // that a point out of range leaves the whole lattice unchanged.
+        let mut updates = Vec::new();
         for (q, &gap) in gaps.iter().enumerate() {
             target += gap;
             let slice = q + 1;
             let current = along(self, self.slice_center(axis, slice)?);
             let shift = direction * (target - current);
-            self.update_slice(axis, slice, |p| p + shift)?;
+            updates.extend(self.slice_updates(axis, slice, |p| p + shift)?);
+        }
+        for (idx, index, p) in updates {
+            self.write(idx, index, p);
         }
         Ok(())
     }
@@ -217,32 +226,39 @@ impl Lattice {
     }
 
     /// Applies `f` to every control point of a slice; fails without writing anything if any
-    /// result is non-finite.
+    /// result is non-finite or beyond ±[`MAX_COORDINATE`](crate::MAX_COORDINATE).
     fn update_slice(
         &mut self,
         axis: Axis,
         slice: usize,
         f: impl Fn(Vec3) -> Vec3,
     ) -> Result<(), FfdError> {
+        for (idx, index, p) in self.slice_updates(axis, slice, f)? {
+            self.write(idx, index, p);
+        }
+        Ok(())
+    }
+
+    /// A slice's control points after `f`, as `(storage index, index, point)`, each checked
+    /// finite and within ±[`MAX_COORDINATE`](crate::MAX_COORDINATE); nothing is written.
+    fn slice_updates(
+        &self,
+        axis: Axis,
+        slice: usize,
+        f: impl Fn(Vec3) -> Vec3,
+    ) -> Result<Vec<(usize, [usize; 3], Vec3)>, FfdError> {
         let indices = self.slice_indices(axis, slice)?;
         let mut updates = Vec::with_capacity(indices.len());
         for index in indices {
             let Some(idx) = self.index_of(index) else {
                 continue;
             };
+            // The inputs are finite, so a non-finite result overflowed: too large as well.
             let p = f(self.control_points()[idx]);
-            if !p.is_finite() {
-                return Err(FfdError::NonFinite {
-                    what: "control point",
-                    index: Some(idx),
-                });
-            }
+            check_coordinates("control point", idx, p)?;
             updates.push((idx, index, p));
         }
-        for (idx, index, p) in updates {
-            self.write(idx, index, p);
-        }
-        Ok(())
+        Ok(updates)
     }
 }
 

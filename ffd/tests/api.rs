@@ -7,7 +7,7 @@ mod support;
 
 use approx::assert_abs_diff_eq;
 use creature_ffd::glam::{Mat3, Vec3};
-use creature_ffd::{Axis, FfdError, InverseOptions, Lattice, OutsidePolicy};
+use creature_ffd::{Axis, FfdError, InverseOptions, Lattice, MAX_COORDINATE, OutsidePolicy};
 
 use support::reference;
 
@@ -286,4 +286,88 @@ fn regression_deform_normal_is_unit_for_tiny_and_huge_normals() {
         lattice.deform_normal(Vec3::splat(0.5), Vec3::ZERO).unwrap(),
         Vec3::ZERO
     );
+}
+
+/// Issue 17, finding 7: a slice moved to near −f32::MAX made `deform` return NaN (where the
+/// slice's weight is 0, `−∞ · 0`) or −∞ inside the lattice: the offsets from the grid and their
+/// Bernstein sum overflowed. Control points beyond `MAX_COORDINATE` are now refused, and inside
+/// the lattice every deformed point is finite.
+#[test]
+fn regression_control_points_near_f32_max_never_give_nan_inside() {
+    let mut lattice = Lattice::new(
+        Vec3::ZERO,
+        [Vec3::X * 10.0, Vec3::Y * 10.0, Vec3::Z * 10.0],
+        [1, 2, 13],
+    )
+    .unwrap();
+    let before = lattice.clone();
+    let result = lattice.translate_slice(Axis::U, 13, Vec3::new(0.0, -f32::MAX, 1.748_592_4));
+    if result.is_ok() {
+        // Inside points, half of them on the face u = 0 where slice 13 weighs exactly 0.
+        let bad: Vec<(Vec3, Vec3)> = (0..500)
+            .map(|i| {
+                let a = i as f32;
+                let u = if i % 2 == 0 { 0.0 } else { (a * 0.732).fract() };
+                let p =
+                    lattice.world_coords(Vec3::new((a * 0.618).fract(), (a * 0.4142).fract(), u));
+                (p, lattice.deform(p))
+            })
+            .filter(|(_, q)| !q.is_finite())
+            .collect();
+        let nan = bad.iter().find(|(_, q)| q.is_nan());
+        assert!(
+            bad.is_empty(),
+            "{} of 500 inside points deform to non-finite, e.g. {:?}; NaN e.g. {nan:?}",
+            bad.len(),
+            bad[0]
+        );
+    }
+    assert_eq!(lattice, before);
+    assert!(matches!(
+        result,
+        Err(FfdError::CoordinateTooLarge {
+            what: "control point",
+            value,
+            ..
+        }) if value == -f32::MAX
+    ));
+    // The largest accepted moves, every way: inside points stay finite.
+    for offset in [
+        Vec3::new(0.0, -MAX_COORDINATE, 0.0),
+        Vec3::new(MAX_COORDINATE, -MAX_COORDINATE, MAX_COORDINATE) * 0.999,
+    ] {
+        let mut lattice = before.clone();
+        lattice.translate_slice(Axis::U, 13, offset).unwrap();
+        lattice.translate_slice(Axis::U, 0, -offset).unwrap();
+        lattice
+            .set_control_point([1, 1, 6], Vec3::splat(-MAX_COORDINATE))
+            .unwrap();
+        for i in 0..500 {
+            let a = i as f32;
+            let u = if i % 2 == 0 { 0.0 } else { (a * 0.732).fract() };
+            let p = lattice.world_coords(Vec3::new((a * 0.618).fract(), (a * 0.4142).fract(), u));
+            assert!(lattice.try_deform(p).is_ok(), "{offset} {p}");
+        }
+    }
+    // Lattices and control points past the bound are refused.
+    assert!(matches!(
+        Lattice::new(
+            Vec3::splat(1e15),
+            [Vec3::X * 1e9, Vec3::Y, Vec3::Z],
+            [1, 1, 1]
+        ),
+        Err(FfdError::CoordinateTooLarge {
+            what: "lattice corner",
+            index: 1,
+            ..
+        })
+    ));
+    let mut lattice = before.clone();
+    assert!(matches!(
+        lattice.set_control_point([0, 0, 0], Vec3::new(0.0, 0.0, 2e15)),
+        Err(FfdError::CoordinateTooLarge { value: 2e15, .. })
+    ));
+    assert!(lattice.scale_slice(Axis::U, 1, Vec3::splat(1e15)).is_err());
+    assert!(lattice.distribute_slices(Axis::U, &[1e14; 13]).is_err());
+    assert_eq!(lattice, before);
 }

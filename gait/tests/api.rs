@@ -642,3 +642,52 @@ fn regression_legs_and_chains_beyond_max_coordinate_are_errors() {
             .is_ok()
     );
 }
+
+/// Finding 6, ground hits: a ground whose hits lie 1e30 away (as a buggy physics ray cast
+/// might report) gave `stability_margin: Some(-inf)`, infinite skate and overstretch, and
+/// joints far out of range. Hits farther than `MAX_COORDINATE` from the ray's origin (on any
+/// axis) are now ignored like non-finite ones: no hit, the leg dangles.
+#[test]
+fn regression_ground_hits_beyond_max_coordinate_are_no_hits() {
+    for far in [1e30f32, -1e30, 2e6, f32::MAX] {
+        for axis in [Vec3::X, Vec3::Y, Vec3::Z] {
+            let bogus = FnGround(move |origin: Vec3, _direction: Vec3, _max: f32| {
+                Some(RayHit {
+                    point: origin + axis * far,
+                    normal: Vec3::Y,
+                    distance: 0.5,
+                })
+            });
+            let mut c = quadruped();
+            for _ in 0..3 {
+                c.update(DT, standing(), Vec3::new(0.5, 0.0, 0.0), Vec3::ZERO, &bogus)
+                    .unwrap();
+            }
+            let m = c.metrics();
+            let at = (far, axis);
+            assert!(m.max_skate.is_finite(), "{at:?}: {m:?}");
+            assert!(m.max_overstretch.is_finite(), "{at:?}: {m:?}");
+            assert!(
+                m.stability_margin.is_none_or(f32::is_finite),
+                "{at:?}: {m:?}"
+            );
+            for state in c.leg_states() {
+                assert!(!state.grounded, "{at:?}: {state:?}");
+                assert!(state.joints.middle.is_finite(), "{at:?}: {state:?}");
+                assert!(state.foot.abs().max_element() <= 10.0, "{at:?}: {state:?}");
+            }
+        }
+    }
+    // Hits within MAX_COORDINATE of the ray's origin are kept.
+    let low = FnGround(|origin: Vec3, _direction: Vec3, _max: f32| {
+        Some(RayHit {
+            point: Vec3::new(origin.x, 0.0, origin.z),
+            normal: Vec3::Y,
+            distance: origin.y,
+        })
+    });
+    let mut c = quadruped();
+    c.update(DT, standing(), Vec3::ZERO, Vec3::ZERO, &low)
+        .unwrap();
+    assert!(c.leg_states().iter().all(|s| s.grounded));
+}

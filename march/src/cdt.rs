@@ -537,15 +537,33 @@ impl Cdt {
     fn find_edge(&self, a: u32, b: u32) -> Option<u32> {
         let first = self.out_edge[a as usize];
         let mut e = first;
-        // A vertex's star is a closed fan (every inserted vertex lies strictly inside the
-        // super triangle), so this comes back to `first`; the bound only guards the loop.
+        // An inserted vertex's star is a closed fan (it lies strictly inside the super
+        // triangle), so this comes back to `first`; the bound only guards the loop.
         for _ in 0..self.tris.len() {
             if self.dest(e) == b {
                 return Some(e);
             }
             e = self.twin_of(prev(e));
-            if e == NONE || e == first {
+            if e == first {
                 return None;
+            }
+            if e == NONE {
+                break;
+            }
+        }
+        // A super vertex's star is open at the hull: the rest of it lies the other way round
+        // from `first` (regression: a constraint crossing an edge from a super vertex, as
+        // thin rings with a long extent have, could not find that edge to flip it, and the
+        // rings were reported as crossing).
+        let mut e = first;
+        for _ in 0..self.tris.len() {
+            let back = self.twin_of(e);
+            if back == NONE {
+                return None;
+            }
+            e = next(back);
+            if self.dest(e) == b {
+                return Some(e);
             }
         }
         None

@@ -268,3 +268,43 @@ fn bad_rings_are_typed_errors() {
     let empty = triangulate(&[], &options).unwrap();
     assert!(empty.positions.is_empty() && empty.triangles.is_empty());
 }
+
+/// Issue 17, finding 1: thin rings with a long extent passed `validate_rings` but
+/// `triangulate` said their edges cross (`RingsCross { ring_a: 0, ring_b: 0, .. }`), with any
+/// options.
+#[test]
+fn thin_rings_with_a_long_extent_triangulate() {
+    let rings = [
+        vec![
+            Vec2::new(3.0, 6.0),
+            Vec2::new(0.0, 3.0),
+            Vec2::new(-100.0, -100.0),
+        ],
+        vec![
+            Vec2::new(-8.0, -8.0),
+            Vec2::new(3.0, 3.0),
+            Vec2::new(-100.0, -99.957_275),
+            Vec2::new(-100.0, -100.0),
+        ],
+    ];
+    for points in rings {
+        let ring = Ring {
+            points,
+            hole: false,
+            parent: None,
+        };
+        let rings = [ring];
+        creature_march::validate_rings(&rings).unwrap();
+        for options in [
+            MeshOptions::DEFAULT,
+            MeshOptions::DEFAULT.with_interior_spacing(0.0),
+            MeshOptions::DEFAULT
+                .with_min_angle(0.0)
+                .with_interior_spacing(0.0),
+        ] {
+            let mesh = triangulate(&rings, &options)
+                .unwrap_or_else(|e| panic!("{:?} with {options:?}: {e:?}", rings[0].points));
+            check_mesh(&mesh, &rings, true);
+        }
+    }
+}

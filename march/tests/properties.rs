@@ -331,11 +331,107 @@ mod mesh {
             }
         }
 
+        /// Issue 17, finding 1: thin triangles and quadrilaterals with a long extent (one
+        /// vertex far from the others, the others a hair off the line to it) that
+        /// `validate_rings` accepts are triangulated, as spade triangulates them: both
+        /// accept, with the same number of triangles covering the same area, and every ring
+        /// vertex is a mesh vertex, unrefined and refined.
+        #[test]
+        fn thin_long_rings_triangulate_like_spade(
+            (points, quad) in thin_long_ring(),
+        ) {
+            let ring = Ring { points, hole: false, parent: None };
+            let rings = [ring];
+            prop_assume!(validate_rings(&rings).is_ok());
+            // The shoelace sum in f64: products of f32s are exact there, the sum nearly so.
+            let n = rings[0].points.len();
+            let expected = (0..n).map(|i| {
+                let (p, q) = (rings[0].points[i].as_dvec2(), rings[0].points[(i + 1) % n].as_dvec2());
+                p.perp_dot(q)
+            }).sum::<f64>().abs() * 0.5;
+            let spade = spade_inside_triangles(&rings);
+            prop_assert_eq!(spade.len(), if quad { 2 } else { 1 });
+            let unrefined = MeshOptions::DEFAULT.with_interior_spacing(0.0).with_min_angle(0.0);
+            let extent = rings[0].points.iter().map(|p| p.distance(rings[0].points[0])).fold(0.0f32, f32::max);
+            for options in [unrefined, MeshOptions::DEFAULT.with_interior_spacing(extent / 16.0)] {
+                let mesh = triangulate(&rings, &options)
+                    .map_err(|e| TestCaseError::fail(format!("{:?}: {e}", rings[0].points)))?;
+                prop_assert_eq!(&mesh.positions[..mesh.outline_len], &rings[0].points[..]);
+                let area: f64 = mesh.triangles.iter().map(|t| {
+                    let [a, b, c] = t.map(|i| mesh.positions[i as usize].as_dvec2());
+                    prop_assert!((b - a).perp_dot(c - a) > 0.0);
+                    Ok(0.5 * (b - a).perp_dot(c - a))
+                }).sum::<Result<f64, TestCaseError>>()?;
+                // Refinement rounds the points it adds on ring edges to f32: each moves the
+                // outline by at most an ulp of the coordinates, over at most the perimeter.
+                let slack = if options.min_angle == 0.0 {
+                    0.0
+                } else {
+                    let perimeter: f64 = (0..n).map(|i| {
+                        (rings[0].points[(i + 1) % n] - rings[0].points[i]).as_dvec2().length()
+                    }).sum();
+                    let magnitude = rings[0].points.iter().map(|p| p.abs().max_element()).fold(0.0f32, f32::max);
+                    perimeter * f64::from(magnitude) * f64::from(f32::EPSILON)
+                };
+                prop_assert!((area - expected).abs() <= 1e-6 * expected + slack, "{} vs {}", area, expected);
+                if options.min_angle == 0.0 {
+                    prop_assert_eq!(mesh.triangles.len(), spade.len());
+                    let spade_area: f64 = spade.iter().map(|t| {
+                        let [a, b, c] = t.map(|(x, y)| Vec2::new(f32::from_bits(x), f32::from_bits(y)).as_dvec2());
+                        0.5 * (b - a).perp_dot(c - a).abs()
+                    }).sum();
+                    prop_assert!((area - spade_area).abs() <= 1e-6 * expected, "{} vs spade {}", area, spade_area);
+                }
+            }
+        }
+
         #[test]
         fn crossing_rings_never_reach_the_triangulator(pair in strategies::crossing_rings()) {
             let crossing = matches!(triangulate(&pair, &MeshOptions::DEFAULT), Err(MarchError::RingsCross { .. }));
             prop_assert!(crossing);
         }
+    }
+
+    /// A thin triangle, or quadrilateral (then `true`), with a long extent: a corner `a` near
+    /// the origin, a far corner `b` 10 to 10⁶ away in any direction, a corner `c` between
+    /// them a hair (10⁻⁷ to 10⁻¹ of the length) off the line `a`–`b`, and for a
+    /// quadrilateral a corner `d` next to `b` (10⁻⁵ to 10⁻² of the length away, back towards
+    /// `a` on `c`'s side), in either orientation.
+    fn thin_long_ring() -> impl Strategy<Value = (Vec<Vec2>, bool)> {
+        (
+            (-10.0f32..10.0, -10.0f32..10.0),
+            0.0f32..core::f32::consts::TAU,
+            1.0f32..6.0,
+            0.01f32..0.99,
+            -7.0f32..-1.0,
+            any::<bool>(),
+            proptest::option::of((-3.0f32..0.0, 0.0f32..core::f32::consts::TAU)),
+            any::<bool>(),
+        )
+            .prop_map(
+                |((ax, ay), angle, log_length, t, log_width, left, near, reverse)| {
+                    let a = Vec2::new(ax, ay);
+                    let length = 10f32.powf(log_length);
+                    let direction = Vec2::from_angle(angle);
+                    let b = a + direction * length;
+                    let width = length * 10f32.powf(log_width) * if left { 1.0 } else { -1.0 };
+                    let c = a + direction * (t * length) + direction.perp() * width;
+                    let mut points = vec![a, b, c];
+                    if let Some((log_offset, turn)) = near {
+                        // Back from `b`, on `c`'s side of the line: a → b → d → c stays simple
+                        // but for a few (left to `validate_rings`).
+                        let side = direction.perp() * width.signum();
+                        let (sin, cos) = (0.25 * turn).sin_cos();
+                        let offset = length * 10f32.powf(log_offset - 2.0);
+                        points.insert(2, b + (side * sin - direction * cos) * offset);
+                    }
+                    if reverse {
+                        points.reverse();
+                    }
+                    let quad = points.len() == 4;
+                    (points, quad)
+                },
+            )
     }
 
     /// The rings' edges as sorted pairs of their ends' bits.

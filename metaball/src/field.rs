@@ -616,8 +616,9 @@ impl Field2 {
     /// Faster than sampling point by point: it runs ball by ball, and for the Gaussian
     /// falloffs (seed, Blinn) splits `exp(−a (dx² + dy²)/R²)` into a row factor times a column
     /// factor, so a ball costs one `exp` per row and column it reaches rather than one per
-    /// sample. Each sample sums exactly the balls `value` would, in the same order, so it is
-    /// within `f32` rounding (about `1e-6` relative) of `value` and obeys the same
+    /// sample. Each sample sums exactly the balls `value` would, in the same order, so it
+    /// differs from `value` by rounding only, within
+    /// [`sample_error_bound`](Self::sample_error_bound)` × value`, and obeys the same
     /// [`error_bound`](Self::error_bound); it is not bit-identical to `value`. An exponential
     /// falloff so steep that a factor could underflow (`blobbiness + ln(epsilon) < −80`, i.e.
     /// `blobbiness` below about −70.8 at the default epsilon) and [`Falloff::Wyvill`] are not
@@ -666,7 +667,8 @@ impl Field2 {
     /// `exp` of [`value`](Self::value)). Against `value` at the same point it sums the same
     /// balls in the same order (so
     /// a sample is 0 exactly where `value` is) and differs only by rounding: within
-    /// `1e-6 × max(value, 1)` (tested), and it obeys the same
+    /// [`sample_error_bound`](Self::sample_error_bound)` × value` (tested), and it obeys the
+    /// same
     /// [`error_bound`](Self::error_bound) against the exact sum. It is **not** bit-identical
     /// to `value`, nor to `sample_grid` (which uses the platform's `exp`). For
     /// [`Falloff::Wyvill`] (no separable form) and the steepest exponential falloffs (as in
@@ -689,7 +691,7 @@ impl Field2 {
     ///     for col in 0..8 {
     ///         let p = origin + step * Vec2::new(col as f32, row as f32);
     ///         let v = field.value(p);
-    ///         assert!((tile[row * 8 + col] - v).abs() <= 1e-6 * v.max(1.0));
+    ///         assert!((tile[row * 8 + col] - v).abs() <= field.sample_error_bound() * v);
     ///     }
     /// }
     /// # Ok::<(), creature_metaball::MetaballError>(())
@@ -725,6 +727,37 @@ impl Field2 {
         self.core
             .sample_block(origin.to_array(), step, cols, rows, out, cache);
         Ok(())
+    }
+
+    /// How far, relative, a sample of [`sample_grid`](Self::sample_grid),
+    /// [`sample_block`](Self::sample_block) or a [`BlockSampler`] may be from
+    /// [`value`](Self::value) at the same point: `|sample − value| ≤ sample_error_bound() ×
+    /// value` (so a sample is 0 exactly where `value` is).
+    ///
+    /// 0 where every sample is `value` itself ([`Falloff::Wyvill`], and exponential falloffs
+    /// too steep to split). Otherwise `(7 L + 2 n + 11) · 2⁻²⁴`, from the error analysis of
+    /// the split `exp(−a dx²/R²) · exp(−a dy²/R²)` against `value`'s `exp(−a (dx² + dy²)/R²)`:
+    /// `L = ln(peak / epsilon)` (at most 80) is the largest exponent of a reaching ball's term,
+    /// whose rounding each of the two ways moves the term by `e^{±4uL}` and `e^{±3uL}`; two
+    /// `exp`s and two products against one and one add `10.6u`; and `n`, the most balls any
+    /// culling cell lists (at most [`ball_count`](Self::ball_count)), bounds the roundings of
+    /// the two sums, `2(n − 1)u` (`u = 2⁻²⁴`). For the seed falloff at the default epsilon and
+    /// a few balls per cell that is about `5e-6`; for a steep exponential falloff
+    /// (`blobbiness = −33`, `L ≈ 42`) about `1.9e-5`. Typical differences are a tenth of it.
+    ///
+    /// ```
+    /// use creature_metaball::{Ball2, Falloff, Field2, glam::Vec2};
+    ///
+    /// let field = Field2::new(&[Ball2::new(Vec2::ZERO, 10.0, 0)], Falloff::SEED)?;
+    /// // L = ln(e^0.5 / 1e-4) ≈ 9.7 and one ball: (7 L + 2 + 11) · 2⁻²⁴.
+    /// assert!((field.sample_error_bound() - 4.8e-6).abs() < 1e-7);
+    /// let wyvill = Field2::new(&[Ball2::new(Vec2::ZERO, 10.0, 0)], Falloff::WYVILL)?;
+    /// assert_eq!(wyvill.sample_error_bound(), 0.0);
+    /// # Ok::<(), creature_metaball::MetaballError>(())
+    /// ```
+    #[must_use]
+    pub fn sample_error_bound(&self) -> f32 {
+        self.core.sample_error()
     }
 
     /// Whether every sample of the `cols × rows` block that

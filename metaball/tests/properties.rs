@@ -2,8 +2,8 @@
 
 use creature_metaball::glam::Vec2;
 use creature_metaball::{
-    Ball2, CoverOptions, Falloff, Field2, Field3, FieldOptions, ISO_LEVEL, MetaballError,
-    SEED_SPACING, cover_radius_factor, cover_segment_with, strategies,
+    BLOBBINESS_RANGE, Ball2, CoverOptions, Falloff, Field2, Field3, FieldOptions, ISO_LEVEL,
+    MetaballError, SEED_SPACING, cover_radius_factor, cover_segment_with, strategies,
 };
 use proptest::prelude::*;
 use proptest::test_runner::FileFailurePersistence;
@@ -313,7 +313,7 @@ proptest! {
 
     #[test]
     fn grid_samples_agree_with_point_samples(
-        field in strategies::field2(),
+        field in soft_or_steep_field2(),
         origin in strategies::vec2_in(150.0),
         step in 0.5f32..20.0,
         width in 0usize..24,
@@ -326,7 +326,7 @@ proptest! {
                 let p = origin + step * Vec2::new(column as f32, row as f32);
                 let v = field.value(p);
                 let s = samples[row * width + column];
-                prop_assert!((s - v).abs() <= 1e-6 * v.max(1.0), "at {}: {} vs {}", p, s, v);
+                prop_assert!((s - v).abs() <= field.sample_error_bound() * v, "at {}: {} vs {}", p, s, v);
                 prop_assert_eq!(s == 0.0, v == 0.0);
             }
         }
@@ -334,7 +334,7 @@ proptest! {
 
     #[test]
     fn block_samples_agree_with_point_and_grid_samples(
-        field in strategies::field2(),
+        field in soft_or_steep_field2(),
         origin in strategies::vec2_in(150.0),
         step in 0.5f32..20.0,
         cols in 0usize..12,
@@ -348,10 +348,11 @@ proptest! {
                 let p = origin + step * Vec2::new(col as f32, row as f32);
                 let v = field.value(p);
                 let b = block[row * cols + col];
-                prop_assert!((b - v).abs() <= 1e-6 * v.max(1.0), "at {}: {} vs {}", p, b, v);
+                let bound = field.sample_error_bound() * v;
+                prop_assert!((b - v).abs() <= bound, "at {}: {} vs {}", p, b, v);
                 prop_assert_eq!(b == 0.0, v == 0.0);
                 let g = grid[row * cols + col];
-                prop_assert!((b - g).abs() <= 1e-6 * g.max(1.0), "at {}: {} vs {}", p, b, g);
+                prop_assert!((b - g).abs() <= 2.0 * bound, "at {}: {} vs {}", p, b, g);
             }
         }
     }
@@ -448,6 +449,28 @@ proptest! {
             prop_assert!(field.blend(p, &attributes).is_ok());
         }
     }
+}
+
+/// [`strategies::field2`], or half the time one with a steep exponential falloff (blobbiness
+/// down to the accepted −80), where the split samplers' rounding is largest: the
+/// `sample_error_bound` grows with the steepness (issue 17, finding 11: 1.1e-6 relative at
+/// blobbiness −33, over the `1e-6` once documented). Over 300,000 such cases the worst sample
+/// was 0.45 of the bound (1.5e-5 relative, at blobbiness −64.5, near a ball's cutoff).
+fn soft_or_steep_field2() -> impl Strategy<Value = Field2> {
+    let steep = (
+        strategies::ball_set2(24),
+        BLOBBINESS_RANGE.0..-4.0f32,
+        -7.0f32..-2.0,
+        proptest::option::of(0.5f32..200.0),
+    )
+        .prop_filter_map("field rejected", |(balls, blobbiness, exponent, cell)| {
+            let options = FieldOptions::DEFAULT
+                .with_falloff(Falloff::Exponential { blobbiness })
+                .with_epsilon(10f32.powf(exponent))
+                .with_cell_size(cell);
+            Field2::with_options(&balls, &options).ok()
+        });
+    prop_oneof![strategies::field2(), steep]
 }
 
 /// `default` cases, or `PROPTEST_CASES` when set (for longer soaks).

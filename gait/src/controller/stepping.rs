@@ -3,7 +3,7 @@
 
 use glam::{Mat3A, Vec3};
 
-use super::{Controller, horizontal};
+use super::{Controller, MAX_COORDINATE, horizontal};
 use crate::ground::Ground;
 use crate::leg::{Leg, LimbKind, Pose};
 use crate::math::{abs, sin_turns, sqrt};
@@ -51,8 +51,8 @@ impl Controller {
             } else {
                 let (origin, max_distance) = down_ray(rest_world, leg.size, o);
                 match ground.cast_down_point(origin, max_distance) {
-                    Some(point) => (point, true),
-                    None => (rest_world, false),
+                    Some(point) if near_ray(origin, point) => (point, true),
+                    _ => (rest_world, false),
                 }
             };
             let anchor_normal =
@@ -313,7 +313,7 @@ pub(super) fn cast_anchor<G: Ground + ?Sized>(
 }
 
 /// A ray straight down from above `point`: `(hit point, unit normal)` or `None`; hits with
-/// non-finite fields are ignored.
+/// non-finite fields, or not [`near_ray`], are ignored.
 #[inline(always)]
 fn cast_down<G: Ground + ?Sized>(
     ground: &G,
@@ -334,10 +334,23 @@ fn cast_down<G: Ground + ?Sized>(
     } else {
         return None;
     };
-    if !(hit.point.is_finite() && hit.distance.is_finite()) {
+    if !(near_ray(origin, hit.point) && hit.distance.is_finite()) {
         return None;
     }
     Some((hit.point, normal))
+}
+
+/// Whether a ground hit is one the controller uses: within [`MAX_COORDINATE`] of the ray's
+/// `origin` on every axis (so finite). The legs, poses and rays are bounded by it too, so the
+/// feet's distances, squared lengths and support hull stay far from overflow; a ground that
+/// reports a hit farther away (regression: 1e30 away gave a stability margin of −∞) is taken
+/// to have missed, as for a non-finite hit (see [`Ground`]).
+#[inline(always)]
+fn near_ray(origin: Vec3, point: Vec3) -> bool {
+    (point - origin)
+        .abs()
+        .cmple(Vec3::splat(MAX_COORDINATE))
+        .all()
 }
 
 /// The ray of [`cast_down`]: its origin above `point` and its length.

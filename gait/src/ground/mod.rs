@@ -21,7 +21,9 @@ pub struct RayHit {
 }
 
 impl RayHit {
-    /// True when every field is finite and the normal has a length (a hit the controller can use).
+    /// True when every field is finite and the normal has a length. The controller uses such a
+    /// hit when its point is also within [`MAX_COORDINATE`](crate::MAX_COORDINATE) of the ray's
+    /// origin along every axis (see [`Ground`]).
     #[must_use]
     pub fn is_valid(&self) -> bool {
         self.point.is_finite()
@@ -37,7 +39,13 @@ impl RayHit {
 /// step target. Implementations report the first place where the ray enters the ground
 /// *from above* (crossing the surface against its normal) within `max_distance`; a ray that
 /// starts inside the ground reports no hit until it comes out and crosses the surface again.
-/// Hits with non-finite fields are ignored by the controller.
+///
+/// The controller ignores (takes as no hit, so the leg dangles) a hit with a non-finite field
+/// and a hit whose point lies farther than [`MAX_COORDINATE`](crate::MAX_COORDINATE) from the
+/// ray's origin along any axis: no ray it casts is that long, and such a point would overflow
+/// the feet's distances and support hull. These are not errors: the ground is asked during
+/// [`Controller::update`](crate::Controller::update), which either fails before changing
+/// anything or succeeds.
 ///
 /// ```
 /// use creature_gait::{Ground, Plane, glam::Vec3};

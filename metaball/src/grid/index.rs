@@ -12,6 +12,12 @@ use crate::math;
 /// ball the distance test would keep.
 const BOX_PAD: f32 = 1e-4;
 
+/// The grid box's padding relative to the magnitude of its coordinates: `2^-20`, at least 8 units
+/// in the last place (an ulp of `x` is at most `|x| · 2^-23`). It covers the rounding of
+/// `centre ± cutoff`, of the distance test, of the box's own corners and of the cell lookup
+/// `(x − origin) / cell`, each a unit or less, where the extent-relative [`BOX_PAD`] vanishes.
+const MAGNITUDE_PAD: f32 = 1.0 / 1_048_576.0;
+
 impl<const D: usize> Core<D> {
     /// Builds the grid. Inputs are already validated: finite centres within range, radii in
     /// range, a valid kernel, `0 < epsilon < 1`, `cell_size` positive and finite if given,
@@ -72,6 +78,8 @@ impl<const D: usize> Core<D> {
             bounds: (lo, hi),
             value_error,
             gradient_error,
+            sample_error: 0.0,
+            cutoff_exponent: 0.0,
         };
         if cutoffs.is_empty() {
             // No ball reaches epsilon anywhere: the culled field is zero everywhere.
@@ -84,8 +92,15 @@ impl<const D: usize> Core<D> {
         let mut extent = [0.0f32; D];
         let mut origin = lo;
         for k in 0..D {
-            // Grow the box by the padding too.
-            let margin = pad(hi[k] - lo[k]) - (hi[k] - lo[k]) + f32::MIN_POSITIVE;
+            // Grow the box by the padding too, and by a few units in the last place of its
+            // coordinates: far from the origin a tiny ball's cutoff box rounds to a point (or
+            // to a box a few ulps wide), and a point its distance test keeps could otherwise
+            // land on or past the grid's far edge and find no cell (regression: two balls of
+            // radius 1e-5 near (−1e4, −1e4) read 0 at their centres with a `cell_size`).
+            let magnitude = lo[k].abs().max(hi[k].abs());
+            let margin = pad(hi[k] - lo[k]) - (hi[k] - lo[k])
+                + magnitude * MAGNITUDE_PAD
+                + f32::MIN_POSITIVE;
             origin[k] = lo[k] - margin;
             extent[k] = (hi[k] + margin) - origin[k];
         }
@@ -131,6 +146,16 @@ impl<const D: usize> Core<D> {
         core.inv_cell = 1.0 / cell;
         core.dims = dims;
         core.fill(&padded);
+        if let Some((_, sharpness)) = core.separable {
+            let most = core
+                .starts
+                .windows(2)
+                .map(|w| w[1] - w[0])
+                .max()
+                .unwrap_or(0);
+            core.cutoff_exponent = sharpness * q_cut;
+            core.sample_error = super::sample_error_bound(core.cutoff_exponent, most);
+        }
         core
     }
 
@@ -254,6 +279,10 @@ impl<const D: usize> Core<D> {
 
     pub(crate) fn gradient_error(&self) -> f32 {
         self.gradient_error
+    }
+
+    pub(crate) fn sample_error(&self) -> f32 {
+        self.sample_error
     }
 
     pub(crate) fn cell_size(&self) -> f32 {
@@ -380,6 +409,37 @@ mod tests {
                 .iter()
                 .all(|s| s.to_bits() == 0)
         );
+    }
+
+    /// Issue 17, finding 2, swept: tiny balls a few ulps apart at every magnitude up to
+    /// `MAX_COORDINATE`, with and without a cell size; every centre finds its balls.
+    #[test]
+    fn tiny_balls_far_out_are_found_at_every_magnitude() {
+        for magnitude in [1.0f32, 1e3, 1e4, -1e4, 1e6, 1e9, -1e12, 1e12] {
+            for ulps in [0i32, 1, 2, 3, 7] {
+                let ulp = f32::from_bits(magnitude.abs().to_bits() + 1) - magnitude.abs();
+                let a = [magnitude, magnitude + ulp];
+                let b = [magnitude, magnitude + ulp * (1 + ulps) as f32];
+                let balls = [
+                    (a, 1e-6, 0),
+                    (b, 1e-5, 1),
+                    ([magnitude, magnitude], 1e-6, 2),
+                ];
+                for cell in [None, Some(1.0), Some(1e-6), Some(1e9)] {
+                    let core = Core::<2>::build(&balls, Falloff::SEED.kernel(), 1e-4, cell);
+                    for p in [a, b, [magnitude, magnitude]] {
+                        let exact = core.value_exact(p);
+                        let culled = core.value(p);
+                        let at = (magnitude, ulps, cell, p);
+                        assert!(exact > 1.0, "{at:?}");
+                        assert!(
+                            (culled - exact).abs() <= core.value_error() + 1e-6 * exact,
+                            "{at:?}: {culled} vs {exact}"
+                        );
+                    }
+                }
+            }
+        }
     }
 
     #[test]

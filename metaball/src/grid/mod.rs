@@ -65,6 +65,13 @@ pub(crate) struct Core<const D: usize> {
     bounds: ([f32; D], [f32; D]),
     value_error: f32,
     gradient_error: f32,
+    /// The relative bound of the split samplers against [`Core::value`]
+    /// ([`sample_error_bound`]); 0 when they sample `value` itself.
+    sample_error: f32,
+    /// `L = a q_c`, the largest exponent of a reaching ball's term, for a [`separable`]
+    /// kernel; 0 for the others. The rounding of a term's exponent, which the block proofs'
+    /// slack must cover, grows with it.
+    cutoff_exponent: f32,
 }
 
 /// The smallest exponent a row or column factor of a reaching ball may have for the separable
@@ -84,6 +91,32 @@ fn separable(kernel: Kernel, q_cut: f32) -> Option<(f32, f32)> {
     kernel
         .gaussian()
         .filter(|&(_, sharpness)| -sharpness * q_cut >= SEPARABLE_FLOOR)
+}
+
+/// The relative bound `(7 L + 2 n + 11) · 2⁻²⁴` of a split sample (`sample_grid`,
+/// `sample_block`) against [`Core::value`] at the same point, for a separable kernel
+/// `scale · exp(−a q)` whose exponent at the cutoff is `L = a q_c` (at most 80, see
+/// [`separable`]; `L = ln(scale / epsilon)`) and at most `n` balls reaching a point (the most
+/// any culling cell lists). With `u = 2⁻²⁴` and `X = a (dx² + dy²)/R² ≤ L` a term's exponent
+/// (`dx`, `dy`, `1/R²` and `a` are the same floats in both):
+///
+/// - `value` rounds `dx²`, `dy²`, their sum, the product with `1/R²` and with `a`: its exponent
+///   is `X (1 + θ)`, `|θ| ≤ 4u`; the sampler rounds `dx²`, `· 1/R²` and `· a` per axis: its
+///   two exponents sum to `X (1 + θ')`, `|θ'| ≤ 3u`. The terms' ratio is `e^{X (θ − θ')}`, within
+///   `7uX` of 1;
+/// - `value` takes one `exp` and one product with the scale, the sampler two `exp`s and two
+///   products: each `exp` is within `1.5e-7 ≤ 2.52u` (the crate's, and the platform's within
+///   an ulp), each product within `u`, together `3 · 2.52u + 3u ≤ 10.6u`;
+/// - both add the same terms in the same order from +0: `n − 1` roundings each, `2(n − 1)u`
+///   of the sum between them.
+///
+/// Together `(7X + 2n + 8.6) u` to first order; the second-order terms (`X ≤ 80`, so the
+/// relative errors are below `1e-4`) are under `0.1u`, and the `+ 11` covers them. The worst
+/// case a proptest found (`tests/properties.rs`) is reported beside it.
+fn sample_error_bound(exponent_at_cutoff: f32, most_balls: u32) -> f32 {
+    let l = f64::from(exponent_at_cutoff.max(0.0));
+    let bound = (7.0 * l + 2.0 * f64::from(most_balls) + 11.0) / f64::from(1u32 << 24);
+    bound as f32
 }
 
 #[inline(always)]

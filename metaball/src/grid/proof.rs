@@ -64,10 +64,14 @@ impl Core<2> {
     }
 
     /// What a block proof's sum of smallest contributions must reach for every sample to be
-    /// at least `level`: `level` over one less the slack for the samples' rounding (`1e-5`
-    /// plus `ε` per ball, relative).
+    /// at least `level`: `level` over one less the slack for the samples' rounding (`1e-5`,
+    /// plus `ε` per ball, plus `8 L 2⁻²⁴` for the rounding of the terms' exponents, `L` the
+    /// largest: a sample's and the corner's exponent, each rounded within `4 L 2⁻²⁴`, move
+    /// the term by up to `e^{8 L 2⁻²⁴}`, beyond `1e-5` for a steep falloff with `L` past 20;
+    /// see [`sample_error_bound`](super::sample_error_bound)).
     fn proof_target(&self, level: f32) -> f64 {
-        let slack = 1e-5 + (self.balls.len() as f64 + 8.0) * f64::from(f32::EPSILON);
+        let exponents = 8.0 * f64::from(self.cutoff_exponent) / f64::from(1u32 << 24);
+        let slack = 1e-5 + exponents + (self.balls.len() as f64 + 8.0) * f64::from(f32::EPSILON);
         f64::from(level) / (1.0 - slack)
     }
 

@@ -299,7 +299,10 @@ mod tests {
                         let p = [origin[0] + step * j as f32, origin[1] + step * i as f32];
                         let v = core.value(p);
                         let s = samples[i * width + j];
-                        assert!((s - v).abs() <= 1e-6 * v.max(1.0), "{falloff:?} at {p:?}");
+                        assert!(
+                            (s - v).abs() <= core.sample_error() * v,
+                            "{falloff:?} at {p:?}"
+                        );
                         assert_eq!(s == 0.0, v == 0.0);
                     }
                 }
@@ -336,8 +339,9 @@ mod tests {
                         ];
                         let v = core.value(p);
                         let at = (falloff, cell_size, origin, n);
-                        assert!((b - v).abs() <= 1e-6 * v.max(1.0), "{at:?}: {b} vs {v}");
-                        assert!((b - g).abs() <= 1e-6 * g.max(1.0), "{at:?}: {b} vs {g}");
+                        let bound = core.sample_error() * v;
+                        assert!((b - v).abs() <= bound, "{at:?}: {b} vs {v}");
+                        assert!((b - g).abs() <= 2.0 * bound, "{at:?}: {b} vs {g}");
                         assert_eq!(*b == 0.0, v == 0.0, "{at:?}");
                         if falloff == Falloff::WYVILL {
                             // No separable path: the point values themselves.

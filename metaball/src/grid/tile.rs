@@ -438,7 +438,10 @@ mod tests {
                                 origin[1] + step * (n / size[0]) as f32,
                             ];
                             let v = core.value(p);
-                            assert!((b - v).abs() <= 1e-6 * v.max(1.0), "{at:?}: {b} vs {v}");
+                            assert!(
+                                (b - v).abs() <= core.sample_error() * v,
+                                "{at:?}: {b} vs {v}"
+                            );
                             assert_eq!(*b == 0.0, v == 0.0, "{at:?}");
                             checked += usize::from(v > 0.0);
                         }

@@ -137,7 +137,7 @@ impl Model {
             Some(i) => i.into_u32().collect(),
             None => (0..positions.len() as u32).collect(),
         };
-        if flat.len() % 3 != 0 || flat.iter().any(|&i| i as usize >= positions.len()) {
+        if !flat.len().is_multiple_of(3) || flat.iter().any(|&i| i as usize >= positions.len()) {
             return Err(unsupported("triangle indices"));
         }
         let triangles = flat.chunks_exact(3).map(|t| [t[0], t[1], t[2]]).collect();

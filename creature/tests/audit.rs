@@ -5,7 +5,7 @@
 //! the checks not yet enforced for a kind (the generator does not pass them yet) are counted
 //! and printed only.
 
-#![allow(clippy::unwrap_used)]
+#![allow(clippy::unwrap_used, clippy::std_instead_of_alloc)]
 
 use std::collections::BTreeMap;
 
@@ -21,9 +21,13 @@ fn seeds() -> u64 {
 }
 
 /// Audits `seeds` creatures of `kind`; the number failing each check, and the first failures.
-fn audit_kind(kind: Kind, first_seed: u64, seeds: u64) -> (BTreeMap<Check, usize>, Vec<String>) {
+fn audit_kind(
+    kind: Kind,
+    first_seed: u64,
+    seeds: u64,
+) -> (BTreeMap<Check, (usize, String)>, Vec<String>) {
     let params = d3::Params::DEFAULT.with_kind(kind);
-    let mut counts = BTreeMap::new();
+    let mut counts: BTreeMap<Check, (usize, String)> = BTreeMap::new();
     let mut examples = Vec::new();
     for seed in first_seed..first_seed + seeds {
         let c = d3::generate(seed, &params).unwrap();
@@ -33,7 +37,13 @@ fn audit_kind(kind: Kind, first_seed: u64, seeds: u64) -> (BTreeMap<Check, usize
         failed.sort();
         failed.dedup();
         for check in &failed {
-            *counts.entry(*check).or_insert(0) += 1;
+            let entry = counts.entry(*check).or_default();
+            entry.0 += 1;
+            if entry.1.is_empty()
+                && let Some(m) = report.failures().find(|m| m.check == *check)
+            {
+                entry.1 = format!("seed {seed}: {m}");
+            }
         }
         if !failed.is_empty() {
             examples.push(format!(
@@ -58,16 +68,13 @@ fn run(kind: Kind, enforced: &[Check]) {
     let (counts, examples) = audit_kind(kind, first, n);
     println!("audit {kind:?}: {n} seeds, {} fail", examples.len());
     for check in Check::ALL {
-        if let Some(&k) = counts.get(&check) {
-            println!("  {:<22} {k}", check.name());
+        if let Some((k, first)) = counts.get(&check) {
+            println!("  {:<22} {k:>5}   first: {first}", check.name());
         }
-    }
-    for e in examples.iter().take(8) {
-        println!("  {e}");
     }
     let broken: Vec<String> = enforced
         .iter()
-        .filter_map(|c| counts.get(c).map(|k| format!("{}: {k}", c.name())))
+        .filter_map(|c| counts.get(c).map(|(k, _)| format!("{}: {k}", c.name())))
         .collect();
     assert!(
         broken.is_empty(),
@@ -78,18 +85,21 @@ fn run(kind: Kind, enforced: &[Check]) {
 
 #[test]
 fn audit_walkers() {
-    run(Kind::Walker, &[Check::BelowGround]);
+    // Not yet enforced for walkers (issue 16 is open): the stance checks (feet held in the air,
+    // never down, sliding), feet crossing and legs intersecting in turns, arm jerks, and the
+    // skin squashed at limb roots.
+    run(
+        Kind::Walker,
+        &[Check::Tips, Check::BelowGround, Check::Stretch],
+    );
 }
 
 #[test]
 fn audit_fliers() {
-    run(Kind::Flier, &[Check::KeyTurn, Check::AngularSpeed]);
+    run(Kind::Flier, &Check::ALL);
 }
 
 #[test]
 fn audit_swimmers() {
-    run(
-        Kind::Swimmer,
-        &[Check::KeyTurn, Check::AngularSpeed, Check::BelowGround],
-    );
+    run(Kind::Swimmer, &Check::ALL);
 }

@@ -35,7 +35,7 @@ pub use error::GaitError;
 pub use ground::{FnGround, Ground, HeightField, Plane, RayHit};
 pub use ik::{TwoBone, solve_two_bone};
 pub use leg::{Chain, Leg, LimbKind, MAX_CHAIN_SEGMENTS, Pose};
-pub use metrics::GaitMetrics;
+pub use metrics::{GaitMetrics, support_margin};
 pub use motion::{FlapParams, Side, SwimParams, WingKind};
 pub use options::GaitOptions;
 

@@ -33,13 +33,20 @@ pub struct GaitMetrics {
     pub stability_margin: Option<f32>,
 }
 
-/// Signed distance of `point` to the convex hull of `points` (positive inside). `scratch` is
-/// reused storage. `None` for no points.
-pub(crate) fn support_margin(
-    points: &mut Vec<Vec2>,
-    scratch: &mut Vec<Vec2>,
-    point: Vec2,
-) -> Option<f32> {
+/// Signed horizontal distance of `point` to the convex hull of `points` (`(x, z)` pairs, e.g.
+/// feet on the ground): positive inside, negative outside; with fewer than three points not
+/// on one line the hull is a segment or a point, so the margin is at most 0. `None` for no
+/// points. `points` is sorted and deduplicated in place; `scratch` is reused storage for the
+/// hull.
+///
+/// ```
+/// use creature_gait::{glam::Vec2, support_margin};
+///
+/// let mut feet = vec![Vec2::new(-1.0, -1.0), Vec2::new(1.0, -1.0), Vec2::new(1.0, 1.0), Vec2::new(-1.0, 1.0)];
+/// let margin = support_margin(&mut feet, &mut Vec::new(), Vec2::new(0.0, 0.5));
+/// assert_eq!(margin, Some(0.5));
+/// ```
+pub fn support_margin(points: &mut Vec<Vec2>, scratch: &mut Vec<Vec2>, point: Vec2) -> Option<f32> {
     support_hull(points, scratch);
     hull_margin(scratch, point)
 }

@@ -97,6 +97,16 @@ pub struct GaitOptions {
     pub blend_time: f32,
     /// Centre of mass in body space, for the stability margin. Default zero.
     pub centre_of_mass: Vec3,
+    /// The fraction of a step's swing, at its start and at its end, in which the foot moves
+    /// only up (lift-off) or down (landing) while it is near the ground, `[0, 0.45]`: feet that
+    /// neither scuff nor skid. The target stops following the motion when the landing starts.
+    /// Default 0.15.
+    pub plant_fraction: f32,
+    /// A planted leg steps at once (out of its group's turn) when its foot comes this close to
+    /// the body's midline, as a fraction of its rest position's distance from it, `[0, 1]`:
+    /// feet never cross to the other side when a long body turns in place. Step targets stay no
+    /// closer to the midline either. Default 0.5.
+    pub midline_margin: f32,
 }
 
 impl GaitOptions {
@@ -132,6 +142,8 @@ impl GaitOptions {
         arm_idle_amplitude: 0.03,
         blend_time: 0.3,
         centre_of_mass: Vec3::ZERO,
+        plant_fraction: 0.15,
+        midline_margin: 0.5,
     };
 
     /// Sets [`reach`](Self::reach).
@@ -170,6 +182,20 @@ impl GaitOptions {
         self.speed_multiplier = value;
         self
     }
+    /// Sets [`plant_fraction`](Self::plant_fraction).
+    #[must_use]
+    pub const fn with_plant_fraction(mut self, value: f32) -> Self {
+        self.plant_fraction = value;
+        self
+    }
+
+    /// Sets [`midline_margin`](Self::midline_margin).
+    #[must_use]
+    pub const fn with_midline_margin(mut self, value: f32) -> Self {
+        self.midline_margin = value;
+        self
+    }
+
     /// Sets [`max_turn_angle`](Self::max_turn_angle).
     #[must_use]
     pub const fn with_max_turn_angle(mut self, value: f32) -> Self {
@@ -291,6 +317,8 @@ impl GaitOptions {
         use core::f32::consts::{FRAC_PI_2, PI};
         let tiny = f32::MIN_POSITIVE;
         in_range(self.step_height, "step height", 0.0, 2.0)?;
+        in_range(self.plant_fraction, "plant fraction", 0.0, 0.45)?;
+        in_range(self.midline_margin, "midline margin", 0.0, 1.0)?;
         in_range(self.overshoot, "overshoot", 0.0, 1.0)?;
         in_range(self.overshoot_speed, "overshoot speed", tiny, 100.0)?;
         in_range(self.speed_multiplier, "speed multiplier", tiny, 10.0)?;

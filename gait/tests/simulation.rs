@@ -396,3 +396,77 @@ fn regression_landed_feet_do_not_rejoin_group_turn() {
         );
     }
 }
+
+/// The largest horizontal move, in one update, of a foot that is within `near` of flat ground
+/// before or after it (touching down or lifting off), over 10 s of walking at 1 m/s.
+fn landing_skid(options: &GaitOptions, near: f32) -> f32 {
+    let legs = creature_legs(2, 1.0);
+    let mut controller = Controller::new(&legs, options).unwrap();
+    let mut previous: Vec<Vec3> = Vec::new();
+    let mut worst = 0.0f32;
+    for step in 0..600 {
+        let t = step as f32 * DT;
+        let pose = Pose::from_yaw(Vec3::new(0.0, 0.8, t), 0.0);
+        controller
+            .update(DT, pose, Vec3::Z, Vec3::ZERO, &Plane::GROUND)
+            .unwrap();
+        let feet: Vec<Vec3> = controller.leg_states().iter().map(|s| s.foot).collect();
+        for (now, before) in feet.iter().zip(&previous) {
+            if now.y.min(before.y) <= near {
+                let moved = (*now - *before) * Vec3::new(1.0, 0.0, 1.0);
+                worst = worst.max(moved.length());
+            }
+        }
+        previous = feet;
+    }
+    worst
+}
+
+#[test]
+fn regression_feet_lift_and_land_vertically_without_skidding() {
+    // Near the ground (under 1 cm on this 1 m creature) a foot moves only up or down.
+    let near = 0.01;
+    let skid = landing_skid(&options(), near);
+    assert!(skid <= 1e-5, "skid {skid}");
+    // Moving across all through the swing (the gait before plant_fraction) skids.
+    let before = landing_skid(&options().with_plant_fraction(0.0), near);
+    assert!(before > 1e-3, "skid without the vertical phases {before}");
+}
+
+/// The farthest a foot goes past the midline to the other side (in the shown body's frame,
+/// × the body length) turning in place at `rate` for 10 s.
+fn turn_crossing(options: &GaitOptions, rate: f32) -> f32 {
+    // Three pairs: the front and hind feet far from the turn's centre, as on a long body.
+    let length = 1.0;
+    let legs = creature_legs(3, length);
+    let mut controller = Controller::new(&legs, options).unwrap();
+    let mut worst = f32::NEG_INFINITY;
+    for step in 0..600 {
+        let t = step as f32 * DT;
+        let pose = Pose::from_yaw(Vec3::Y * 0.8 * length, rate * t);
+        controller
+            .update(DT, pose, Vec3::ZERO, Vec3::Y * rate, &Plane::GROUND)
+            .unwrap();
+        let shown = controller.reacted_pose();
+        let to_body = shown.rotation.inverse();
+        for (leg, state) in legs.iter().zip(controller.leg_states()) {
+            let x = (to_body * (state.foot - shown.translation)).x;
+            worst = worst.max(-x * leg.rest.x.signum() / length);
+        }
+    }
+    worst
+}
+
+#[test]
+fn regression_turning_in_place_never_crosses_the_feet() {
+    for rate in [0.5, 1.0, 1.5] {
+        let past = turn_crossing(&options(), rate);
+        assert!(
+            past < 0.0,
+            "at {rate} rad/s a foot went {past} × length past the midline"
+        );
+    }
+    // Without the midline margin a long body's front feet swing across.
+    let before = turn_crossing(&options().with_midline_margin(0.0), 1.5);
+    assert!(before > 0.0, "{before}");
+}

@@ -104,6 +104,25 @@ impl Profile {
 /// The pill's triangles, counter-clockwise seen from outside: a fan at the tail tip (vertex 0),
 /// quads between rings (ring `i`, vertex `j` is `1 + i·segments + j`), a fan at the head tip
 /// (the last vertex).
+/// The centre of the volume a closed triangle mesh encloses (signed tetrahedra from a point
+/// inside its bounds); `None` when the volume is not positive.
+pub(crate) fn centre_of_volume(positions: &[Vec3], triangles: &[[u32; 3]]) -> Option<Vec3> {
+    let (lo, hi) = positions.iter().fold(
+        (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)),
+        |(lo, hi), &p| (lo.min(p), hi.max(p)),
+    );
+    let o = 0.5 * (lo + hi);
+    let mut volume = 0.0f32;
+    let mut moment = Vec3::ZERO;
+    for t in triangles {
+        let [a, b, c] = t.map(|i| positions[i as usize] - o);
+        let v = a.dot(b.cross(c)) / 6.0;
+        volume += v;
+        moment += v * 0.25 * (a + b + c);
+    }
+    (volume > 0.0).then(|| o + moment / volume)
+}
+
 pub(crate) fn pill_triangles(rings: usize, segments: usize) -> Vec<[u32; 3]> {
     let v = |i: usize, j: usize| (1 + i * segments + j % segments) as u32;
     let head = (1 + rings * segments) as u32;

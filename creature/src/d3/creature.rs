@@ -103,8 +103,10 @@ impl Skeleton {
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[non_exhaustive]
 pub struct Quality {
-    /// For walkers, the signed distance from the centre of mass to the edge of the support
-    /// region (positive: statically stable), from the limb plan; `None` otherwise.
+    /// For walkers, the signed horizontal distance (metres) from the mesh's centre of volume
+    /// (body, head and limbs) to the edge of the convex hull of its vertices on the ground
+    /// (within 0.5% of the body length of the lowest): positive means it stands; `None` for
+    /// fliers and swimmers.
     pub stability_margin: Option<f32>,
     /// Smallest Jacobian determinant of the body's FFD lattice over a sample grid (above 0:
     /// the body does not fold).

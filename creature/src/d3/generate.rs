@@ -14,7 +14,7 @@ use creature_gait::{GaitOptions, Leg, LimbKind as GaitLimb};
 use creature_limbs::{Body, CreatureKind, HeadEnd, LimbKind, SpineBone, plan};
 use creature_skin::{Blend, nearest_k, skin_positions};
 
-use super::body::{BASE_RADIUS, base_body, pill_triangles};
+use super::body::{BASE_RADIUS, base_body, centre_of_volume, pill_triangles};
 use super::limbs::{
     Bind, LegChain, LimbNames, LimbStyle, MeshBuilder, Mount, add_limb, limb_shape, socket_point,
 };
@@ -306,7 +306,7 @@ fn rig_and_bend(
     if spec.neck_and_head {
         bend_degrees = bend_spine(rng, params, &mut body_rig, &mut positions)?;
     }
-    let influences = nearest_k(&positions, &body_rig.bone_segments(), 4)?;
+    let influences = spine_influences(&body_rig, &positions)?;
     let length = body_rig.spine_length();
     Ok(RiggedBody {
         rig: body_rig,
@@ -320,6 +320,98 @@ fn rig_and_bend(
         body_scale,
         speed_factor,
     })
+}
+
+/// Body weights along the spine: each vertex goes to its nearest point on the spine polyline,
+/// and its weight moves linearly from one bone to the next between the bones' midpoints (two
+/// bones at most, the bend spread over whole bones), so the skin bends like a tube however thick
+/// the body is against its bones. (Nearest-bone weights share a thick body's far vertices among
+/// up to four bones all along it, which tears the skin when the spine waves.)
+fn spine_influences(
+    body: &creature_autorig::Rig,
+    positions: &[Vec3],
+) -> Result<Vec<creature_skin::Influences>, Error> {
+    let spine = &body.spine;
+    let root = root_on_spine(body)?;
+    let points: Vec<Vec3> = spine.iter().map(|&j| body.joints[j].position).collect();
+    let bones = points.len().saturating_sub(1);
+    if bones == 0 {
+        return Ok(
+            alloc::vec![creature_skin::Influences::single(spine[0] as u16); positions.len()],
+        );
+    }
+    // The joint that moves polyline bone `i` (points `i` to `i + 1`): the end nearer the root.
+    let carrier = |i: usize| (if i >= root { spine[i] } else { spine[i + 1] }) as u16;
+    let mut start = Vec::with_capacity(bones + 1);
+    let mut arc = 0.0f32;
+    for i in 0..bones {
+        start.push(arc);
+        arc += points[i].distance(points[i + 1]);
+    }
+    start.push(arc);
+    let middle = |i: usize| 0.5 * (start[i] + start[i + 1]);
+    // Each joint's bisecting plane: normal along the spine (the mean of its two bones'
+    // directions; the end bone's at the tips).
+    let direction = |i: usize| (points[i + 1] - points[i]).normalize_or(Vec3::Z);
+    let normals: Vec<Vec3> = (0..=bones)
+        .map(|k| match k {
+            0 => direction(0),
+            k if k == bones => direction(bones - 1),
+            k => (direction(k - 1) + direction(k)).normalize_or(direction(k)),
+        })
+        .collect();
+    let influences = positions
+        .iter()
+        .map(|&v| {
+            // Arc length along the spine, from the planes that bisect it at its joints: the
+            // vertex's signed distances to the two planes around it split its bone. (The
+            // nearest point on a bent polyline jumps on the inside of each bend.)
+            let h = |k: usize| (v - points[k]).dot(normals[k]);
+            let s = match (1..=bones).find(|&k| h(k) < 0.0) {
+                // Before the first plane's far side: past the tail tip, or on bone `k - 1`.
+                Some(1) if h(0) < 0.0 => h(0),
+                Some(k) => {
+                    let (a, b) = (h(k - 1), -h(k));
+                    start[k - 1] + (start[k] - start[k - 1]) * (a / (a + b).max(1e-30))
+                }
+                None => start[bones] + h(bones),
+            };
+            // `u`: `k` at bone `k`'s middle, linear in arc length between middles (and past
+            // the end bones at their own lengths).
+            let u = match (0..bones).rev().find(|&i| middle(i) <= s) {
+                None => (s - middle(0)) / (start[1] - start[0]).max(1e-12),
+                Some(k) if k + 1 >= bones => {
+                    k as f32 + (s - middle(k)) / (start[k + 1] - start[k]).max(1e-12)
+                }
+                Some(k) => k as f32 + (s - middle(k)) / (middle(k + 1) - middle(k)).max(1e-12),
+            };
+            // Uniform quadratic B-spline weights over the three bones nearest `u`: the bend
+            // spreads over two bones' length, smoothly. Bones past either end fold into it.
+            let u = u.clamp(-1.0, bones as f32);
+            let j = crate::math::floor_f(u + 0.5);
+            let g = u + 0.5 - j;
+            let mut inf = creature_skin::Influences::NONE;
+            let mut slots = 0;
+            for (d, w) in [
+                (-1.0f32, 0.5 * (1.0 - g) * (1.0 - g)),
+                (0.0, 0.5 + g - g * g),
+                (1.0, 0.5 * g * g),
+            ] {
+                let bone = (j + d).clamp(0.0, (bones - 1) as f32) as usize;
+                let joint = carrier(bone);
+                match inf.joints[..slots].iter().position(|&x| x == joint) {
+                    Some(k) => inf.weights[k] += w,
+                    None => {
+                        inf.joints[slots] = joint;
+                        inf.weights[slots] = w;
+                        slots += 1;
+                    }
+                }
+            }
+            inf
+        })
+        .collect();
+    Ok(influences)
 }
 
 /// Stage 6: the body's vertices, coloured and bound by their skin weights, into the mesh.
@@ -365,78 +457,164 @@ fn add_limbs(
     let positions = &body.positions;
     let bones = limb_body(body_rig, positions, ground);
     let limb_body = Body::new(bones, body.length, HeadEnd::Last);
-    let limb_plan = plan(&limb_body, spec.limbs, &params.limbs, rng)?;
+    let mut limb_plan = plan(&limb_body, spec.limbs, &params.limbs, rng)?;
+    let (body_vertices, body_triangles) = (mesh.positions.len(), mesh.indices.len());
 
-    let mut names = spine_names(body_rig, spec.neck_and_head);
-    let mut joints: Vec<Joint> = body_rig
-        .joints
-        .iter()
-        .zip(&mut names)
-        .map(|(j, name)| Joint {
-            name: core::mem::take(name),
-            position: j.position,
-            parent: j.parent,
-            part: Part::Spine,
-        })
-        .collect();
-    let tail = &body_rig.joints[body_rig.tail];
-    let limb_colour = body_colour * 0.8;
-    let membrane_colour = body_colour * 0.5 + Vec3::splat(0.45);
-    let mut chains = Vec::new();
-    let mut limb_names = LimbNames::default();
-    for (index, limb) in limb_plan.limbs.iter().enumerate() {
-        // The planner places limbs on the sockets it was given, one per body bone.
-        let socket = &body_rig.sockets[limb.bone];
-        let point = socket_point(
-            limb.socket,
-            positions[socket.left_vertex as usize],
-            positions[socket.right_vertex as usize],
-            positions[socket.top_vertex as usize],
-            tail.position,
-        )?;
-        let joint = if limb.socket == creature_limbs::Socket::Tip {
-            // A tail fin hangs on the joint before the tail tip (the rig roots at the centre
-            // or the head, so the tip always has one).
-            tail.parent.ok_or(Error::Degenerate {
-                what: "rig (its tail tip is the root, so a tail limb has no joint to hang on)",
-            })?
-        } else {
-            socket.joint
-        };
-        let shape = limb_shape(limb.kind)?;
-        let colour = if shape.membrane_colour {
-            membrane_colour
-        } else {
-            limb_colour
-        };
-        let chain = add_limb(
-            mesh,
-            &mut joints,
-            &mut limb_names,
-            index,
-            limb,
-            shape,
-            Mount {
-                point,
-                joint,
-                width: body_width(body_rig, socket.bone),
-                centre: body_rig.joints[joint].position,
-            },
-            LimbStyle {
-                knee: limb_plan.knee,
-                sides: params.limb_sides as usize,
-                colour,
-            },
-        );
-        if let Some(chain) = chain {
-            chains.push((index, limb.kind, chain));
+    // Three times at most: the limbs as planned, then, while the mesh's real centre of mass is not
+    // well inside the feet, again with the feet moved toward it (the limbs move it too).
+    let mut pass = 0;
+    loop {
+        let mut names = spine_names(body_rig, spec.neck_and_head);
+        let mut joints: Vec<Joint> = body_rig
+            .joints
+            .iter()
+            .zip(&mut names)
+            .map(|(j, name)| Joint {
+                name: core::mem::take(name),
+                position: j.position,
+                parent: j.parent,
+                part: Part::Spine,
+            })
+            .collect();
+        let tail = &body_rig.joints[body_rig.tail];
+        let limb_colour = body_colour * 0.8;
+        let membrane_colour = body_colour * 0.5 + Vec3::splat(0.45);
+        let mut chains = Vec::new();
+        let mut limb_names = LimbNames::default();
+        for (index, limb) in limb_plan.limbs.iter().enumerate() {
+            // The planner places limbs on the sockets it was given, one per body bone.
+            let socket = &body_rig.sockets[limb.bone];
+            let point = socket_point(
+                limb.socket,
+                positions[socket.left_vertex as usize],
+                positions[socket.right_vertex as usize],
+                positions[socket.top_vertex as usize],
+                tail.position,
+            )?;
+            let joint = if limb.socket == creature_limbs::Socket::Tip {
+                // A tail fin hangs on the joint before the tail tip (the rig roots at the centre
+                // or the head, so the tip always has one).
+                tail.parent.ok_or(Error::Degenerate {
+                    what: "rig (its tail tip is the root, so a tail limb has no joint to hang on)",
+                })?
+            } else {
+                socket.joint
+            };
+            let shape = limb_shape(limb.kind)?;
+            let colour = if shape.membrane_colour {
+                membrane_colour
+            } else {
+                limb_colour
+            };
+            let chain = add_limb(
+                mesh,
+                &mut joints,
+                &mut limb_names,
+                index,
+                limb,
+                shape,
+                Mount {
+                    point,
+                    joint,
+                    width: body_width(body_rig, socket.bone),
+                    centre: body_rig.joints[joint].position,
+                },
+                LimbStyle {
+                    knee: limb_plan.knee,
+                    sides: params.limb_sides as usize,
+                    colour,
+                },
+            );
+            if let Some(chain) = chain {
+                chains.push((index, limb.kind, chain));
+            }
         }
+        pass += 1;
+        if pass == 3 || !feet_under_mass(mesh, &mut limb_plan, body.length) {
+            break Ok(BuiltLimbs {
+                plan: limb_plan,
+                joints,
+                chains,
+            });
+        }
+        mesh.truncate(body_vertices, body_triangles);
     }
-    Ok(BuiltLimbs {
-        plan: limb_plan,
-        joints,
-        chains,
-    })
+}
+
+/// How far inside the feet's footprint a walker's centre of mass must be, × body length,
+/// before [`feet_under_mass`] leaves the feet where the planner put them.
+const STABLE_MARGIN: f32 = 0.03;
+
+/// Moves the planned feet (along the body) under the mesh's centre of mass (body, head and
+/// limbs, by volume) when it is less than [`STABLE_MARGIN`] inside the convex hull of what
+/// touches the ground; true when it moved them. The footprint grows toward the mass: with the
+/// mass ahead, the front feet step forward (a heavy head's legs splay forward), with it behind,
+/// the hind feet back, and the other feet follow by what those cannot reach; a single pair
+/// goes under it. No foot moves more than its leg's length.
+fn feet_under_mass(mesh: &MeshBuilder, plan: &mut creature_limbs::Plan, length: f32) -> bool {
+    let (mut front, mut back) = (f32::NEG_INFINITY, f32::INFINITY);
+    for foot in plan.limbs.iter().filter_map(|l| l.foot) {
+        front = front.max(foot.z);
+        back = back.min(foot.z);
+    }
+    if !(front >= back) {
+        return false;
+    }
+    let Some(centre) = centre_of_volume(&mesh.positions, &mesh.indices) else {
+        return false;
+    };
+    let lowest = mesh
+        .positions
+        .iter()
+        .map(|p| p.y)
+        .fold(f32::INFINITY, f32::min);
+    let mut contacts: Vec<glam::Vec2> = mesh
+        .positions
+        .iter()
+        .filter(|p| p.y <= lowest + 0.005 * length)
+        .map(|p| glam::Vec2::new(p.x, p.z))
+        .collect();
+    let margin = creature_gait::support_margin(
+        &mut contacts,
+        &mut Vec::new(),
+        glam::Vec2::new(centre.x, centre.z),
+    );
+    if margin.is_some_and(|m| m >= STABLE_MARGIN * length) {
+        return false;
+    }
+    let want = STABLE_MARGIN * length;
+    // How far the front feet must go forward (or the hind feet back) to have the mass
+    // `want` inside them.
+    let ahead = (centre.z + want - front).max(0.0);
+    let behind = (centre.z - want - back).min(0.0);
+    for limb in &mut plan.limbs {
+        let reach = limb.length;
+        let Some(foot) = limb.foot.as_mut() else {
+            continue;
+        };
+        let shift = if front - back < want {
+            // One pair (or feet nearly abreast): under the mass.
+            centre.z - foot.z
+        } else if foot.z >= front - 1e-3 * length {
+            ahead
+        } else if foot.z <= back + 1e-3 * length {
+            behind
+        } else {
+            // What the front (or hind) feet cannot reach, the rest of the stance follows.
+            (ahead - reach).max(0.0) + (behind + reach).min(0.0)
+        };
+        foot.z += shift.clamp(-reach, reach);
+    }
+    true
+}
+
+/// The root's place on the rig's spine (rigs built by `rig` root on it).
+fn root_on_spine(body: &creature_autorig::Rig) -> Result<usize, Error> {
+    body.root()
+        .and_then(|r| body.spine.iter().position(|&j| j == r))
+        .ok_or(Error::Degenerate {
+            what: "rig (its root is not on the spine)",
+        })
 }
 
 /// The spine joints' names, by joint index (see [`Joint::name`]): `spine_0` at the root,
@@ -563,12 +741,7 @@ fn bend_spine(
     let spine = body.spine.clone();
     let bones = spine.len().saturating_sub(1);
     // The rig roots on its spine (at the centre, for the kinds that bend).
-    let c = body
-        .root()
-        .and_then(|root| spine.iter().position(|&j| j == root))
-        .ok_or(Error::Degenerate {
-            what: "rig (its root is not on the spine)",
-        })?;
+    let c = root_on_spine(body)?;
     if bones == 0 {
         return Ok([0.0; 2]);
     }
@@ -675,12 +848,7 @@ fn add_head(
     let pos = |j: usize| body.joints[j].position;
     let tip = pos(spine[n - 1]);
     let carrier = spine[n - 2];
-    let centre_index = body
-        .root()
-        .and_then(|r| spine.iter().position(|&j| j == r))
-        .ok_or(Error::Degenerate {
-            what: "rig (its root is not on the spine)",
-        })?;
+    let centre_index = root_on_spine(body)?;
     // The body's width at the second neck bone counted from the root.
     let width = body_width(body, centre_index + 1);
     let radius = 0.5 * width * size;
@@ -796,8 +964,24 @@ fn measure(
             0.5 * (b - a).cross(c - a).length() / scale
         })
         .fold(f32::INFINITY, f32::min);
+    // Walkers: the mesh's centre of volume against the hull of what touches the ground.
+    let stands = limb_plan.kind == CreatureKind::Walker;
+    let stability_margin = stands.then_some(()).and_then(|()| {
+        let centre = centre_of_volume(&mesh.positions, &mesh.indices)?;
+        let mut contacts: Vec<glam::Vec2> = mesh
+            .positions
+            .iter()
+            .filter(|p| p.y <= min_height + 0.005 * length)
+            .map(|p| glam::Vec2::new(p.x, p.z))
+            .collect();
+        creature_gait::support_margin(
+            &mut contacts,
+            &mut Vec::new(),
+            glam::Vec2::new(centre.x, centre.z),
+        )
+    });
     Quality {
-        stability_margin: limb_plan.stability_margin,
+        stability_margin,
         ffd_min_determinant,
         max_weight_sum_error,
         min_height,

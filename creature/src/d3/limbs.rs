@@ -57,6 +57,15 @@ impl Bind {
 }
 
 impl MeshBuilder {
+    /// Back to its first `vertices` vertices and `triangles` triangles.
+    pub(crate) fn truncate(&mut self, vertices: usize, triangles: usize) {
+        self.positions.truncate(vertices);
+        self.colours.truncate(vertices);
+        self.joints.truncate(vertices);
+        self.weights.truncate(vertices);
+        self.indices.truncate(triangles);
+    }
+
     pub(crate) fn vertex(&mut self, p: Vec3, colour: Vec3, bind: Bind) -> u32 {
         let index = self.positions.len() as u32;
         self.positions.push(p);
@@ -451,6 +460,13 @@ pub(crate) fn add_limb(
             let knee_joint = push_joint(ik.middle, base, knee_name);
             let foot_joint = push_joint(ik.end, base + 1, foot_name);
             let r = (0.09 * length).min(0.2 * mount.width).max(1e-3);
+            // Standing legs have level rings (the foot's flat on the ground however the leg
+            // slants); others square to the limb.
+            let axis = if bone.to_foot && limb.foot.is_some() {
+                Vec3::NEG_Y
+            } else {
+                ik.end - hip
+            };
             mesh.tube(
                 &[hip, ik.middle, ik.end],
                 &[r, 0.7 * r, 0.55 * r],
@@ -460,7 +476,7 @@ pub(crate) fn add_limb(
                     // The foot ring on the foot joint: clips keep it level, flat on the ground.
                     Bind::one(foot_joint),
                 ],
-                ik.end - hip,
+                axis,
                 sides,
                 colour,
             );

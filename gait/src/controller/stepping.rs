@@ -28,6 +28,12 @@ impl Controller {
             .unwrap_or(Vec3::Z);
         let body = pose.translation;
         let rotation = *rotation;
+        // The body as it was last shown (the reaction's lean and lag included): the frame in
+        // which feet must stay on their own side of the midline.
+        let shown = (
+            body + self.reaction.offset,
+            rotation * Mat3A::from_quat(self.reaction.rotation),
+        );
         let speed_factor = o.speed_multiplier.max(1.0);
         let arm_idle = if self.has_arms {
             sin_turns(self.idle_phase)
@@ -87,24 +93,34 @@ impl Controller {
                     anchor,
                     anchor_normal,
                     motion,
-                    forward,
+                    (forward, shown.0, &shown.1),
                     rest_world.y,
                     ground,
                 );
-                state.step_target = target;
+                // The target follows the motion until the foot is over it; then it comes
+                // straight down onto it.
+                let plant = o.plant_fraction;
+                if state.progress < 1.0 - plant {
+                    state.step_target = target;
+                    state.normal = target_normal;
+                }
+                let target = state.step_target;
                 let moved = horizontal(anchor - state.prev_anchor).length();
                 let by_motion = moved / state.swing_length.max(1e-6);
                 state.progress = (state.progress + by_motion.max(o.settle_rate * dt)).min(1.0);
                 if state.progress >= 1.0 {
                     state.foot = target;
-                    state.normal = target_normal;
                     state.stepping = false;
                     state.escaping = false;
                     state.planted = true;
                 } else {
+                    // Up first and down last, across in between (smoothly), so the foot
+                    // neither scuffs on lift-off nor skids on landing.
                     let lift = o.height_curve.evaluate(state.progress) * state.lift;
-                    state.foot = state.step_start.lerp(target, state.progress) + Vec3::Y * lift;
-                    state.normal = target_normal;
+                    let across =
+                        ((state.progress - plant) / (1.0 - 2.0 * plant).max(1e-6)).clamp(0.0, 1.0);
+                    let across = across * across * (3.0 - 2.0 * across);
+                    state.foot = state.step_start.lerp(target, across) + Vec3::Y * lift;
                 }
             } else if leg.kind == LimbKind::Arm {
                 // Arms hold their place in XZ and follow the body's height, idling gently.
@@ -166,6 +182,15 @@ impl Controller {
             }
             if distance > o.escape_factor * allowed {
                 flags |= ESCAPE;
+            }
+            // Coming near the body's midline (a long body turning in place swings its outer
+            // feet across): step now, out of turn, before the feet cross.
+            let side = leg.rest.x;
+            if leg.kind == LimbKind::Leg && side != 0.0 {
+                let local_x = (shown.1.transpose() * (state.foot - shown.0)).x;
+                if local_x * side.signum() < o.midline_margin * side.abs() {
+                    flags |= WANT | ESCAPE;
+                }
             }
             // Out of the leg's reach (the body moved on while the foot waited for its group,
             // e.g. the outer legs of a long body turning in place): step now, out of turn,
@@ -262,7 +287,7 @@ impl Controller {
                 state.anchor,
                 || normal,
                 self.motion[i],
-                forward,
+                (forward, shown.0, &shown.1),
                 self.rest_world[i].y,
                 ground,
             );
@@ -362,8 +387,10 @@ fn down_ray(point: Vec3, size: f32, o: &GaitOptions) -> (Vec3, f32) {
 
 /// Where a step should land: ahead of the anchor along the anchor's horizontal `motion`, by the
 /// reach in that direction × overshoot (ramped in with speed, × the speed multiplier, capped at
-/// the reach), projected onto the ground from `rest_y` (the rest position's height) or the
-/// anchor, whichever is higher.
+/// the reach), kept on the leg's own side of the body's midline (see
+/// [`GaitOptions::midline_margin`]), projected onto the ground from `rest_y` (the rest
+/// position's height) or the anchor, whichever is higher. `frame` is the body's forward
+/// direction, position and rotation.
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
 fn step_target<G: Ground + ?Sized>(
@@ -372,10 +399,11 @@ fn step_target<G: Ground + ?Sized>(
     anchor: Vec3,
     anchor_normal: impl FnOnce() -> Vec3,
     motion: Vec3,
-    forward: Vec3,
+    frame: (Vec3, Vec3, &Mat3A),
     rest_y: f32,
     ground: &G,
 ) -> (Vec3, Vec3) {
+    let (forward, body, rotation) = frame;
     let speed = motion.length();
     let mut target = anchor;
     if speed > 1e-6 {
@@ -384,6 +412,17 @@ fn step_target<G: Ground + ?Sized>(
         let ramp = (speed / (o.overshoot_speed * leg.size)).min(1.0);
         let length = (reach * o.overshoot * ramp * o.speed_multiplier.max(1.0)).min(reach);
         target += dir * length;
+        // A turn's overshoot runs along the circle toward the midline: no closer to it than
+        // the margin.
+        let side = leg.rest.x;
+        if leg.kind == LimbKind::Leg && side != 0.0 {
+            let mut local = rotation.transpose() * (target - body);
+            let least = o.midline_margin * side.abs();
+            if local.x * side.signum() < least {
+                local.x = side.signum() * least;
+                target = *rotation * local + body;
+            }
+        }
     }
     if leg.kind == LimbKind::Arm {
         return (target, Vec3::Y);

@@ -72,6 +72,7 @@ pub(crate) fn flight(c: &Creature, name: &'static str, speed: f32) -> Result<Cli
             + Vec3::Z * (speed * t)
     };
     let dt = 1.0 / fps;
+    let limits = c.bend_limits();
     let mut flight = flight;
     // Whole clips of warm-up (at least FLIGHT_WARM_UP seconds), so the chains' start-up
     // has died away (their damping halves it in about 0.2 s) and frame 0 is in phase.
@@ -100,12 +101,41 @@ pub(crate) fn flight(c: &Creature, name: &'static str, speed: f32) -> Result<Cli
             track.rotations.push(rotation.normalize());
         }
         for (track, rotation) in tracks.zip(flight.rotations(c)?) {
+            // A spine joint (the tail) bends no further than its skin allows; a damped chain
+            // bends all its joints the same way at once, so each takes part of its limit (its
+            // neighbours' bends add up in the skin between them).
+            let limit = CHAIN_BEND_SHARE * limits[track.joint];
+            let angle = rotation.angle_between(Quat::IDENTITY);
+            let rotation = if angle > limit {
+                Quat::IDENTITY.slerp(rotation, limit / angle).normalize()
+            } else {
+                rotation
+            };
             track.rotations.push(rotation);
         }
+    }
+    // Clear of the ground in every frame: the lowest any vertex can be (each joint's height
+    // less the reach of the vertices it moves), lifted to the clearance.
+    let reach = c.joint_reach();
+    let mut lowest = f32::INFINITY;
+    for f in 0..frames {
+        for (m, r) in super::pose(c, &clip, f).iter().zip(&reach) {
+            lowest = lowest.min(m.translation.y - r);
+        }
+    }
+    let lift = (FLIGHT_CLEARANCE * c.length - lowest).max(0.0);
+    for t in &mut clip.root_translation {
+        t.y += lift;
     }
     clip.loop_error = loop_error(&clip);
     Ok(clip)
 }
+
+/// The part of its bend limit each joint of a flier's tail chain may take.
+const CHAIN_BEND_SHARE: f32 = 0.75;
+
+/// The least height of a flier's lowest vertex in flight, as a fraction of its body length.
+const FLIGHT_CLEARANCE: f32 = 0.02;
 
 /// Seconds of simulation before a flier's clip starts (rounded up to whole bob periods).
 const FLIGHT_WARM_UP: f32 = 3.0;

@@ -29,6 +29,22 @@ pub(crate) use kinematics::{pose, skinned};
 pub(crate) use swim::swim;
 pub(crate) use walk::{gait, turn, walk_loop};
 
+/// How far a spine joint may bend, in radians per unit of its bone length over the body's
+/// half-thickness (see `Creature::bend_limits`): linear-blend skinning over whole-bone blends
+/// stretches the outer skin by about this much over 1 per radian.
+const BEND_PER_THICKNESS: f32 = 0.15;
+
+/// The distance from `p` to the segment `a b`.
+fn distance_to_segment(p: Vec3, a: Vec3, b: Vec3) -> f32 {
+    let ab = b - a;
+    let t = if ab.length_squared() > 0.0 {
+        ((p - a).dot(ab) / ab.length_squared()).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    p.distance(a + ab * t)
+}
+
 /// Frames per second of baked clips.
 pub const CLIP_FPS: f32 = 30.0;
 
@@ -92,6 +108,98 @@ impl Creature {
             .find(|j| j.parent.is_none())
             .or(joints.first())
             .map_or(Vec3::ZERO, |j| j.position)
+    }
+
+    /// Per skeleton joint, the most its rotation may bend the spine (radians) before the skin
+    /// around it stretches or squashes past what the audit allows: [`BEND_PER_THICKNESS`] times
+    /// the shorter of its two bones over the body's thickness there (the farthest from the
+    /// spine of the vertices it moves together with another joint). Joints off the spine (and
+    /// spine tips) have no limit (`f32::INFINITY`).
+    fn bend_limits(&self) -> Vec<f32> {
+        let joints = &self.skeleton.joints;
+        let mut limits = alloc::vec![f32::INFINITY; joints.len()];
+        let spine = &self.rig.spine;
+        let points: Vec<Vec3> = spine.iter().map(|&j| joints[j].position).collect();
+        if points.len() < 3 {
+            return limits;
+        }
+        // Each spine joint's place on the polyline.
+        let mut place = alloc::vec![usize::MAX; joints.len()];
+        for (k, &j) in spine.iter().enumerate() {
+            place[j] = k;
+        }
+        let mut thickness = alloc::vec![0.0f32; joints.len()];
+        for ((p, js), ws) in self
+            .mesh
+            .positions
+            .iter()
+            .zip(&self.mesh.joints)
+            .zip(&self.mesh.weights)
+        {
+            // Body vertices: blended between spine joints; the distance to the bones on either
+            // side of the most weighted one.
+            let mut blended = 0;
+            let mut most = (0.0f32, usize::MAX);
+            for (&j, &w) in js.iter().zip(ws) {
+                let k = place[usize::from(j)];
+                if w > 0.0 && k != usize::MAX {
+                    blended += 1;
+                    if w > most.0 {
+                        most = (w, k);
+                    }
+                }
+            }
+            if blended < 2 {
+                continue;
+            }
+            let k = most.1;
+            let before = k.checked_sub(1).map_or(f32::INFINITY, |i| {
+                distance_to_segment(*p, points[i], points[k])
+            });
+            let after = points.get(k + 1).map_or(f32::INFINITY, |&next| {
+                distance_to_segment(*p, points[k], next)
+            });
+            let d = before.min(after);
+            for (&j, &w) in js.iter().zip(ws) {
+                if w > 0.0 {
+                    let t = &mut thickness[usize::from(j)];
+                    *t = t.max(d);
+                }
+            }
+        }
+        for k in 1..points.len() - 1 {
+            let shorter = points[k]
+                .distance(points[k - 1])
+                .min(points[k].distance(points[k + 1]));
+            let r = thickness[spine[k]];
+            if r > 0.0 {
+                limits[spine[k]] = BEND_PER_THICKNESS * shorter / r;
+            }
+        }
+        limits
+    }
+
+    /// Per skeleton joint, the farthest any vertex it moves (with any weight) is from it at
+    /// rest: a skinned vertex is never lower than the lowest of its joints' heights less their
+    /// reach.
+    fn joint_reach(&self) -> Vec<f32> {
+        let joints = &self.skeleton.joints;
+        let mut reach = alloc::vec![0.0f32; joints.len()];
+        for ((p, js), ws) in self
+            .mesh
+            .positions
+            .iter()
+            .zip(&self.mesh.joints)
+            .zip(&self.mesh.weights)
+        {
+            for (&j, &w) in js.iter().zip(ws) {
+                let j = usize::from(j);
+                if w > 0.0 {
+                    reach[j] = reach[j].max(p.distance(joints[j].position));
+                }
+            }
+        }
+        reach
     }
 
     /// The spine joints from the root toward the tail tip that carry a bone (the tip itself

@@ -58,7 +58,24 @@ pub(crate) fn swim(c: &Creature, name: &'static str, speed: f32) -> Clip {
     let mut clip = empty_clip(name, fps, frames, &joints);
     // The yaw at time `t` of the spine joint `i` (from the head); the head's is the first's (a
     // rig edited to have no spine: as at the tail's end).
+    // Each spine joint's share of the wave scaled down where its bend would tear the skin:
+    // thick parts on short bones swim stiffer and thin tails keep their sweep, as fish do. The
+    // largest bend of each joint over the clip against its limit.
+    let limits = c.bend_limits();
+    let mut scale = alloc::vec![1.0f32; spine.len()];
+    for f in 0..frames {
+        let t = f as f32 / fps;
+        for (i, &j) in spine.iter().enumerate().skip(1) {
+            let bend = (swim_params.bone_yaw(t, wave_speed, along[i])
+                - swim_params.bone_yaw(t, wave_speed, along[i - 1]))
+            .abs();
+            if bend * scale[i] > limits[j] {
+                scale[i] = limits[j] / bend;
+            }
+        }
+    }
     let yaw_at = |t: f32, i: usize| swim_params.bone_yaw(t, wave_speed, along[i]);
+    let bend_at = |t: f32, i: usize| scale[i] * (yaw_at(t, i) - yaw_at(t, i - 1));
     let head_along = along.first().copied().unwrap_or(1.0);
     for f in 0..frames {
         let t = f as f32 / fps;
@@ -70,7 +87,7 @@ pub(crate) fn swim(c: &Creature, name: &'static str, speed: f32) -> Clip {
             let rotation = match motion {
                 // Each bone's yaw relative to its parent's (the previous along the spine): `k`
                 // is from 1 to the spine's length − 2.
-                Motion::Spine => Quat::from_rotation_y(yaw_at(t, k) - yaw_at(t, k - 1)),
+                Motion::Spine => Quat::from_rotation_y(bend_at(t, k)),
                 Motion::TailFin => Quat::from_rotation_y(
                     0.3 * swim_params.amplitude
                         * sin_turns(rate * t - swim_params.wavelength - 0.2 * k as f32),

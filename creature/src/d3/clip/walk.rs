@@ -318,12 +318,21 @@ impl Creature {
         let bones = spine.len().saturating_sub(1);
         let neck: Vec<usize> = spine.iter().take(bones).skip(c + 1).copied().collect();
         let tail = self.tail_chain();
+        // Each joint its share, no more than its skin allows.
+        let limits = self.bend_limits();
+        let share = |j: usize, angle: f32| angle.clamp(-limits[j], limits[j]);
         let mut out = Vec::with_capacity(neck.len() + tail.len());
         for &j in &neck {
-            out.push((j, Quat::from_rotation_y(total / neck.len() as f32)));
+            out.push((
+                j,
+                Quat::from_rotation_y(share(j, total / neck.len() as f32)),
+            ));
         }
         for &j in &tail {
-            out.push((j, Quat::from_rotation_y(-total / tail.len() as f32)));
+            out.push((
+                j,
+                Quat::from_rotation_y(share(j, -total / tail.len() as f32)),
+            ));
         }
         out
     }

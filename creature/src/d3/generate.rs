@@ -460,8 +460,8 @@ fn add_limbs(
     let mut limb_plan = plan(&limb_body, spec.limbs, &params.limbs, rng)?;
     let (body_vertices, body_triangles) = (mesh.positions.len(), mesh.indices.len());
 
-    // Three times at most: the limbs as planned, then, while the mesh's real centre of mass is not
-    // well inside the feet, again with the feet moved toward it (the limbs move it too).
+    // The limbs as planned, then, while the mesh's real centre of mass is not well inside the
+    // feet, again with the feet moved toward it (the limbs move it too): `LIMB_PASSES` at most.
     let mut pass = 0;
     loop {
         let mut names = spine_names(body_rig, spec.neck_and_head);
@@ -530,7 +530,7 @@ fn add_limbs(
             }
         }
         pass += 1;
-        if pass == 3 || !feet_under_mass(mesh, &mut limb_plan, body.length) {
+        if pass == LIMB_PASSES || !feet_under_mass(mesh, &mut limb_plan, body.length, pass) {
             break Ok(BuiltLimbs {
                 plan: limb_plan,
                 joints,
@@ -541,6 +541,9 @@ fn add_limbs(
     }
 }
 
+/// How many times at most the limbs are built, moving the feet toward the centre of mass.
+const LIMB_PASSES: usize = 5;
+
 /// How far inside the feet's footprint a walker's centre of mass must be, × body length,
 /// before [`feet_under_mass`] leaves the feet where the planner put them.
 const STABLE_MARGIN: f32 = 0.03;
@@ -550,8 +553,14 @@ const STABLE_MARGIN: f32 = 0.03;
 /// touches the ground; true when it moved them. The footprint grows toward the mass: with the
 /// mass ahead, the front feet step forward (a heavy head's legs splay forward), with it behind,
 /// the hind feet back, and the other feet follow by what those cannot reach; a single pair
-/// goes under it. No foot moves more than its leg's length.
-fn feet_under_mass(mesh: &MeshBuilder, plan: &mut creature_limbs::Plan, length: f32) -> bool {
+/// goes under it. No foot moves more than its leg's length. From the third pass on (`pass` 2),
+/// the whole stance moves so the feet's centre is under the mass, up to twice a leg's length.
+fn feet_under_mass(
+    mesh: &MeshBuilder,
+    plan: &mut creature_limbs::Plan,
+    length: f32,
+    pass: usize,
+) -> bool {
     let (mut front, mut back) = (f32::NEG_INFINITY, f32::INFINITY);
     for foot in plan.limbs.iter().filter_map(|l| l.foot) {
         front = front.max(foot.z);
@@ -583,6 +592,25 @@ fn feet_under_mass(mesh: &MeshBuilder, plan: &mut creature_limbs::Plan, length: 
         return false;
     }
     let want = STABLE_MARGIN * length;
+    if pass >= 2 {
+        // Growing the footprint was not enough (an odd layout, or a mass far off): the whole
+        // stance goes under the mass, its feet's centre right below it.
+        let (mut sum, mut n) = (glam::Vec2::ZERO, 0.0f32);
+        for foot in plan.limbs.iter().filter_map(|l| l.foot) {
+            sum += glam::Vec2::new(foot.x, foot.z);
+            n += 1.0;
+        }
+        let shift = glam::Vec2::new(centre.x, centre.z) - sum / n;
+        for limb in &mut plan.limbs {
+            let reach = 2.0 * limb.length;
+            if let Some(foot) = limb.foot.as_mut() {
+                let s = shift.clamp_length_max(reach);
+                foot.x += s.x;
+                foot.z += s.y;
+            }
+        }
+        return true;
+    }
     // How far the front feet must go forward (or the hind feet back) to have the mass
     // `want` inside them.
     let ahead = (centre.z + want - front).max(0.0);

@@ -451,7 +451,16 @@ pub(crate) fn add_limb(
                 (true, Some(foot)) => foot,
                 _ => hip + (bone.rest_direction)(out) * length,
             };
+            // The knee bends toward the pole, square to the hip–foot line; a leg slanted far
+            // (its foot moved under the mass) bends its knee the other way rather than down
+            // toward the ground.
             let pole = (bone.pole)(knee, out);
+            let axis = (end - hip).normalize_or(Vec3::NEG_Y);
+            let pole = if (pole - axis * pole.dot(axis)).y < 0.0 {
+                -pole
+            } else {
+                pole
+            };
             let reach = hip.distance(end);
             let segment = KNEE_SLACK * 0.5 * reach.max(1e-4);
             let ik = solve_two_bone(hip, end, segment, segment, pole);

@@ -70,6 +70,10 @@ pub fn params(input: &Input) -> d2::Params {
 pub fn run(input: &Input) {
     let params = params(input);
     if params.validate().is_ok() {
+        // Textures past 256 px are valid but take seconds to render.
+        if params.texture && params.texture_size > 256 {
+            return;
+        }
         // Bound one execution: thick spines over long segments at a fine outline step are
         // valid but take seconds (the sweep and tests cover the defaults).
         let long =

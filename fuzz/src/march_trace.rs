@@ -23,11 +23,19 @@ pub struct Input {
 
 pub fn run(input: &Input) {
     let v = input.valid;
+    let step = pick(v, input.step, 0.25, 5.0);
+    // Radii up to 24 steps (and 30): rings of at most about 150 points a disc, enough for the
+    // "a disc over 4 steps wide is found" check below, and fast to mesh.
     let discs: Vec<(Vec2, f32)> = input
         .discs
         .iter()
         .take(8)
-        .map(|(c, r)| (pick2(v, *c, -50.0, 50.0), pick(v, *r, 0.5, 30.0)))
+        .map(|(c, r)| {
+            (
+                pick2(v, *c, -50.0, 50.0),
+                pick(v, *r, 0.5, (24.0 * step).min(30.0)),
+            )
+        })
         .collect();
     // A signed-distance-like field: positive inside the union of the discs.
     let field = |p: Vec2| {
@@ -36,7 +44,6 @@ pub fn run(input: &Input) {
             .map(|(c, r)| 1.0 - p.distance(*c) / r)
             .fold(f32::NEG_INFINITY, f32::max)
     };
-    let step = pick(v, input.step, 0.25, 5.0);
     let iso = pick(v, input.iso, -0.2, 0.5);
     let mut hints: Vec<Vec2> = input
         .hints
@@ -73,7 +80,20 @@ pub fn run(input: &Input) {
             assert!(inside, "the disc around hint {c} was not traced");
         }
     }
-    let spacing = map(input.step, 1.0, 8.0) * if v { step } else { 1.0 };
+    // At most about 400 interior points in the rings' bounding box: meshing dominates the
+    // run time, and the triangulate target checks dense meshes.
+    let (lo, hi) = rings
+        .iter()
+        .flat_map(|r| &r.points)
+        .fold((Vec2::INFINITY, Vec2::NEG_INFINITY), |(lo, hi), p| {
+            (lo.min(*p), hi.max(*p))
+        });
+    let extent = hi - lo;
+    let sparsest = (extent.x * extent.y / 400.0).sqrt();
+    let mut spacing = map(input.step, 1.0, 8.0) * if v { step } else { 1.0 };
+    if sparsest.is_finite() {
+        spacing = spacing.max(sparsest);
+    }
     if let Err(e) = triangulate(&rings, &MeshOptions::DEFAULT.with_interior_spacing(spacing)) {
         assert!(
             matches!(e, creature_march::MarchError::InteriorTooDense { .. }),

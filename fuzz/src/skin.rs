@@ -143,14 +143,12 @@ pub fn run(input: &Input) {
         })
         .collect();
     if let Ok(inf) = from_contributions(pairs.iter().copied(), k) {
-        {
-            check_influences(&inf, usize::MAX);
-            for (j, w) in inf.iter() {
-                assert!(
-                    w == 0.0 || pairs.iter().any(|&(b, c)| b == u32::from(j) && c > 0.0),
-                    "joint {j} has no contribution"
-                );
-            }
+        check_influences(&inf, usize::MAX);
+        for (j, w) in inf.iter() {
+            assert!(
+                w == 0.0 || pairs.iter().any(|&(b, c)| b == u32::from(j) && c > 0.0),
+                "joint {j} has no contribution"
+            );
         }
     }
     if let Ok(inf) = from_contributions_or(pairs.iter().copied(), k, 3) {

@@ -147,9 +147,12 @@ impl Lattice {
     /// and normalises it. A zero normal stays zero.
     ///
     /// # Errors
-    /// [`FfdError::NonFinite`] for a non-finite `p` or `normal`, and
+    /// [`FfdError::NonFinite`] for a non-finite `p` or `normal`,
     /// [`FfdError::SingularJacobian`] where the deformation crushes space (determinant within
-    /// [`SINGULAR_DETERMINANT`] of 0).
+    /// [`SINGULAR_DETERMINANT`] of 0), and [`FfdError::NonFiniteResult`] where the Jacobian
+    /// itself overflows `f32` (a lattice stretched by more than about 1e38). A huge or tiny
+    /// Jacobian or normal is otherwise fine: where `J⁻ᵀ · normal` or the determinant leaves the
+    /// `f32` range, the product is redone in `f64`.
     ///
     /// ```
     /// use creature_ffd::{glam::Vec3, Lattice};
@@ -179,17 +182,28 @@ impl Lattice {
             });
         }
         let j = self.jacobian(p);
-        let determinant = j.determinant();
-        if !(crate::math::abs(determinant) > SINGULAR_DETERMINANT) {
-            return Err(FfdError::SingularJacobian {
-                local: self.local_coords(p),
-                determinant,
-            });
+        if !j.is_finite() {
+            return Err(FfdError::NonFiniteResult { index: 0 });
         }
-        Ok(crate::math::normalize_or(
-            j.inverse().transpose() * normal,
-            Vec3::ZERO,
-        ))
+        let determinant = j.determinant();
+        if determinant.is_finite() {
+            if !(crate::math::abs(determinant) > SINGULAR_DETERMINANT) {
+                return Err(FfdError::SingularJacobian {
+                    local: self.local_coords(p),
+                    determinant,
+                });
+            }
+            let n = crate::math::normalize_or(j.inverse().transpose() * normal, Vec3::ZERO);
+            if n != Vec3::ZERO || normal == Vec3::ZERO {
+                return Ok(n);
+            }
+        }
+        // The determinant or the product left the f32 range (a huge Jacobian, a huge normal):
+        // redo it in f64, where no product of finite f32 values overflows or underflows.
+        cofactor_normal(j, normal).map_err(|determinant| FfdError::SingularJacobian {
+            local: self.local_coords(p),
+            determinant,
+        })
     }
 
     /// Samples the Jacobian determinant on a `samples_per_axis³` grid spanning the lattice
@@ -349,6 +363,51 @@ impl Lattice {
     }
 }
 
+/// `J⁻ᵀ · normal`, normalised, computed in `f64` as `sign(det J) · cof(J) · normal` (the
+/// cofactor matrix is `det J · J⁻ᵀ`): for a finite `J` and `normal` every product stays within
+/// `f64`'s normal range. A zero `normal` gives zero.
+///
+/// # Errors
+/// The `f64` determinant, as `f32`, where it is within [`SINGULAR_DETERMINANT`] of 0 or the
+/// product cancels to zero.
+fn cofactor_normal(j: Mat3, normal: Vec3) -> Result<Vec3, f32> {
+    type D3 = [f64; 3];
+    fn d3(v: Vec3) -> D3 {
+        [f64::from(v.x), f64::from(v.y), f64::from(v.z)]
+    }
+    fn cross(a: D3, b: D3) -> D3 {
+        [
+            a[1] * b[2] - a[2] * b[1],
+            a[2] * b[0] - a[0] * b[2],
+            a[0] * b[1] - a[1] * b[0],
+        ]
+    }
+    let (a, b, c) = (d3(j.x_axis), d3(j.y_axis), d3(j.z_axis));
+    let (bc, ca, ab) = (cross(b, c), cross(c, a), cross(a, b));
+    let determinant = a[0] * bc[0] + a[1] * bc[1] + a[2] * bc[2];
+    if !(determinant.abs() > f64::from(SINGULAR_DETERMINANT)) {
+        return Err(determinant as f32);
+    }
+    if normal == Vec3::ZERO {
+        return Ok(Vec3::ZERO);
+    }
+    let n = d3(normal);
+    let sign = determinant.signum();
+    let v: D3 = core::array::from_fn(|i| sign * (bc[i] * n[0] + ca[i] * n[1] + ab[i] * n[2]));
+    // Divided by its largest component, `v` converts to `f32` without overflow, and the
+    // largest component (±1) survives it.
+    let largest = v.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    if !(largest > 0.0) {
+        return Err(determinant as f32);
+    }
+    let unit_max = Vec3::new(
+        (v[0] / largest) as f32,
+        (v[1] / largest) as f32,
+        (v[2] / largest) as f32,
+    );
+    Ok(unit_max.normalize_or(Vec3::ZERO))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -485,5 +544,87 @@ mod tests {
         let lattice = unit([2, 2, 10]);
         let q = Vec3::new(0.123, 4.5, -6.0);
         assert_eq!(lattice.inverse(q), Ok(q));
+    }
+
+    /// Fuzz finding (`fuzz/corpus/ffd/new-deform-normal-zero-for-nonzero-normal`): a Jacobian
+    /// with entries near 1e19 and a normal near 1e21 overflowed `J⁻ᵀ · normal` to infinity,
+    /// and the normalisation fell back to a zero vector.
+    #[test]
+    fn regression_deform_normal_unit_when_the_product_overflows() {
+        let mut lattice = Lattice::new(
+            Vec3::new(3e-45, 0.0, 0.0),
+            [
+                Vec3::new(10.0, 0.0, 5.418_294e-39),
+                Vec3::new(0.0, 1.084_202_2e-19, 9.1e-44),
+                Vec3::new(0.0, 0.0, 1.084_202_2e-19),
+            ],
+            [25, 1, 2],
+        )
+        .unwrap();
+        lattice
+            .set_control_point([0, 0, 0], Vec3::new(1.0, 0.0, 2.503_554_4e-23))
+            .unwrap();
+        lattice
+            .translate_slice(
+                crate::Axis::S,
+                16,
+                Vec3::new(5.759_987_6e35, -4.162_442e35, -3.094_764_2e-9),
+            )
+            .unwrap();
+        let normal = Vec3::new(-7.542_009e20, 6.011_865_6e-16, 4.046_270_5e-29);
+        let n = lattice.deform_normal(Vec3::ZERO, normal).unwrap();
+        assert!(n.is_normalized(), "{n}");
+        // The same direction as for the normal scaled into range (exact: a power of two).
+        let scaled = lattice
+            .deform_normal(Vec3::ZERO, normal * 2f32.powi(-70))
+            .unwrap();
+        assert!(n.abs_diff_eq(scaled, 1e-6), "{n} vs {scaled}");
+    }
+
+    /// A lattice `size` wide whose control points are moved onto the cube `to` wide:
+    /// `J = I · to / size`.
+    fn stretched(size: f32, to: f32) -> Lattice {
+        let mut lattice = Lattice::new(
+            Vec3::ZERO,
+            [Vec3::X * size, Vec3::Y * size, Vec3::Z * size],
+            [1, 1, 1],
+        )
+        .unwrap();
+        for i in 0..2 {
+            for j in 0..2 {
+                for k in 0..2 {
+                    let index = [i, j, k];
+                    lattice
+                        .set_control_point(index, Vec3::from(index.map(|x| x as f32 * to)))
+                        .unwrap();
+                }
+            }
+        }
+        lattice
+    }
+
+    /// The same bug through the determinant: a lattice 1e-13 wide stretched to a unit cube has
+    /// `J = 1e13 · I`, whose `f32` determinant (1e39) overflows, so `J⁻¹` came out zero.
+    #[test]
+    fn regression_deform_normal_unit_when_the_determinant_overflows() {
+        let size = 1e-13;
+        let lattice = stretched(size, 1.0);
+        let p = Vec3::splat(0.5 * size);
+        assert!(lattice.jacobian(p).determinant().is_infinite());
+        let n = lattice.deform_normal(p, Vec3::new(1.0, 2.0, 2.0)).unwrap();
+        assert!(n.abs_diff_eq(Vec3::new(1.0, 2.0, 2.0) / 3.0, 1e-6), "{n}");
+    }
+
+    /// Stretched 1e40 times, the Jacobian itself overflows `f32`: no direction can be had.
+    #[test]
+    fn deform_normal_reports_an_overflowing_jacobian() {
+        let size = 1e-12;
+        let lattice = stretched(size, 1e28);
+        let p = Vec3::splat(0.5 * size);
+        assert!(!lattice.jacobian(p).is_finite());
+        assert_eq!(
+            lattice.deform_normal(p, Vec3::X),
+            Err(FfdError::NonFiniteResult { index: 0 })
+        );
     }
 }

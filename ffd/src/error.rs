@@ -113,7 +113,8 @@ pub enum FfdError {
         /// The offending coordinate.
         value: f32,
     },
-    /// A deformed point overflowed `f32` (a point far outside the lattice, extrapolated).
+    /// A deformed point overflowed `f32` (a point far outside the lattice, extrapolated), or,
+    /// from [`Lattice::deform_normal`](crate::Lattice::deform_normal), the Jacobian did.
     NonFiniteResult {
         /// Index of the input point (0 for a single point).
         index: usize,

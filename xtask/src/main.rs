@@ -30,6 +30,11 @@ tasks:
   fmt          cargo fmt --check
   clippy       cargo clippy (default and all features, all targets) with -D warnings
   test         cargo test --workspace --all-features (unit, integration, property, doc tests)
+  fuzz [--secs N] [TARGET]
+               build the cargo-fuzz targets under fuzz/ (RUSTC_BOOTSTRAP=1, installing
+               cargo-fuzz when missing) and run each (or TARGET) for N seconds (default
+               20; ci runs the 20 s smoke), replaying fuzz/corpus/<target> first; prints
+               executions per target and fails on any crash, timeout or OOM
   doc          cargo doc --workspace --no-deps with RUSTDOCFLAGS=-D warnings
   libm         clippy and tests of every micro-crate with only its `libm` feature (the
                configuration no_std users get; `test` runs with std, which wins over libm)
@@ -60,11 +65,12 @@ environment:
 
 type Task = fn(&Workspace) -> Result<(), String>;
 
-const TASKS: [(&str, Task); 11] = [
+const TASKS: [(&str, Task); 12] = [
     ("tidy", tidy),
     ("fmt", fmt),
     ("clippy", clippy),
     ("test", test),
+    ("fuzz", |w| fuzz(w, FUZZ_SMOKE_SECS, None)),
     ("libm", libm),
     ("sweep", sweep),
     ("gltf", gltf),
@@ -104,6 +110,10 @@ fn main() -> ExitCode {
                 step("verify-gltf", |w| verify_gltf(w, &dir), &workspace)
             }
             None => Err(format!("verify-gltf needs a folder\n\n{USAGE}")),
+        },
+        "fuzz" => match fuzz_args(&args[1..]) {
+            Ok((secs, target)) => step("fuzz", |w| fuzz(w, secs, target.as_deref()), &workspace),
+            Err(e) => Err(format!("{e}\n\n{USAGE}")),
         },
         "-h" | "--help" | "help" => {
             print!("{USAGE}");
@@ -875,5 +885,194 @@ fn collect_files(dir: &Path, extension: &str, out: &mut Vec<PathBuf>) {
         } else if path.extension().is_some_and(|e| e == extension) {
             out.push(path);
         }
+    }
+}
+
+/// Seconds per target of the fuzz smoke in `cargo xtask ci`.
+const FUZZ_SMOKE_SECS: u64 = 20;
+
+/// `[--secs N] [TARGET]`.
+fn fuzz_args(args: &[String]) -> Result<(u64, Option<String>), String> {
+    let mut secs = FUZZ_SMOKE_SECS;
+    let mut target = None;
+    let mut rest = args.iter();
+    while let Some(arg) = rest.next() {
+        if arg == "--secs" {
+            let value = rest.next().ok_or("--secs needs a number of seconds")?;
+            secs = value
+                .parse()
+                .ok()
+                .filter(|&s| s > 0)
+                .ok_or_else(|| format!("--secs {value}: not a positive whole number"))?;
+        } else if arg.starts_with('-') || target.is_some() {
+            return Err(format!("fuzz: unexpected argument `{arg}`"));
+        } else {
+            target = Some(arg.clone());
+        }
+    }
+    Ok((secs, target))
+}
+
+/// `cargo fuzz` with the flags every call shares: stable needs `RUSTC_BOOTSTRAP=1` for the
+/// sanitizer flags, and build and run must agree on them or `run` rebuilds.
+fn cargo_fuzz(w: &Workspace, subcommand: &str) -> Command {
+    let mut c = w.cargo();
+    c.current_dir(w.root.join("fuzz"));
+    c.env("RUSTC_BOOTSTRAP", "1");
+    // Release with debug assertions: overflow checks catch what release alone would hide.
+    c.args(["fuzz", subcommand, "--release", "--debug-assertions"]);
+    c
+}
+
+/// Builds every fuzz target once, then runs each (or `only`) for `secs` seconds on a corpus
+/// under `target/fuzz-corpus/` seeded by the committed `fuzz/corpus/<target>/` (which
+/// libFuzzer replays first and never writes to). Prints executions per target; fails when any
+/// target crashed, timed out or ran out of memory (its input is then in
+/// `fuzz/artifacts/<target>/`).
+fn fuzz(w: &Workspace, secs: u64, only: Option<&str>) -> Result<(), String> {
+    let fuzz_dir = w.root.join("fuzz");
+    if !fuzz_dir.join("Cargo.toml").exists() {
+        println!("fuzz: skipped, there is no fuzz/ crate");
+        return Ok(());
+    }
+    let installed = w
+        .cargo()
+        .args(["fuzz", "--version"])
+        .output()
+        .is_ok_and(|o| o.status.success());
+    if !installed {
+        let mut c = w.cargo();
+        c.args(["install", "cargo-fuzz", "--locked"]);
+        run(c)?;
+    }
+    let targets = fuzz_targets(&fuzz_dir)?;
+    let targets: Vec<String> = match only {
+        Some(name) if targets.iter().any(|t| t == name) => vec![name.to_string()],
+        Some(name) => {
+            return Err(format!(
+                "no fuzz target `{name}`; the targets are: {}",
+                targets.join(", ")
+            ));
+        }
+        None => targets,
+    };
+    // One build for all targets, so the runs below start at once.
+    let mut c = cargo_fuzz(w, "build");
+    if let [target] = targets.as_slice() {
+        c.arg(target);
+    }
+    run(c)?;
+    let logs = w.root.join("target").join("fuzz-logs");
+    fs::create_dir_all(&logs).map_err(|e| format!("cannot create {logs:?}: {e}"))?;
+    let mut rows = Vec::new();
+    let mut failed = Vec::new();
+    for target in &targets {
+        let corpus = w.root.join("target").join("fuzz-corpus").join(target);
+        fs::create_dir_all(&corpus).map_err(|e| format!("cannot create {corpus:?}: {e}"))?;
+        let seeds = fuzz_dir.join("corpus").join(target);
+        let mut c = cargo_fuzz(w, "run");
+        c.arg(target).arg(&corpus);
+        if seeds.is_dir() {
+            c.arg(&seeds);
+        }
+        c.arg("--");
+        c.arg(format!("-max_total_time={secs}"));
+        c.args(["-timeout=10", "-rss_limit_mb=2048", "-print_final_stats=1"]);
+        let line = describe(&c);
+        println!("$ {line}");
+        let start = Instant::now();
+        let output = c
+            .output()
+            .map_err(|e| format!("could not start `{line}`: {e}"))?;
+        let elapsed = start.elapsed().as_secs_f64();
+        let log = String::from_utf8_lossy(&output.stderr).into_owned()
+            + &String::from_utf8_lossy(&output.stdout);
+        let log_path = logs.join(format!("{target}.log"));
+        fs::write(&log_path, &log).map_err(|e| format!("cannot write {log_path:?}: {e}"))?;
+        let executions = fuzz_executions(&log);
+        let outcome = if output.status.success() {
+            "ok".to_string()
+        } else {
+            let kind = fuzz_failure(&log);
+            let tail: Vec<&str> = log.lines().rev().take(40).collect();
+            let tail: Vec<&str> = tail.into_iter().rev().collect();
+            println!("{}", tail.join("\n"));
+            failed.push(format!("{target}: {kind} (log: {})", log_path.display()));
+            kind.to_string()
+        };
+        let rate = executions.map_or(0.0, |n| n as f64 / elapsed.max(1e-9));
+        println!(
+            "fuzz: {target}: {} executions in {elapsed:.0} s ({rate:.0}/s): {outcome}",
+            executions.map_or_else(|| "?".to_string(), |n| n.to_string())
+        );
+        rows.push((target.clone(), executions, rate, outcome));
+    }
+    println!(
+        "\n{:<14} {:>12} {:>10}  result",
+        "target", "executions", "per s"
+    );
+    for (target, executions, rate, outcome) in &rows {
+        let executions = executions.map_or_else(|| "?".to_string(), |n| n.to_string());
+        println!("{target:<14} {executions:>12} {rate:>10.0}  {outcome}");
+    }
+    if failed.is_empty() {
+        Ok(())
+    } else {
+        Err(format!(
+            "{} of {} fuzz targets failed; each input is under fuzz/artifacts/<target>/ \
+             (reproduce with `cargo fuzz run <target> <file>`, minimise with `cargo fuzz tmin`):\n{}",
+            failed.len(),
+            rows.len(),
+            failed.join("\n")
+        ))
+    }
+}
+
+/// The `[[bin]]` names of `fuzz/Cargo.toml`, in order.
+fn fuzz_targets(fuzz_dir: &Path) -> Result<Vec<String>, String> {
+    let manifest = fs::read_to_string(fuzz_dir.join("Cargo.toml"))
+        .map_err(|e| format!("cannot read fuzz/Cargo.toml: {e}"))?;
+    let mut names = Vec::new();
+    let mut in_bin = false;
+    for line in manifest.lines().map(str::trim) {
+        if line.starts_with('[') {
+            in_bin = line == "[[bin]]";
+        } else if in_bin && let Some(value) = line.strip_prefix("name") {
+            let value = value.trim_start().trim_start_matches('=').trim();
+            names.push(value.trim_matches('"').to_string());
+        }
+    }
+    if names.is_empty() {
+        return Err("fuzz/Cargo.toml declares no [[bin]] targets".into());
+    }
+    Ok(names)
+}
+
+/// The executions libFuzzer reports: `stat::number_of_executed_units` (with
+/// `-print_final_stats=1`), else the count of its last status line (`#N ...`).
+fn fuzz_executions(log: &str) -> Option<u64> {
+    let stat = log.lines().find_map(|l| {
+        l.strip_prefix("stat::number_of_executed_units:")
+            .and_then(|v| v.trim().parse().ok())
+    });
+    stat.or_else(|| {
+        log.lines().rev().find_map(|l| {
+            let rest = l.strip_prefix('#')?;
+            let end = rest.find(|c: char| !c.is_ascii_digit())?;
+            rest[..end].parse().ok()
+        })
+    })
+}
+
+/// What libFuzzer says went wrong.
+fn fuzz_failure(log: &str) -> &'static str {
+    if log.contains("ERROR: libFuzzer: timeout") {
+        "timeout"
+    } else if log.contains("ERROR: libFuzzer: out-of-memory") {
+        "out of memory"
+    } else if log.contains("ERROR: libFuzzer") || log.contains("panicked at") {
+        "crash"
+    } else {
+        "failed"
     }
 }

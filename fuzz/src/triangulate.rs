@@ -1,0 +1,327 @@
+//! `creature-march`'s mesher: `validate_rings` and `triangulate` on star-shaped rings with
+//! holes (valid flavour) or arbitrary point lists, differentially against spade's constrained
+//! Delaunay triangulation: whatever `validate_rings` accepts, spade and `triangulate` must
+//! both accept, the meshes must cover the same area, and every ring vertex must be kept.
+
+use arbitrary::Arbitrary;
+use creature_march::{MarchError, Mesh2, MeshOptions, Ring, triangulate, validate_rings};
+use glam::Vec2;
+use spade::{ConstrainedDelaunayTriangulation, Point2, Triangulation};
+
+use crate::{map, pick};
+
+#[derive(Debug, Clone, Arbitrary)]
+pub struct RingIn {
+    pub hole: bool,
+    pub parent: u8,
+    pub points: Vec<[f32; 2]>,
+}
+
+#[derive(Debug, Clone, Arbitrary)]
+pub struct Input {
+    pub valid: bool,
+    pub spacing: f32,
+    pub clearance: f32,
+    pub min_angle: f32,
+    pub budget: u16,
+    pub simplify: f32,
+    pub center: [f32; 2],
+    pub scale: f32,
+    pub rings: Vec<RingIn>,
+}
+
+/// A star-shaped ring around `center`: angles strictly increasing, radii in
+/// `[lo, hi] × scale`, so it is simple; clockwise for a hole.
+fn star(center: Vec2, scale: f32, lo: f32, hi: f32, raw: &[[f32; 2]], hole: bool) -> Vec<Vec2> {
+    let n = raw.len().max(3);
+    let mut points: Vec<Vec2> = (0..n)
+        .map(|i| {
+            let r = raw.get(i).copied().unwrap_or([0.0, 0.0]);
+            let angle = (i as f32 + map(r[0], 0.0, 0.9)) / n as f32 * core::f32::consts::TAU;
+            center + Vec2::from_angle(angle) * map(r[1], lo, hi) * scale
+        })
+        .collect();
+    if hole {
+        points.reverse();
+    }
+    points
+}
+
+#[must_use]
+pub fn rings(input: &Input) -> Vec<Ring> {
+    if input.valid {
+        let center = Vec2::new(
+            map(input.center[0], -1e3, 1e3),
+            map(input.center[1], -1e3, 1e3),
+        );
+        let scale = map(input.scale, 1e-2, 1e3);
+        let mut out = Vec::new();
+        for (i, r) in input.rings.iter().take(3).enumerate() {
+            let raw = &r.points[..r.points.len().min(48)];
+            match i {
+                0 => out.push(Ring {
+                    points: star(center, scale, 0.5, 1.0, raw, false),
+                    hole: false,
+                    parent: None,
+                }),
+                1 if r.hole => out.push(Ring {
+                    points: star(center, scale, 0.1, 0.45, raw, true),
+                    hole: true,
+                    parent: Some(0),
+                }),
+                _ => out.push(Ring {
+                    points: star(
+                        center + Vec2::X * 3.0 * scale * (i as f32),
+                        scale,
+                        0.5,
+                        1.0,
+                        raw,
+                        false,
+                    ),
+                    hole: false,
+                    parent: None,
+                }),
+            }
+        }
+        out
+    } else {
+        input
+            .rings
+            .iter()
+            .take(4)
+            .map(|r| Ring {
+                points: r.points.iter().take(64).map(|p| Vec2::from(*p)).collect(),
+                hole: r.hole,
+                parent: r.hole.then_some(usize::from(r.parent)),
+            })
+            .collect()
+    }
+}
+
+#[must_use]
+pub fn options(input: &Input, rings: &[Ring]) -> MeshOptions {
+    let v = input.valid;
+    let extent = extent(rings);
+    let spacing = if v {
+        if input.spacing.to_bits().is_multiple_of(4) {
+            0.0
+        } else {
+            map(input.spacing, 0.03, 1.0) * extent
+        }
+    } else {
+        input.spacing
+    };
+    let budget = match input.budget {
+        u16::MAX => None,
+        b => Some(usize::from(b % 2000)),
+    };
+    let simplify = if v && input.simplify.to_bits().is_multiple_of(2) {
+        0.0
+    } else {
+        pick(v, input.simplify, 0.0, 0.02) * if v { extent } else { 1.0 }
+    };
+    MeshOptions::DEFAULT
+        .with_interior_spacing(spacing)
+        .with_clearance(pick(v, input.clearance, 0.0, 2.0))
+        .with_min_angle(pick(v, input.min_angle, 0.0, 33.0))
+        .with_max_added_vertices(budget)
+        .with_simplify(simplify)
+}
+
+fn extent(rings: &[Ring]) -> f32 {
+    let (mut lo, mut hi) = (Vec2::splat(f32::INFINITY), Vec2::splat(f32::NEG_INFINITY));
+    for p in rings.iter().flat_map(|r| &r.points) {
+        lo = lo.min(*p);
+        hi = hi.max(*p);
+    }
+    (hi - lo).max_element()
+}
+
+/// Even–odd containment in `f64`.
+fn inside(rings: &[Ring], x: f64, y: f64) -> bool {
+    let mut odd = false;
+    for ring in rings {
+        let n = ring.points.len();
+        for i in 0..n {
+            let (a, b) = (
+                ring.points[i].as_dvec2(),
+                ring.points[(i + 1) % n].as_dvec2(),
+            );
+            if (a.y > y) != (b.y > y) && x < a.x + (y - a.y) / (b.y - a.y) * (b.x - a.x) {
+                odd = !odd;
+            }
+        }
+    }
+    odd
+}
+
+/// The area spade's constrained triangulation of the ring edges covers inside the rings, or
+/// `None` when spade cannot take the points (coordinates outside its range).
+fn spade_area(rings: &[Ring]) -> Option<Result<f64, String>> {
+    let mut cdt = ConstrainedDelaunayTriangulation::<Point2<f64>>::new();
+    for ring in rings {
+        let mut handles = Vec::new();
+        for p in &ring.points {
+            handles.push(
+                cdt.insert(Point2::new(f64::from(p.x), f64::from(p.y)))
+                    .ok()?,
+            );
+        }
+        for i in 0..handles.len() {
+            let (a, b) = (handles[i], handles[(i + 1) % handles.len()]);
+            if a == b || !cdt.can_add_constraint(a, b) {
+                return Some(Err(format!(
+                    "spade rejects edge {i} of a ring: {:?}",
+                    ring.points
+                )));
+            }
+            cdt.add_constraint(a, b);
+        }
+    }
+    let mut area = 0.0;
+    for face in cdt.inner_faces() {
+        let [a, b, c] = face.positions();
+        let (cx, cy) = ((a.x + b.x + c.x) / 3.0, (a.y + b.y + c.y) / 3.0);
+        if inside(rings, cx, cy) {
+            area += ((b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y)).abs() / 2.0;
+        }
+    }
+    Some(Ok(area))
+}
+
+fn check_mesh(mesh: &Mesh2, rings: &[Ring], options: &MeshOptions) -> f64 {
+    let n = mesh.positions.len();
+    assert!(
+        mesh.positions.iter().all(|p| p.is_finite()),
+        "non-finite mesh vertex"
+    );
+    let mut used = vec![false; n];
+    let mut area = 0.0;
+    for t in &mesh.triangles {
+        for &i in t {
+            assert!((i as usize) < n, "triangle index {i} of {n}");
+            used[i as usize] = true;
+        }
+        let [a, b, c] = t.map(|i| mesh.positions[i as usize]);
+        let o = robust::orient2d(
+            robust::Coord {
+                x: f64::from(a.x),
+                y: f64::from(a.y),
+            },
+            robust::Coord {
+                x: f64::from(b.x),
+                y: f64::from(b.y),
+            },
+            robust::Coord {
+                x: f64::from(c.x),
+                y: f64::from(c.y),
+            },
+        );
+        assert!(
+            o > 0.0,
+            "triangle {t:?} ({a}, {b}, {c}) is not counter-clockwise"
+        );
+        area += o / 2.0;
+    }
+    assert!(used.iter().all(|u| *u), "a vertex no triangle uses");
+    if options.simplify == 0.0 {
+        let ring_points: Vec<Vec2> = rings
+            .iter()
+            .flat_map(|r| r.points.iter().copied())
+            .collect();
+        assert_eq!(mesh.outline_len, ring_points.len(), "outline_len");
+        assert_eq!(
+            &mesh.positions[..mesh.outline_len],
+            &ring_points[..],
+            "ring vertices not kept in order"
+        );
+    }
+    let q = mesh.quality;
+    assert!(
+        q.min_angle.is_finite() && (0.0..=60.0).contains(&q.min_angle),
+        "min_angle {}",
+        q.min_angle
+    );
+    assert!(q.below_limit <= mesh.triangles.len() && q.below_20 <= mesh.triangles.len());
+    area
+}
+
+pub fn run(input: &Input) {
+    let rings = rings(input);
+    let options = options(input, &rings);
+    if options.validate().is_ok() && options.interior_spacing > 0.0 {
+        // Keep an execution short: skip between ~20k interior lattice points and well past
+        // MAX_INTERIOR_POINTS, where triangulate must refuse at once (checked below).
+        let e = f64::from(extent(&rings));
+        let count = (e / f64::from(options.interior_spacing)).powi(2);
+        if count > 20_000.0 && count < 4.0 * creature_march::MAX_INTERIOR_POINTS as f64 {
+            return;
+        }
+    }
+    let valid = validate_rings(&rings);
+    if input.valid {
+        assert!(valid.is_ok(), "star rings rejected: {valid:?}");
+    }
+    let result = triangulate(&rings, &options);
+    assert_eq!(
+        format!("{:?}", triangulate(&rings, &options)),
+        format!("{result:?}"),
+        "determinism"
+    );
+    if options.validate().is_err() {
+        assert!(result.is_err(), "invalid options accepted: {options:?}");
+        return;
+    }
+    if valid.is_err() {
+        // triangulate may still mesh rings validate_rings rejects (it checks crossings as it
+        // meshes); only its output is checked.
+        if let Ok(mesh) = &result {
+            check_mesh(mesh, &rings, &options);
+        }
+        return;
+    }
+    if rings.is_empty() {
+        assert!(result.as_ref().is_ok_and(|m| m.triangles.is_empty()));
+        return;
+    }
+    let spade = spade_area(&rings);
+    let mesh = match result {
+        Ok(mesh) => mesh,
+        Err(MarchError::InteriorTooDense { .. }) => return,
+        Err(e) => panic!(
+            "validate_rings accepts the rings but triangulate fails: {e:?} (spade: {spade:?})"
+        ),
+    };
+    let area = check_mesh(&mesh, &rings, &options);
+    // The reported smallest angle, against one computed in f64.
+    let mut smallest = if mesh.triangles.is_empty() {
+        0.0
+    } else {
+        f64::INFINITY
+    };
+    for t in &mesh.triangles {
+        let p = t.map(|i| mesh.positions[i as usize].as_dvec2());
+        for k in 0..3 {
+            let (a, b) = (p[(k + 1) % 3] - p[k], p[(k + 2) % 3] - p[k]);
+            smallest = smallest.min(a.angle_to(b).abs().to_degrees());
+        }
+    }
+    assert!(
+        (f64::from(mesh.quality.min_angle) - smallest).abs() <= 0.01,
+        "quality.min_angle {} but the smallest angle is {smallest}",
+        mesh.quality.min_angle
+    );
+    match spade {
+        Some(Ok(reference)) if options.simplify == 0.0 => {
+            let tolerance = 1e-3 * reference.max(area) + 1e-300;
+            assert!(
+                (area - reference).abs() <= tolerance,
+                "mesh area {area} vs spade's {reference}"
+            );
+        }
+        Some(Err(e)) => {
+            panic!("validate_rings and triangulate accept the rings, spade does not: {e}")
+        }
+        _ => {}
+    }
+}

@@ -161,10 +161,12 @@ pub fn run(input: &Input) {
                 let p = origin + step * Vec2::new(col as f32, row as f32);
                 let s = block[row * cols + col];
                 let value = field.value(p);
-                // Documented: 0 exactly where value is, else within 1e-6 × max(value, 1).
+                // Documented: |sample − value| ≤ sample_error_bound() × value (so 0 exactly
+                // where value is).
+                let rel = field.sample_error_bound();
                 assert!(
-                    (s == 0.0) == (value == 0.0) && (s - value).abs() <= 1e-6 * value.max(1.0),
-                    "sample_block {s} vs value {value} at {p} (origin {origin}, step {step}, {cols}x{rows})"
+                    (s == 0.0) == (value == 0.0) && (s - value).abs() <= rel * value,
+                    "sample_block {s} vs value {value} (bound {rel} relative) at {p} (origin {origin}, step {step}, {cols}x{rows})"
                 );
                 if let Some(grid) = grid_ok.as_mut() {
                     let g = grid[row * cols + col];

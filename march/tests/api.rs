@@ -391,3 +391,34 @@ fn regression_a_node_a_hair_below_the_iso_level_does_not_pinch_a_traced_ring() {
         assert!(grid[0].points.contains(&notch));
     }
 }
+
+/// Fuzz finding (`fuzz/corpus/march_trace/new-trace-refine-self-crossing-ring`): with
+/// `refine_steps` ≥ 1 the traced ring of two overlapping discs crossed itself near
+/// (47.5, 35.4), while the unrefined ring was valid.
+#[test]
+fn regression_refined_trace_of_two_discs_does_not_self_cross() {
+    let discs = [
+        (Vec2::new(50.0, 50.0), 30.0f32),
+        (Vec2::new(50.0, 31.25), 3.565_889_4),
+    ];
+    let field = |p: Vec2| {
+        discs
+            .iter()
+            .map(|(c, r)| 1.0 - p.distance(*c) / r)
+            .fold(f32::NEG_INFINITY, f32::max)
+    };
+    let hints: Vec<Vec2> = discs.iter().map(|(c, _)| *c).collect();
+    for refine in 0..5 {
+        for holes in [false, true] {
+            let options = MarchOptions::DEFAULT
+                .with_refine_steps(refine)
+                .with_holes(holes)
+                .with_max_cells(1 << 16);
+            let rings = trace_with(field, &hints, 5.0, 0.5, &options).unwrap();
+            if let Err(e) = validate_rings(&rings) {
+                panic!("refine_steps {refine}, holes {holes}: {e:?}");
+            }
+            check_rings(&rings);
+        }
+    }
+}

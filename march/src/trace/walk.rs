@@ -75,8 +75,9 @@ impl<F: TileField + ?Sized> Tracer<'_, F> {
             let c = self.node(i, j);
             let (i, j) = at.corner(3);
             let d = self.node(i, j);
-            let p = self.crossing(at.edge(), at.a, at.b);
+            let (p, off_node) = self.crossing(at.edge(), at.a, at.b);
             path.push(p, &at);
+            path.on_node(off_node);
             if at.k & 1 == 1 {
                 // A vertical entry edge, from node (x, cj) up: marked crossed.
                 let x = at.corner(0).0;
@@ -124,8 +125,9 @@ impl<F: TileField + ?Sized> Tracer<'_, F> {
                 }
                 let c = self.nodes.sampled(tile, slot_c);
                 let d = self.nodes.sampled(tile, slot_d);
-                let p = self.crossing(at.edge(), at.a, at.b);
+                let (p, off_node) = self.crossing(at.edge(), at.a, at.b);
                 path.push(p, &at);
+                path.on_node(off_node);
                 crossed |= ((at.k & 1) as u64) << Nodes::slot(at.corner(0).0, at.cj);
                 at.advance(Step::turn(flags as usize), c, d);
                 if closed(&at) {
@@ -141,10 +143,12 @@ impl<F: TileField + ?Sized> Tracer<'_, F> {
             }
         }
         self.cells += cells;
+        path.unpinch();
         let Path {
             points,
             mut verticals,
             crossed,
+            ..
         } = path;
         verticals.truncate(crossed);
         if let Some(table) = &mut self.ring_of_edge {
@@ -157,20 +161,29 @@ impl<F: TileField + ?Sized> Tracer<'_, F> {
     }
 
     /// The crossing between an inside node `a` and an outside node `b` (an edge of the grid),
-    /// in world units, refined on the field when asked.
+    /// in world units, refined on the field when asked; with, for a refined crossing exactly
+    /// on a node, the same crossing kept [`cell::NODE_GAP`] off it (see [`Path::unpinch`]).
     #[inline(always)]
-    fn crossing(&mut self, (a, b): ((i32, i32), (i32, i32)), v_in: f32, v_out: f32) -> Vec2 {
+    fn crossing(
+        &mut self,
+        (a, b): ((i32, i32), (i32, i32)),
+        v_in: f32,
+        v_out: f32,
+    ) -> (Vec2, Option<Vec2>) {
         let pa = Vec2::new(a.0 as f32, a.1 as f32);
         let pb = Vec2::new(b.0 as f32, b.1 as f32);
         let t = cell::crossing(v_in, v_out, self.iso);
-        let t = if self.options.refine_steps > 0 {
-            self.refine(pa, pb, t, v_in, v_out)
+        let step = self.step;
+        let at = |t: f32| (pa + (pb - pa) * t) * step;
+        if self.options.refine_steps > 0 {
+            let t = self.refine(pa, pb, t, v_in, v_out);
+            let off = t.clamp(cell::NODE_GAP, 1.0 - cell::NODE_GAP);
+            (at(t), (off != t).then(|| at(off)))
         } else {
             // Off the nodes, as in the grid: two crossings beside an outside node a hair below
             // the iso-level would otherwise both sit on it and pinch the ring.
-            t.clamp(cell::NODE_GAP, 1.0 - cell::NODE_GAP)
-        };
-        (pa + (pb - pa) * t) * self.step
+            (at(t.clamp(cell::NODE_GAP, 1.0 - cell::NODE_GAP)), None)
+        }
     }
 
     /// Illinois false-position steps on the field along the edge, bracketing the crossing.
@@ -297,6 +310,10 @@ struct Path {
     /// edge is vertical: no branch on it.
     verticals: Vec<(i32, i32)>,
     crossed: usize,
+    /// Refined crossings that sit exactly on a grid node: the index of the point and the same
+    /// crossing kept [`cell::NODE_GAP`] off the node. Rare (a node on the iso-level, or
+    /// refinement converging onto a node).
+    on_node: Vec<(usize, Vec2)>,
 }
 
 impl Path {
@@ -305,6 +322,60 @@ impl Path {
             points: Vec::with_capacity(64),
             verticals: alloc::vec![(0, 0); 64],
             crossed: 0,
+            on_node: Vec::new(),
+        }
+    }
+
+    /// Notes that the point just pushed lies on a grid node, `off` being its crossing kept off
+    /// the node.
+    #[inline(always)]
+    fn on_node(&mut self, off: Option<Vec2>) {
+        if let Some(off) = off {
+            self.on_node.push((self.points.len() - 1, off));
+        }
+    }
+
+    /// A refined crossing on a node stays there (on the iso-line) unless the ring reaches
+    /// that node more than once apart (not as consecutive points, which the weld merges):
+    /// the ring would then touch itself there. Every crossing on such a node moves
+    /// [`cell::NODE_GAP`] off it along its own edge, as an unrefined crossing is, so the
+    /// visits no longer meet.
+    fn unpinch(&mut self) {
+        if self.on_node.len() < 2 {
+            return;
+        }
+        let n = self.points.len();
+        let key = |p: Vec2| (p.x.to_bits(), p.y.to_bits());
+        // Grouped by node (same position, bit for bit), in ring order within a group.
+        let mut order: Vec<usize> = (0..self.on_node.len()).collect();
+        order.sort_unstable_by_key(|&e| (key(self.points[self.on_node[e].0]), self.on_node[e].0));
+        let mut start = 0;
+        while start < order.len() {
+            let node = key(self.points[self.on_node[order[start]].0]);
+            let mut end = start + 1;
+            while end < order.len() && key(self.points[self.on_node[order[end]].0]) == node {
+                end += 1;
+            }
+            let group = &order[start..end];
+            // Runs of consecutive (cyclic) indices: a visit of the node each.
+            let first = self.on_node[group[0]].0;
+            let last = self.on_node[group[group.len() - 1]].0;
+            let mut runs = group
+                .windows(2)
+                .filter(|w| self.on_node[w[1]].0 != self.on_node[w[0]].0 + 1)
+                .count()
+                + 1;
+            if runs > 1 && first == 0 && last == n - 1 {
+                // The first and last runs are one, across the ring's start.
+                runs -= 1;
+            }
+            if runs > 1 {
+                for &e in group {
+                    let (i, off) = self.on_node[e];
+                    self.points[i] = off;
+                }
+            }
+            start = end;
         }
     }
 

@@ -546,38 +546,21 @@ mod tests {
         assert_eq!(lattice.inverse(q), Ok(q));
     }
 
-    /// Fuzz finding (`fuzz/corpus/ffd/new-deform-normal-zero-for-nonzero-normal`): a Jacobian
-    /// with entries near 1e19 and a normal near 1e21 overflowed `J⁻ᵀ · normal` to infinity,
-    /// and the normalisation fell back to a zero vector.
+    /// Fuzz finding (`fuzz/corpus/ffd/new-deform-normal-zero-for-nonzero-normal`): a large
+    /// normal times `J⁻ᵀ` overflowed `J⁻ᵀ · normal` to infinity, and the normalisation fell
+    /// back to a zero vector. (The fuzz input moved a slice by 5.8e35, which `MAX_COORDINATE`
+    /// now refuses; the same overflow, within it: a unit cube shrunk to half, `J⁻ᵀ = 2 I`,
+    /// and a normal near `f32::MAX`.)
     #[test]
     fn regression_deform_normal_unit_when_the_product_overflows() {
-        let mut lattice = Lattice::new(
-            Vec3::new(3e-45, 0.0, 0.0),
-            [
-                Vec3::new(10.0, 0.0, 5.418_294e-39),
-                Vec3::new(0.0, 1.084_202_2e-19, 9.1e-44),
-                Vec3::new(0.0, 0.0, 1.084_202_2e-19),
-            ],
-            [25, 1, 2],
-        )
-        .unwrap();
-        lattice
-            .set_control_point([0, 0, 0], Vec3::new(1.0, 0.0, 2.503_554_4e-23))
-            .unwrap();
-        lattice
-            .translate_slice(
-                crate::Axis::S,
-                16,
-                Vec3::new(5.759_987_6e35, -4.162_442e35, -3.094_764_2e-9),
-            )
-            .unwrap();
-        let normal = Vec3::new(-7.542_009e20, 6.011_865_6e-16, 4.046_270_5e-29);
-        let n = lattice.deform_normal(Vec3::ZERO, normal).unwrap();
+        let lattice = stretched(1.0, 0.5);
+        let p = Vec3::splat(0.25);
+        let normal = Vec3::new(-3.0e38, 6.011_865_6e-16, 1.0e38);
+        assert!(!(lattice.jacobian(p).inverse().transpose() * normal).is_finite());
+        let n = lattice.deform_normal(p, normal).unwrap();
         assert!(n.is_normalized(), "{n}");
         // The same direction as for the normal scaled into range (exact: a power of two).
-        let scaled = lattice
-            .deform_normal(Vec3::ZERO, normal * 2f32.powi(-70))
-            .unwrap();
+        let scaled = lattice.deform_normal(p, normal * 2f32.powi(-70)).unwrap();
         assert!(n.abs_diff_eq(scaled, 1e-6), "{n} vs {scaled}");
     }
 
@@ -615,16 +598,26 @@ mod tests {
         assert!(n.abs_diff_eq(Vec3::new(1.0, 2.0, 2.0) / 3.0, 1e-6), "{n}");
     }
 
-    /// Stretched 1e40 times, the Jacobian itself overflows `f32`: no direction can be had.
+    /// Stretched 1e40 times, the Jacobian itself would overflow `f32` (`deform_normal` then
+    /// reports `NonFiniteResult`), but `MAX_COORDINATE` keeps every reachable Jacobian finite:
+    /// the thinnest frame `new` accepts (an axis 1.1e-19 long, whose squared length is still
+    /// a normal `f32`) with its control points 2e15 apart gives `J ≈ 1.8e34`, and a unit
+    /// normal.
     #[test]
-    fn deform_normal_reports_an_overflowing_jacobian() {
-        let size = 1e-12;
-        let lattice = stretched(size, 1e28);
-        let p = Vec3::splat(0.5 * size);
-        assert!(!lattice.jacobian(p).is_finite());
-        assert_eq!(
-            lattice.deform_normal(p, Vec3::X),
-            Err(FfdError::NonFiniteResult { index: 0 })
-        );
+    fn deform_normal_unit_at_the_largest_jacobian_within_max_coordinate() {
+        let size = 1.1e-19;
+        let mut lattice =
+            Lattice::new(Vec3::ZERO, [Vec3::X, Vec3::Y, Vec3::Z * size], [1, 1, 1]).unwrap();
+        lattice
+            .translate_slice(crate::Axis::U, 0, Vec3::Z * -1e15)
+            .unwrap();
+        lattice
+            .translate_slice(crate::Axis::U, 1, Vec3::Z * 1e15)
+            .unwrap();
+        let p = Vec3::new(0.5, 0.5, 0.5 * size);
+        assert!(lattice.jacobian(p).is_finite());
+        let n = lattice.deform_normal(p, Vec3::new(1.0, 0.0, 1.0)).unwrap();
+        assert!(n.is_normalized(), "{n}");
+        assert!(Lattice::new(Vec3::ZERO, [Vec3::X, Vec3::Y, Vec3::Z * 1e-25], [1, 1, 1]).is_err());
     }
 }

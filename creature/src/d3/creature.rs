@@ -287,10 +287,10 @@ impl Creature {
             .collect()
     }
 
-    /// The clips of the creature's kind, each looping: walkers `idle`, `walk` (whole
-    /// strides, see [`bake_walk_loop`](Self::bake_walk_loop)) and `turn` (a full turn in
-    /// place, see [`bake_turn`](Self::bake_turn)); fliers `hover` and `fly`; swimmers `idle`
-    /// and `swim`.
+    /// The clips of the creature's kind, each looping (the turn where that keeps its feet
+    /// plausible): walkers `idle`, `walk` (whole strides, see
+    /// [`bake_walk_loop`](Self::bake_walk_loop)) and `turn` (a full turn in place, see
+    /// [`bake_turn`](Self::bake_turn)); fliers `hover` and `fly`; swimmers `idle` and `swim`.
     ///
     /// Fliers' wings beat by `gait::FlapParams` (flapping wings slow, 4 bones with a lagging
     /// tip; buzzing wings at 8 beats per second, the fastest a 30 fps clip shows), the body
@@ -309,7 +309,7 @@ impl Creature {
     ///     let c = generate(3, &Params::DEFAULT.with_kind(kind))?;
     ///     let clips = c.bake_clips()?;
     ///     assert!(clips.len() >= 2);
-    ///     for clip in &clips {
+    ///     for clip in clips.iter().filter(|clip| clip.name != "turn") {
     ///         assert!(clip.loop_error < 1e-3, "{} {}", clip.name, clip.loop_error);
     ///     }
     /// }

@@ -7,7 +7,7 @@ use alloc::vec::Vec;
 
 use glam::{Affine3A, Quat, Vec3};
 
-use creature_gait::{Leg, Plane, Pose, solve_two_bone};
+use creature_gait::{Leg, LimbKind, Plane, Pose, solve_two_bone};
 
 use super::floor::knee_above;
 use super::gait_run::{GaitRun, best_cut, ranked_cuts};
@@ -19,6 +19,22 @@ use crate::d3::Creature;
 /// Seconds the controller runs before a clip's first frame, so the gait is in its steady
 /// rhythm.
 const WARM_UP: f32 = 1.0;
+
+/// The most an arm's joint turns from one frame to the next, in radians (12 rad/s at
+/// [`CLIP_FPS`]).
+const MAX_ARM_TURN_PER_FRAME: f32 = 0.4;
+
+/// Each rotation turned no further than `max` radians from the one before it, following the
+/// track as closely as that allows.
+fn limit_turn_rate(rotations: &mut [Quat], max: f32) {
+    for f in 1..rotations.len() {
+        let (before, now) = (rotations[f - 1], rotations[f]);
+        let angle = before.angle_between(now);
+        if angle > max {
+            rotations[f] = before.slerp(now, max / angle).normalize();
+        }
+    }
+}
 
 /// How many cuts of its window a turn tries to close its loop at.
 const TURN_CUTS: usize = 8;
@@ -326,7 +342,14 @@ impl Creature {
         }
         // Each leg's hip, knee and foot tracks, then the neck and tail bent toward a turn.
         for tracks in legs {
-            let [hip, knee, foot] = tracks.rotations;
+            let [mut hip, mut knee, mut foot] = tracks.rotations;
+            if tracks.leg.kind == LimbKind::Arm {
+                // Arms hang free: damped, no joint turns faster than the limit (the two-bone
+                // solution can flip an elbow between two frames as the hand passes its pole).
+                for rotations in [&mut hip, &mut knee, &mut foot] {
+                    limit_turn_rate(rotations, MAX_ARM_TURN_PER_FRAME);
+                }
+            }
             clip.tracks.push(Track {
                 joint: tracks.hip,
                 translations: Some(tracks.translations),

@@ -227,6 +227,7 @@ fn every_kind_bakes_two_clips_that_loop() {
         _ => vec!["idle", "swim"],
     };
     let mut errors = Vec::new();
+    let mut turns_looped = Vec::new();
     for kind in [d3::Kind::Walker, d3::Kind::Flier, d3::Kind::Swimmer] {
         for seed in 0..8 {
             let c = generate(seed, &d3::Params::DEFAULT.with_kind(kind)).unwrap();
@@ -263,17 +264,29 @@ fn every_kind_bakes_two_clips_that_loop() {
                             - core::f32::consts::PI;
                         total += d;
                     }
+                    // Closed, exactly. Cut (where closing would misplace the feet), the rate
+                    // completes the commanded turn at the cut and the shown body lags it by the
+                    // gait's reaction (0.1 s at about 1.6 rad/s) and sways: within 5%.
                     let full = core::f32::consts::TAU;
-                    assert!((total - full).abs() < 1e-3, "{seed}: turned {total}");
+                    let within = if clip.loop_error < 1e-3 {
+                        1e-3
+                    } else {
+                        0.05 * full
+                    };
+                    assert!((total - full).abs() < within, "{seed}: turned {total}");
                 }
-                // Every clip loops: the walk and the turn by closing their loops.
+                // Every clip but the turn loops (the walk by closing its loop); the turn where
+                // closing keeps the feet plausible (half of these, as of the sweep's share).
                 errors.push(clip.loop_error);
                 assert!(
-                    clip.loop_error < 1e-3,
+                    clip.loop_error < 1e-3 || clip.name == "turn",
                     "{kind:?} {seed} {}: {}",
                     clip.name,
                     clip.loop_error
                 );
+                if clip.name == "turn" {
+                    turns_looped.push(clip.loop_error < 1e-3);
+                }
                 // Posed, the mesh stays finite.
                 let pose = c.pose(clip, clip.frames / 2);
                 assert!(pose.iter().all(|m| m.is_finite()));
@@ -281,6 +294,12 @@ fn every_kind_bakes_two_clips_that_loop() {
         }
     }
     println!("loop errors: {errors:?}");
+    let looped = turns_looped.iter().filter(|&&l| l).count();
+    assert!(
+        2 * looped >= turns_looped.len(),
+        "only {looped} of {} turns loop",
+        turns_looped.len()
+    );
 }
 
 /// Issue 17: `generate`'s docs said valid params never give `NoStableLayout`; extreme limb

@@ -227,10 +227,12 @@ impl Creature {
     /// [`bake_walk_loop`](Self::bake_walk_loop), at the frame from 3.5 s to 4.5 s with the
     /// same feet planted as the first that best completes the turn; the rate is then retried
     /// (up to twice) so that the turn completes exactly at the cut, and the best try kept.
-    /// Its loop is closed exactly: the root ends where it started, a full turn later, any
-    /// shortfall of the turn spread over the clip; unless that would stretch a planted leg
-    /// beyond its reach (183 walkers in 10,000 with the default params), as in
-    /// [`bake_walk_loop`](Self::bake_walk_loop).
+    /// Its loop is closed exactly (the root ends where it started, a full turn later, any
+    /// shortfall of the turn spread over the clip, each foot's mismatch spread over its swings
+    /// in the body's frame) when that keeps every planted foot still, within its leg's reach
+    /// and on its own side of the body; the next best cuts of the window are tried before
+    /// giving up. Otherwise the clip is the plain cut, and [`Clip::loop_error`] says how far it
+    /// is from looping: plausible feet come before a seamless loop.
     ///
     /// ```
     /// use creature::d3::{generate, Kind, Params};
@@ -238,7 +240,6 @@ impl Creature {
     /// let walker = generate(7, &Params::DEFAULT.with_kind(Kind::Walker))?;
     /// let turn = walker.bake_turn()?;
     /// assert!(turn.duration() > 3.0 && turn.duration() < 5.0);
-    /// assert!(turn.loop_error < 1e-3);
     /// # Ok::<(), creature::Error>(())
     /// ```
     ///
@@ -286,10 +287,10 @@ impl Creature {
             .collect()
     }
 
-    /// The clips of the creature's kind, each looping: walkers `idle`, `walk` (whole
-    /// strides, see [`bake_walk_loop`](Self::bake_walk_loop)) and `turn` (a full turn in
-    /// place, see [`bake_turn`](Self::bake_turn)); fliers `hover` and `fly`; swimmers `idle`
-    /// and `swim`.
+    /// The clips of the creature's kind, each looping (the turn where that keeps its feet
+    /// plausible): walkers `idle`, `walk` (whole strides, see
+    /// [`bake_walk_loop`](Self::bake_walk_loop)) and `turn` (a full turn in place, see
+    /// [`bake_turn`](Self::bake_turn)); fliers `hover` and `fly`; swimmers `idle` and `swim`.
     ///
     /// Fliers' wings beat by `gait::FlapParams` (flapping wings slow, 4 bones with a lagging
     /// tip; buzzing wings at 8 beats per second, the fastest a 30 fps clip shows), the body
@@ -308,7 +309,7 @@ impl Creature {
     ///     let c = generate(3, &Params::DEFAULT.with_kind(kind))?;
     ///     let clips = c.bake_clips()?;
     ///     assert!(clips.len() >= 2);
-    ///     for clip in &clips {
+    ///     for clip in clips.iter().filter(|clip| clip.name != "turn") {
     ///         assert!(clip.loop_error < 1e-3, "{} {}", clip.name, clip.loop_error);
     ///     }
     /// }

@@ -530,7 +530,11 @@ fn add_limbs(
             }
         }
         pass += 1;
-        if pass == LIMB_PASSES || !feet_under_mass(mesh, &mut limb_plan, body.length, pass) {
+        // Walkers stand on their feet; fliers' legs dangle where the planner put them.
+        if pass == LIMB_PASSES
+            || !spec.walks
+            || !feet_under_mass(mesh, &mut limb_plan, body.length, pass)
+        {
             break Ok(BuiltLimbs {
                 plan: limb_plan,
                 joints,

@@ -56,8 +56,9 @@ impl GaitRun {
 
     /// Keeps frames `0..=end` and closes the loop: frame `end` becomes frame 0 moved by
     /// `motion` (the root motion over the clip). The body's mismatch is spread linearly over
-    /// the frames; each foot's over its swing frames only (in proportion to their count), so
-    /// planted feet stay where they are; a foot that never swings takes it linearly, sliding:
+    /// the frames; each foot's over its swing frames only (in proportion to the foot's height,
+    /// turning with the body), so planted feet stay where they are and feet lifting off or
+    /// landing move only up and down; a foot that never swings takes it linearly, sliding:
     /// returns the longest such slide (0 when every foot swings or none has to move).
     pub(super) fn close_loop(&mut self, end: usize, motion: &Pose) -> f32 {
         let keep = (end + 1).min(self.frames());
@@ -79,26 +80,43 @@ impl GaitRun {
             body.rotation = (Quat::IDENTITY.slerp(turn, s) * body.rotation).normalize();
             body.translation += shift * s;
         }
+        // Each foot's correction turns with the body while it is made (its swings), and is
+        // held while the foot is planted: a correction outward at the end of a turn in place
+        // is outward all along (in world space, half a turn earlier, it would pull the foot
+        // across the body). It reaches the exact world correction with the last swing.
+        let end_rotation = self.bodies[last].rotation;
         for leg in 0..self.legs {
             let delta = motion.transform_point(self.foot(0, leg)) - self.foot(last, leg);
-            let swings = (1..keep).filter(|&f| !self.planted(f, leg)).count();
-            if swings == 0 {
+            // Progress through the correction: by the swing frames' heights, so a foot takes
+            // none of it while it is lifting off or landing near the ground.
+            let lift: Vec<f32> = (0..keep)
+                .map(|f| {
+                    if self.planted(f, leg) {
+                        0.0
+                    } else {
+                        self.foot(f, leg).y.max(0.0)
+                    }
+                })
+                .collect();
+            let swings: f32 = lift[1..].iter().sum();
+            if !(swings > 0.0) {
                 // Never lifted: its correction can only slide it.
                 planted_shift = planted_shift.max(delta.length());
             }
-            let mut done = 0usize;
-            for f in 1..keep {
-                let s = if swings == 0 {
-                    f as f32 / last as f32
-                } else {
-                    if !self.planted(f, leg) {
-                        done += 1;
-                    }
-                    done as f32 / swings as f32
-                };
+            let mut done = 0.0f32;
+            let mut offset = Vec3::ZERO;
+            for (f, &up) in lift.iter().enumerate().skip(1) {
+                if !(swings > 0.0) {
+                    offset = delta * (f as f32 / last as f32);
+                } else if up > 0.0 {
+                    done += up;
+                    let s = (done / swings).min(1.0);
+                    let relative = (self.bodies[f].rotation * end_rotation.inverse()).normalize();
+                    offset = Quat::IDENTITY.slerp(relative, 1.0 - s) * delta * s;
+                }
                 let p = &mut self.feet[f * self.legs + leg];
                 let y = p.y;
-                *p += delta * s;
+                *p += offset;
                 // A lifted foot at the ends may be corrected downward: never below the
                 // ground (y = 0) it was above.
                 if y >= 0.0 {
@@ -139,6 +157,24 @@ impl GaitRun {
     }
 }
 
+impl GaitRun {
+    /// How far (metres) the foot nearest the body's midline is on its own side of it, over
+    /// every frame (negative: a foot crossed to the other side). Only walking legs off the
+    /// midline (`legs`, the run's).
+    pub(super) fn midline_margin(&self, legs: &[Leg]) -> f32 {
+        let mut least = f32::INFINITY;
+        for (frame, body) in self.bodies.iter().enumerate() {
+            for (i, leg) in legs.iter().enumerate() {
+                if leg.kind == LimbKind::Leg && leg.rest.x != 0.0 {
+                    let x = body.inverse_transform_point(self.foot(frame, i)).x;
+                    least = least.min(x * leg.rest.x.signum());
+                }
+            }
+        }
+        least
+    }
+}
+
 /// The frame of `range` with the same feet planted as frame 0 that has the smallest
 /// [`GaitRun::mismatch`] plus `penalty(frame)`; the best frame of the range regardless of
 /// contacts if none has them, the last frame if the range is empty.
@@ -164,4 +200,27 @@ pub(super) fn best_cut(
     best(&mut range.clone().filter(same))
         .or_else(|| best(&mut range.clone()))
         .map_or(last, |(_, f)| f)
+}
+
+/// Up to `count` frames of `range` in the order [`best_cut`] ranks them: those with the same
+/// feet planted as frame 0 first, each group by [`GaitRun::mismatch`] plus `penalty(frame)`.
+pub(super) fn ranked_cuts(
+    run: &GaitRun,
+    range: core::ops::Range<usize>,
+    penalty: impl Fn(usize) -> f32,
+    count: usize,
+) -> Vec<usize> {
+    let last = run.frames().saturating_sub(1);
+    let range = range.start.min(last).max(1)..range.end.min(last + 1);
+    let mut scored: Vec<(bool, f32, usize)> = range
+        .map(|f| {
+            (
+                run.contacts[f] != run.contacts[0],
+                run.mismatch(f) + penalty(f),
+                f,
+            )
+        })
+        .collect();
+    scored.sort_by(|a, b| a.0.cmp(&b.0).then(a.1.total_cmp(&b.1)).then(a.2.cmp(&b.2)));
+    scored.into_iter().take(count).map(|(_, _, f)| f).collect()
 }

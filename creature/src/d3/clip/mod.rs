@@ -84,9 +84,9 @@ pub struct Clip {
     /// height change and a track's translation change (metres); the root's forward travel
     /// (root motion) aside. Below 1e-3 for the clips of [`bake_clips`](Creature::bake_clips):
     /// `idle`, `hover`, `fly`, `swim` loop by construction, `walk`
-    /// ([`bake_walk_loop`](Creature::bake_walk_loop)) and `turn`
-    /// ([`bake_turn`](Creature::bake_turn)) have their loops closed (except the few where that
-    /// would overstretch a leg); a plain [`bake_walk`](Creature::bake_walk) does not loop.
+    /// ([`bake_walk_loop`](Creature::bake_walk_loop)) has its loop closed (except the few where
+    /// that would overstretch a leg), `turn` ([`bake_turn`](Creature::bake_turn)) where closing
+    /// it keeps the feet plausible; a plain [`bake_walk`](Creature::bake_walk) does not loop.
     pub loop_error: f32,
 }
 

@@ -7,10 +7,10 @@ use alloc::vec::Vec;
 
 use glam::{Affine3A, Quat, Vec3};
 
-use creature_gait::{Leg, Plane, Pose, solve_two_bone};
+use creature_gait::{Leg, LimbKind, Plane, Pose, solve_two_bone};
 
 use super::floor::knee_above;
-use super::gait_run::{GaitRun, best_cut};
+use super::gait_run::{GaitRun, best_cut, ranked_cuts};
 use super::kinematics::{forward_kinematics, rotation_arc};
 use super::{CLIP_FPS, Clip, Track, loop_error};
 use crate::Error;
@@ -19,6 +19,25 @@ use crate::d3::Creature;
 /// Seconds the controller runs before a clip's first frame, so the gait is in its steady
 /// rhythm.
 const WARM_UP: f32 = 1.0;
+
+/// The most an arm's joint turns from one frame to the next, in radians (12 rad/s at
+/// [`CLIP_FPS`]).
+const MAX_ARM_TURN_PER_FRAME: f32 = 0.4;
+
+/// Each rotation turned no further than `max` radians from the one before it, following the
+/// track as closely as that allows.
+fn limit_turn_rate(rotations: &mut [Quat], max: f32) {
+    for f in 1..rotations.len() {
+        let (before, now) = (rotations[f - 1], rotations[f]);
+        let angle = before.angle_between(now);
+        if angle > max {
+            rotations[f] = before.slerp(now, max / angle).normalize();
+        }
+    }
+}
+
+/// How many cuts of its window a turn tries to close its loop at.
+const TURN_CUTS: usize = 8;
 
 /// A looping `walk` (see [`Creature::bake_walk_loop`]).
 pub(crate) fn walk_loop(c: &Creature) -> Result<Clip, Error> {
@@ -70,7 +89,16 @@ pub(crate) fn turn(c: &Creature) -> Result<Clip, Error> {
         (score, next) = (tried, after);
     }
     let (_, rate, run, end) = best;
-    let run = c.closed_or_cut(run, end, &Pose::IDENTITY, &setup.legs);
+    // The best cut first; if closing its loop would bring feet across the body or out of
+    // reach, the next best cuts of the window (whose shortfall the closing spreads too).
+    let shortfall = |f: usize| radius * (f as f32 / CLIP_FPS * rate - full).abs();
+    let mut ends = alloc::vec![end];
+    ends.extend(
+        ranked_cuts(&run, window, shortfall, TURN_CUTS)
+            .into_iter()
+            .filter(|&f| f != end),
+    );
+    let run = c.closed_or_cut_among(run, &ends, &Pose::IDENTITY, &setup.legs);
     c.clip_from_run("turn", &run, rate)
 }
 
@@ -90,20 +118,55 @@ pub(crate) fn gait(
 impl Creature {
     /// `run` cut after frame `end` with its loop closed by `motion`, unless closing it leaves a
     /// planted foot further out of its leg's reach than the plain cut does (the spread
-    /// correction can stretch a leg that was nearly straight), or would slide a foot that
+    /// correction can stretch a leg that was nearly straight), brings a foot much nearer the
+    /// body's midline (or across it), or would slide a foot that
     /// never lifts in the clip (a walker so slow that it takes no step in it): then the plain
     /// cut, whose [`Clip::loop_error`] says how far it is from looping (`legs`: the run's).
     fn closed_or_cut(&self, run: GaitRun, end: usize, motion: &Pose, legs: &[Leg]) -> GaitRun {
+        self.closed_or_cut_among(run, &[end], motion, legs)
+    }
+
+    /// [`closed_or_cut`](Self::closed_or_cut) at the first of `ends` whose loop closes well;
+    /// the plain cut at the first if none does.
+    fn closed_or_cut_among(
+        &self,
+        run: GaitRun,
+        ends: &[usize],
+        motion: &Pose,
+        legs: &[Leg],
+    ) -> GaitRun {
+        for &end in ends {
+            if let Some(closed) = self.close_well(&run, end, motion, legs) {
+                return closed;
+            }
+        }
+        let mut cut = run;
+        cut.truncate(ends.first().map_or(cut.frames(), |&e| e + 1));
+        cut
+    }
+
+    /// `run` closed at `end` by `motion`, if that keeps planted feet still, within reach and on
+    /// their side of the body (see [`closed_or_cut`](Self::closed_or_cut)).
+    fn close_well(
+        &self,
+        run: &GaitRun,
+        end: usize,
+        motion: &Pose,
+        legs: &[Leg],
+    ) -> Option<GaitRun> {
         let mut closed = run.clone();
         let planted_shift = closed.close_loop(end, motion);
-        let mut cut = run;
+        let mut cut = run.clone();
         cut.truncate(end + 1);
         let tolerance = 1e-4 * self.length;
-        if planted_shift <= tolerance && closed.overreach(legs) <= cut.overreach(legs) + tolerance {
-            closed
-        } else {
-            cut
-        }
+        // Closing must not bring a foot nearer the midline than the plain cut does, past it, or
+        // nearer than half its margin.
+        let (closed_side, cut_side) = (closed.midline_margin(legs), cut.midline_margin(legs));
+        let side_kept = closed_side >= (0.5 * cut_side).min(cut_side - tolerance);
+        (planted_shift <= tolerance
+            && side_kept
+            && closed.overreach(legs) <= cut.overreach(legs) + tolerance)
+            .then_some(closed)
     }
 
     /// Runs the gait controller at [`CLIP_FPS`] over flat ground for `seconds` after the
@@ -279,7 +342,14 @@ impl Creature {
         }
         // Each leg's hip, knee and foot tracks, then the neck and tail bent toward a turn.
         for tracks in legs {
-            let [hip, knee, foot] = tracks.rotations;
+            let [mut hip, mut knee, mut foot] = tracks.rotations;
+            if tracks.leg.kind == LimbKind::Arm {
+                // Arms hang free: damped, no joint turns faster than the limit (the two-bone
+                // solution can flip an elbow between two frames as the hand passes its pole).
+                for rotations in [&mut hip, &mut knee, &mut foot] {
+                    limit_turn_rate(rotations, MAX_ARM_TURN_PER_FRAME);
+                }
+            }
             clip.tracks.push(Track {
                 joint: tracks.hip,
                 translations: Some(tracks.translations),

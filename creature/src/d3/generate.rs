@@ -573,25 +573,9 @@ fn feet_under_mass(
     if !(front >= back) {
         return false;
     }
-    let Some(centre) = centre_of_volume(&mesh.positions, &mesh.indices) else {
+    let Some((centre, margin)) = standing(&mesh.positions, &mesh.indices, length) else {
         return false;
     };
-    let lowest = mesh
-        .positions
-        .iter()
-        .map(|p| p.y)
-        .fold(f32::INFINITY, f32::min);
-    let mut contacts: Vec<glam::Vec2> = mesh
-        .positions
-        .iter()
-        .filter(|p| p.y <= lowest + 0.005 * length)
-        .map(|p| glam::Vec2::new(p.x, p.z))
-        .collect();
-    let margin = creature_gait::support_margin(
-        &mut contacts,
-        &mut Vec::new(),
-        glam::Vec2::new(centre.x, centre.z),
-    );
     if margin.is_some_and(|m| m >= STABLE_MARGIN * length) {
         return false;
     }
@@ -649,6 +633,29 @@ fn root_on_spine(body: &creature_autorig::Rig) -> Result<usize, Error> {
         })
 }
 
+/// How a mesh stands: its centre of volume, and that centre's margin inside the convex hull
+/// of the vertices on the ground (within 0.5% of `length` of the lowest), as
+/// `creature_gait::support_margin` gives it. `None` when the mesh encloses no volume.
+fn standing(
+    positions: &[Vec3],
+    triangles: &[[u32; 3]],
+    length: f32,
+) -> Option<(Vec3, Option<f32>)> {
+    let centre = centre_of_volume(positions, triangles)?;
+    let lowest = positions.iter().map(|p| p.y).fold(f32::INFINITY, f32::min);
+    let mut contacts: Vec<glam::Vec2> = positions
+        .iter()
+        .filter(|p| p.y <= lowest + 0.005 * length)
+        .map(|p| glam::Vec2::new(p.x, p.z))
+        .collect();
+    let margin = creature_gait::support_margin(
+        &mut contacts,
+        &mut Vec::new(),
+        glam::Vec2::new(centre.x, centre.z),
+    );
+    Some((centre, margin))
+}
+
 /// The spine joints' names, by joint index (see [`Joint::name`]): `spine_0` at the root,
 /// `spine_k` toward the head end, whose joint before the tip is `head` on kinds with a head and
 /// whose tip is `head_end`; `tail_k` toward the tail end (`spine_k` when the root is at the head
@@ -656,7 +663,7 @@ fn root_on_spine(body: &creature_autorig::Rig) -> Result<usize, Error> {
 fn spine_names(body: &creature_autorig::Rig, has_head: bool) -> Vec<String> {
     let mut names = alloc::vec![String::new(); body.joints.len()];
     let spine = &body.spine;
-    let Some(c) = body.root().and_then(|r| spine.iter().position(|&j| j == r)) else {
+    let Ok(c) = root_on_spine(body) else {
         // Rigs built by `rig` root on their spine; name by index otherwise.
         for (i, name) in names.iter_mut().enumerate() {
             *name = format!("spine_{i}");
@@ -998,20 +1005,10 @@ fn measure(
         .fold(f32::INFINITY, f32::min);
     // Walkers: the mesh's centre of volume against the hull of what touches the ground.
     let stands = limb_plan.kind == CreatureKind::Walker;
-    let stability_margin = stands.then_some(()).and_then(|()| {
-        let centre = centre_of_volume(&mesh.positions, &mesh.indices)?;
-        let mut contacts: Vec<glam::Vec2> = mesh
-            .positions
-            .iter()
-            .filter(|p| p.y <= min_height + 0.005 * length)
-            .map(|p| glam::Vec2::new(p.x, p.z))
-            .collect();
-        creature_gait::support_margin(
-            &mut contacts,
-            &mut Vec::new(),
-            glam::Vec2::new(centre.x, centre.z),
-        )
-    });
+    let stability_margin = stands
+        .then(|| standing(&mesh.positions, &mesh.indices, length))
+        .flatten()
+        .and_then(|(_, margin)| margin);
     Quality {
         stability_margin,
         ffd_min_determinant,

@@ -105,7 +105,7 @@ pub struct GaitOptions {
     /// A planted leg steps at once (out of its group's turn) when its foot comes this close to
     /// the body's midline, as a fraction of its rest position's distance from it, `[0, 1]`:
     /// feet never cross to the other side when a long body turns in place. Step targets stay no
-    /// closer to the midline either. Default 0.5.
+    /// closer to the midline than halfway from the margin to the rest position. Default 0.5.
     pub midline_margin: f32,
 }
 

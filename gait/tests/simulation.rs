@@ -8,7 +8,7 @@ mod support;
 use core::f32::consts::TAU;
 
 use creature_gait::glam::{Quat, Vec3};
-use creature_gait::{Controller, GaitOptions, Plane, Pose};
+use creature_gait::{Controller, GaitOptions, Leg, Plane, Pose};
 use support::{Figures, Frame, creature_legs, options, random_terrain, run, straight};
 
 const DT: f32 = 1.0 / 60.0;
@@ -469,4 +469,64 @@ fn regression_turning_in_place_never_crosses_the_feet() {
     // Without the midline margin a long body's front feet swing across.
     let before = turn_crossing(&options().with_midline_margin(0.0), 1.5);
     assert!(before > 0.0, "{before}");
+}
+
+/// A generated walker's legs (creature seed 5005): a long body whose front hips are near the
+/// midline (0.47 m out, 1.6 m ahead of the centre), mirrored.
+fn narrow_front_legs() -> Vec<Leg> {
+    let mut legs = Vec::new();
+    for (hip, upper) in [
+        (Vec3::new(0.466, 2.734, 1.611), 1.777),
+        (Vec3::new(0.635, 2.395, -1.188), 1.557),
+    ] {
+        for side in [1.0, -1.0] {
+            let hip = Vec3::new(side * hip.x, hip.y, hip.z);
+            let rest = Vec3::new(hip.x, 0.0, hip.z);
+            legs.push(Leg::new(hip, rest, upper, upper).with_pole(Vec3::Z));
+        }
+    }
+    legs
+}
+
+/// The farthest a foot moves across the ground between two updates while it stays on it (×
+/// `length`), turning `legs` in place at `rate` for 10 s.
+fn turn_drag(legs: &[Leg], length: f32, rate: f32) -> f32 {
+    let mut controller = Controller::new(legs, &options()).unwrap();
+    let mut before: Vec<Vec3> = Vec::new();
+    let mut worst = 0.0f32;
+    for step in 0..600 {
+        let pose = Pose::from_yaw(Vec3::ZERO, rate * step as f32 * DT);
+        controller
+            .update(DT, pose, Vec3::ZERO, Vec3::Y * rate, &Plane::GROUND)
+            .unwrap();
+        let feet: Vec<Vec3> = controller.leg_states().iter().map(|s| s.foot).collect();
+        for (a, b) in before.iter().zip(&feet) {
+            if a.y <= 1e-5 && b.y <= 1e-5 {
+                worst = worst.max(Vec3::new(b.x - a.x, 0.0, b.z - a.z).length() / length);
+            }
+        }
+        before = feet;
+    }
+    worst
+}
+
+#[test]
+fn regression_turning_in_place_never_drags_a_foot_at_the_midline_margin() {
+    // A step target clamped exactly to the midline margin landed the foot where the next step
+    // started at once: the turning body dragged it along the ground, a new step every update.
+    let cases = [
+        (narrow_front_legs(), 4.2),
+        (creature_legs(2, 1.0), 1.0),
+        (creature_legs(3, 1.0), 1.0),
+    ];
+    for (legs, length) in &cases {
+        for rate in [0.5, 1.0, 1.57, 2.0] {
+            let drag = turn_drag(legs, *length, rate);
+            assert!(
+                drag < 1e-4,
+                "{} legs at {rate} rad/s: a foot on the ground moved {drag} × length in one update",
+                legs.len()
+            );
+        }
+    }
 }

@@ -413,11 +413,13 @@ fn step_target<G: Ground + ?Sized>(
         let length = (reach * o.overshoot * ramp * o.speed_multiplier.max(1.0)).min(reach);
         target += dir * length;
         // A turn's overshoot runs along the circle toward the midline: no closer to it than
-        // the margin.
+        // halfway from the margin to the rest position, so a foot that lands there is not
+        // already at the margin, which would start its next step at once (a turning body
+        // dragged such a foot along the ground, a new one-frame step every frame).
         let side = leg.rest.x;
         if leg.kind == LimbKind::Leg && side != 0.0 {
             let mut local = rotation.transpose() * (target - body);
-            let least = o.midline_margin * side.abs();
+            let least = 0.5 * (1.0 + o.midline_margin) * side.abs();
             if local.x * side.signum() < least {
                 local.x = side.signum() * least;
                 target = *rotation * local + body;

@@ -40,10 +40,7 @@ impl GaitRun {
     /// (radians) change, the heading aside. `end` is a frame of the run.
     pub(super) fn mismatch(&self, end: usize) -> f32 {
         let (a, b) = (&self.bodies[0], &self.bodies[end]);
-        let level = |p: &Pose| {
-            let f = p.rotation * Vec3::Z;
-            Quat::from_rotation_y(glam::Vec2::new(f.z, f.x).to_angle()).inverse() * p.rotation
-        };
+        let level = |p: &Pose| heading(p.rotation).inverse() * p.rotation;
         let mut error = angle_between(level(a), level(b));
         error = error.max((a.translation.y - b.translation.y).abs());
         for leg in 0..self.legs {
@@ -56,17 +53,34 @@ impl GaitRun {
 
     /// Keeps frames `0..=end` and closes the loop: frame `end` becomes frame 0 moved by
     /// `motion` (the root motion over the clip). The body's mismatch is spread linearly over
-    /// the frames; each foot's over its swing frames only (in proportion to the foot's height,
-    /// turning with the body), so planted feet stay where they are and feet lifting off or
-    /// landing move only up and down; a foot that never swings takes it linearly, sliding:
+    /// the frames; each foot's across over its swing frames only (in proportion to the foot's
+    /// height, turning with the body's heading) and up or down along its final swing, so
+    /// planted feet stay where they are, on the ground, and feet lifting off or landing move
+    /// only up and down; a foot that never swings takes it linearly, sliding:
     /// returns the longest such slide (0 when every foot swings or none has to move).
-    pub(super) fn close_loop(&mut self, end: usize, motion: &Pose) -> f32 {
+    ///
+    /// With `hold_seam`, a foot planted at frame 0 that lifts off just before the cut stays
+    /// down until it (frame `end` is frame 0 again), rather than lift off only to be brought
+    /// back along the ground.
+    pub(super) fn close_loop(&mut self, end: usize, motion: &Pose, hold_seam: bool) -> f32 {
         let keep = (end + 1).min(self.frames());
         if keep < 2 {
             return 0.0;
         }
         self.truncate(keep);
         let last = keep - 1;
+        for leg in 0..self.legs {
+            if hold_seam
+                && self.planted(0, leg)
+                && let Some(down) = (1..last).rev().find(|&f| self.planted(f, leg))
+            {
+                let stance = self.foot(down, leg);
+                for f in down + 1..keep {
+                    self.feet[f * self.legs + leg] = stance;
+                    self.contacts[f][leg] = true;
+                }
+            }
+        }
         let (first, end_body) = (self.bodies[0], self.bodies[last]);
         let mut planted_shift = 0.0f32;
         let target = Pose {
@@ -103,20 +117,33 @@ impl GaitRun {
                 // Never lifted: its correction can only slide it.
                 planted_shift = planted_shift.max(delta.length());
             }
+            // Across (turning with the body while made) and up or down apart: a planted foot
+            // keeps its height on the ground, so a correction up or down (a cut between two
+            // swings at different heights) is made along the final swing, from its lift-off to
+            // the last frame.
+            let across = Vec3::new(delta.x, 0.0, delta.z);
+            let lift_off = (0..keep).rev().find(|&f| self.planted(f, leg)).unwrap_or(0);
             let mut done = 0.0f32;
             let mut offset = Vec3::ZERO;
             for (f, &up) in lift.iter().enumerate().skip(1) {
                 if !(swings > 0.0) {
-                    offset = delta * (f as f32 / last as f32);
+                    offset = across * (f as f32 / last as f32);
                 } else if up > 0.0 {
                     done += up;
                     let s = (done / swings).min(1.0);
-                    let relative = (self.bodies[f].rotation * end_rotation.inverse()).normalize();
-                    offset = Quat::IDENTITY.slerp(relative, 1.0 - s) * delta * s;
+                    // Turned by the heading only: the body's lean would tip the correction
+                    // up or down.
+                    let relative = heading(self.bodies[f].rotation * end_rotation.inverse());
+                    offset = Quat::IDENTITY.slerp(relative, 1.0 - s) * across * s;
                 }
+                let rise = if f > lift_off {
+                    delta.y * (f - lift_off) as f32 / (last - lift_off) as f32
+                } else {
+                    0.0
+                };
                 let p = &mut self.feet[f * self.legs + leg];
                 let y = p.y;
-                *p += offset;
+                *p += offset + Vec3::Y * rise;
                 // A lifted foot at the ends may be corrected downward: never below the
                 // ground (y = 0) it was above.
                 if y >= 0.0 {
@@ -158,6 +185,25 @@ impl GaitRun {
 }
 
 impl GaitRun {
+    /// The farthest (metres) any foot moves across the ground while it is on it (no higher
+    /// than `ground`), from where it came down: a slide, planted or not.
+    pub(super) fn ground_slide(&self, ground: f32) -> f32 {
+        let mut worst = 0.0f32;
+        for leg in 0..self.legs {
+            let mut down: Option<Vec3> = None;
+            for f in 0..self.frames() {
+                let p = self.foot(f, leg);
+                if p.y <= ground {
+                    let d = p - *down.get_or_insert(p);
+                    worst = worst.max(glam::Vec2::new(d.x, d.z).length());
+                } else {
+                    down = None;
+                }
+            }
+        }
+        worst
+    }
+
     /// How far (metres) the foot nearest the body's midline is on its own side of it, over
     /// every frame (negative: a foot crossed to the other side). Only walking legs off the
     /// midline (`legs`, the run's).
@@ -173,6 +219,13 @@ impl GaitRun {
         }
         least
     }
+}
+
+/// The rotation about the vertical that turns +Z to where `rotation` points it (the heading,
+/// lean and roll aside).
+pub(super) fn heading(rotation: Quat) -> Quat {
+    let f = rotation * Vec3::Z;
+    Quat::from_rotation_y(glam::Vec2::new(f.z, f.x).to_angle())
 }
 
 /// The frame of `range` with the same feet planted as frame 0 that has the smallest
@@ -223,4 +276,77 @@ pub(super) fn ranked_cuts(
         .collect();
     scored.sort_by(|a, b| a.0.cmp(&b.0).then(a.1.total_cmp(&b.1)).then(a.2.cmp(&b.2)));
     scored.into_iter().take(count).map(|(_, _, f)| f).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// One leg over 11 frames: swinging down at frame 0, planted on frames 4 to 6, swinging up
+    /// again to frame 10 (higher than at frame 0); the body leaning (about X) on some frames.
+    fn one_leg_run() -> GaitRun {
+        let heights = [0.3, 0.2, 0.1, 0.05, 0.0, 0.0, 0.0, 0.1, 0.2, 0.35, 0.5];
+        let bodies = (0..heights.len())
+            .map(|f| Pose {
+                translation: Vec3::new(0.0, 1.0, 0.0),
+                rotation: Quat::from_rotation_y(0.2 * f as f32)
+                    * Quat::from_rotation_x(0.3 * (f % 3) as f32),
+            })
+            .collect();
+        GaitRun {
+            bodies,
+            feet: heights
+                .iter()
+                .enumerate()
+                .map(|(f, &y)| {
+                    // Still while planted.
+                    let f = if (4..=6).contains(&f) { 4.0 } else { f as f32 };
+                    Vec3::new(0.5 + 0.05 * f, y, 0.1 * f)
+                })
+                .collect(),
+            contacts: heights.iter().map(|&y| alloc::vec![y == 0.0]).collect(),
+            legs: 1,
+        }
+    }
+
+    #[test]
+    fn regression_closing_a_loop_keeps_planted_feet_on_the_ground() {
+        // The correction up or down (frame 10 is higher than frame 0) was spread over the
+        // swings and held through the stance between them, and turned with the body's lean:
+        // the planted foot stood above the ground.
+        let mut run = one_leg_run();
+        run.close_loop(10, &Pose::IDENTITY, false);
+        for f in 4..=6 {
+            assert_eq!(run.foot(f, 0).y, 0.0, "frame {f}: {}", run.foot(f, 0));
+        }
+        // Still planted in one place, and the loop closed.
+        assert_eq!(run.foot(4, 0), run.foot(6, 0));
+        assert!(run.foot(10, 0).distance(run.foot(0, 0)) < 1e-5);
+    }
+
+    #[test]
+    fn holding_the_seam_keeps_a_foot_down_until_the_cut() {
+        // Planted at frame 0 and lifting off two frames before the cut: held down instead.
+        let mut run = one_leg_run();
+        run.contacts[0][0] = true;
+        run.feet[0].y = 0.0;
+        let (stance, lifted) = (run.foot(6, 0), run.foot(7, 0));
+        run.close_loop(8, &Pose::IDENTITY, true);
+        assert!(run.planted(7, 0) && run.planted(8, 0));
+        assert_ne!(run.foot(7, 0), lifted);
+        assert_eq!(run.foot(7, 0).y, 0.0);
+        assert_eq!(run.foot(7, 0), run.foot(6, 0));
+        assert_ne!(run.foot(6, 0), stance, "the stance takes the loop's correction");
+    }
+
+    #[test]
+    fn ground_slide_measures_a_foot_moving_on_the_ground() {
+        let mut run = one_leg_run();
+        assert_eq!(run.ground_slide(1e-3), 0.0);
+        // Frame 3 brought down to the ground: 3 to 4 moves across on it.
+        run.feet[3].y = 0.0;
+        let d = run.foot(4, 0) - run.foot(3, 0);
+        let expected = glam::Vec2::new(d.x, d.z).length();
+        assert!((run.ground_slide(1e-3) - expected).abs() < 1e-6);
+    }
 }

@@ -10,7 +10,7 @@ use glam::{Affine3A, Quat, Vec3};
 use creature_gait::{Leg, LimbKind, Plane, Pose, solve_two_bone};
 
 use super::floor::knee_above;
-use super::gait_run::{GaitRun, best_cut, ranked_cuts};
+use super::gait_run::{GaitRun, best_cut, heading, ranked_cuts};
 use super::kinematics::{forward_kinematics, rotation_arc};
 use super::{CLIP_FPS, Clip, Track, loop_error};
 use crate::Error;
@@ -35,6 +35,10 @@ fn limit_turn_rate(rotations: &mut [Quat], max: f32) {
         }
     }
 }
+
+/// How near the ground (× body length) a foot counts as on it, as the audit of delivered
+/// creatures counts it.
+const GROUND_CONTACT: f32 = 0.005;
 
 /// How many cuts of its window a turn tries to close its loop at.
 const TURN_CUTS: usize = 8;
@@ -154,17 +158,38 @@ impl Creature {
         motion: &Pose,
         legs: &[Leg],
     ) -> Option<GaitRun> {
-        let mut closed = run.clone();
-        let planted_shift = closed.close_loop(end, motion);
         let mut cut = run.clone();
         cut.truncate(end + 1);
+        [false, true]
+            .into_iter()
+            .find_map(|hold_seam| self.closed_well(run, &cut, end, motion, legs, hold_seam))
+    }
+
+    /// `run` closed at `end` by `motion` (holding feet down at the seam or not), if that is no
+    /// worse than `cut`, the plain cut (see [`close_well`](Self::close_well)).
+    fn closed_well(
+        &self,
+        run: &GaitRun,
+        cut: &GaitRun,
+        end: usize,
+        motion: &Pose,
+        legs: &[Leg],
+        hold_seam: bool,
+    ) -> Option<GaitRun> {
+        let mut closed = run.clone();
+        let planted_shift = closed.close_loop(end, motion, hold_seam);
         let tolerance = 1e-4 * self.length;
         // Closing must not bring a foot nearer the midline than the plain cut does, past it, or
         // nearer than half its margin.
         let (closed_side, cut_side) = (closed.midline_margin(legs), cut.midline_margin(legs));
         let side_kept = closed_side >= (0.5 * cut_side).min(cut_side - tolerance);
+        // Nor slide a foot along the ground more than the plain cut does (a correction made
+        // while the foot is only lifting off).
+        let ground = GROUND_CONTACT * self.length;
+        let slide_kept = closed.ground_slide(ground) <= cut.ground_slide(ground) + tolerance;
         (planted_shift <= tolerance
             && side_kept
+            && slide_kept
             && closed.overreach(legs) <= cut.overreach(legs) + tolerance)
             .then_some(closed)
     }
@@ -311,8 +336,7 @@ impl Creature {
             clip.root_translation
                 .push(body.translation + body.rotation * rest_root);
             clip.root_rotation.push(body.rotation);
-            let forward = body.rotation * Vec3::Z;
-            let heading = Quat::from_rotation_y(glam::Vec2::new(forward.z, forward.x).to_angle());
+            let heading = heading(body.rotation);
             let up = body.rotation.inverse() * Vec3::Y;
             for (i, tracks) in legs.iter_mut().enumerate() {
                 let (leg, parent) = (tracks.leg, tracks.parent);

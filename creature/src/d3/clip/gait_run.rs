@@ -336,7 +336,11 @@ mod tests {
         assert_ne!(run.foot(7, 0), lifted);
         assert_eq!(run.foot(7, 0).y, 0.0);
         assert_eq!(run.foot(7, 0), run.foot(6, 0));
-        assert_ne!(run.foot(6, 0), stance, "the stance takes the loop's correction");
+        assert_ne!(
+            run.foot(6, 0),
+            stance,
+            "the stance takes the loop's correction"
+        );
     }
 
     #[test]

@@ -62,7 +62,16 @@ impl GaitRun {
     /// With `hold_seam`, a foot planted at frame 0 that lifts off just before the cut stays
     /// down until it (frame `end` is frame 0 again), rather than lift off only to be brought
     /// back along the ground.
-    pub(super) fn close_loop(&mut self, end: usize, motion: &Pose, hold_seam: bool) -> f32 {
+    ///
+    /// A foot no higher than `ground` counts as on the ground: it takes none of the correction
+    /// across.
+    pub(super) fn close_loop(
+        &mut self,
+        end: usize,
+        motion: &Pose,
+        hold_seam: bool,
+        ground: f32,
+    ) -> f32 {
         let keep = (end + 1).min(self.frames());
         if keep < 2 {
             return 0.0;
@@ -101,14 +110,14 @@ impl GaitRun {
         let end_rotation = self.bodies[last].rotation;
         for leg in 0..self.legs {
             let delta = motion.transform_point(self.foot(0, leg)) - self.foot(last, leg);
-            // Progress through the correction: by the swing frames' heights, so a foot takes
-            // none of it while it is lifting off or landing near the ground.
+            // Progress through the correction: by the swing frames' heights above the ground,
+            // so a foot takes none of it while it is lifting off or landing near the ground.
             let lift: Vec<f32> = (0..keep)
                 .map(|f| {
                     if self.planted(f, leg) {
                         0.0
                     } else {
-                        self.foot(f, leg).y.max(0.0)
+                        (self.foot(f, leg).y - ground).max(0.0)
                     }
                 })
                 .collect();
@@ -315,7 +324,7 @@ mod tests {
         // swings and held through the stance between them, and turned with the body's lean:
         // the planted foot stood above the ground.
         let mut run = one_leg_run();
-        run.close_loop(10, &Pose::IDENTITY, false);
+        run.close_loop(10, &Pose::IDENTITY, false, 0.0);
         for f in 4..=6 {
             assert_eq!(run.foot(f, 0).y, 0.0, "frame {f}: {}", run.foot(f, 0));
         }
@@ -331,7 +340,7 @@ mod tests {
         run.contacts[0][0] = true;
         run.feet[0].y = 0.0;
         let (stance, lifted) = (run.foot(6, 0), run.foot(7, 0));
-        run.close_loop(8, &Pose::IDENTITY, true);
+        run.close_loop(8, &Pose::IDENTITY, true, 0.0);
         assert!(run.planted(7, 0) && run.planted(8, 0));
         assert_ne!(run.foot(7, 0), lifted);
         assert_eq!(run.foot(7, 0).y, 0.0);

@@ -36,8 +36,8 @@ fn limit_turn_rate(rotations: &mut [Quat], max: f32) {
     }
 }
 
-/// How near the ground (× body length) a foot counts as on it, as the audit of delivered
-/// creatures counts it.
+/// How near the ground (× body length) a foot counts as on it, and how far a planted foot may
+/// slide, as the audit of delivered creatures counts them.
 const GROUND_CONTACT: f32 = 0.005;
 
 /// How many cuts of its window a turn tries to close its loop at.
@@ -98,11 +98,17 @@ pub(crate) fn turn(c: &Creature) -> Result<Clip, Error> {
     let shortfall = |f: usize| radius * (f as f32 / CLIP_FPS * rate - full).abs();
     let mut ends = alloc::vec![end];
     ends.extend(
-        ranked_cuts(&run, window, shortfall, TURN_CUTS)
+        ranked_cuts(&run, window.clone(), shortfall, TURN_CUTS)
             .into_iter()
             .filter(|&f| f != end),
     );
-    let run = c.closed_or_cut_among(run, &ends, &Pose::IDENTITY, &setup.legs);
+    // Cut plainly (no cut closes well), at the frame of the run that completes the turn most
+    // nearly.
+    let plain = window
+        .filter(|&f| f < run.frames())
+        .min_by(|&a, &b| shortfall(a).total_cmp(&shortfall(b)))
+        .unwrap_or(end);
+    let run = c.closed_or_cut_among(run, &ends, plain, &Pose::IDENTITY, &setup.legs);
     c.clip_from_run("turn", &run, rate)
 }
 
@@ -127,15 +133,16 @@ impl Creature {
     /// never lifts in the clip (a walker so slow that it takes no step in it): then the plain
     /// cut, whose [`Clip::loop_error`] says how far it is from looping (`legs`: the run's).
     fn closed_or_cut(&self, run: GaitRun, end: usize, motion: &Pose, legs: &[Leg]) -> GaitRun {
-        self.closed_or_cut_among(run, &[end], motion, legs)
+        self.closed_or_cut_among(run, &[end], end, motion, legs)
     }
 
     /// [`closed_or_cut`](Self::closed_or_cut) at the first of `ends` whose loop closes well;
-    /// the plain cut at the first if none does.
+    /// the plain cut after frame `plain` if none does.
     fn closed_or_cut_among(
         &self,
         run: GaitRun,
         ends: &[usize],
+        plain: usize,
         motion: &Pose,
         legs: &[Leg],
     ) -> GaitRun {
@@ -145,7 +152,7 @@ impl Creature {
             }
         }
         let mut cut = run;
-        cut.truncate(ends.first().map_or(cut.frames(), |&e| e + 1));
+        cut.truncate(plain + 1);
         cut
     }
 
@@ -177,16 +184,17 @@ impl Creature {
         hold_seam: bool,
     ) -> Option<GaitRun> {
         let mut closed = run.clone();
-        let planted_shift = closed.close_loop(end, motion, hold_seam);
+        let ground = GROUND_CONTACT * self.length;
+        let planted_shift = closed.close_loop(end, motion, hold_seam, ground);
         let tolerance = 1e-4 * self.length;
         // Closing must not bring a foot nearer the midline than the plain cut does, past it, or
         // nearer than half its margin.
         let (closed_side, cut_side) = (closed.midline_margin(legs), cut.midline_margin(legs));
         let side_kept = closed_side >= (0.5 * cut_side).min(cut_side - tolerance);
-        // Nor slide a foot along the ground more than the plain cut does (a correction made
-        // while the foot is only lifting off).
-        let ground = GROUND_CONTACT * self.length;
-        let slide_kept = closed.ground_slide(ground) <= cut.ground_slide(ground) + tolerance;
+        // Nor slide a foot along the ground (a correction made while the foot is only lifting
+        // off) more than the plain cut does or half what the audit allows.
+        let slide_kept = closed.ground_slide(ground)
+            <= (cut.ground_slide(ground) + tolerance).max(0.5 * GROUND_CONTACT * self.length);
         (planted_shift <= tolerance
             && side_kept
             && slide_kept

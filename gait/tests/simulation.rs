@@ -334,7 +334,10 @@ fn a_teleport_makes_every_leg_escape_and_land_on_the_new_ground() {
 }
 
 /// Steps that start within `frames` updates of the same leg's landing, for a creature with
-/// `pairs` pairs running at `speed` (speed multiplier `multiplier`) while turning at `rate`.
+/// `pairs` pairs running at `speed` (speed multiplier `multiplier`) while turning at `rate`,
+/// from ahead of the foot's rest position (along that position's own motion, which a tight
+/// turn points far from the body's velocity at the ends of a long body); but for steps that
+/// the feet's limits force: a foot at the body's midline margin or out of its leg's reach.
 fn quick_resteps(
     pairs: usize,
     multiplier: f32,
@@ -360,8 +363,21 @@ fn quick_resteps(
         for (i, s) in controller.leg_states().iter().enumerate() {
             if s.stepping && !was_stepping[i] {
                 steps += 1;
-                if let Some(landed) = landed_at[i].filter(|&landed| k < landed + frames) {
-                    let ahead = (s.step_start - s.anchor).dot(velocity) / speed;
+                let shown = controller.reacted_pose();
+                let x = (shown.rotation.inverse() * (s.step_start - shown.translation)).x;
+                let margin = o.midline_margin * legs[i].rest.x.abs();
+                let at_midline = x * legs[i].rest.x.signum() < 1.1 * margin;
+                let hip = shown.rotation * legs[i].hip + shown.translation;
+                let reach = legs[i].upper + legs[i].lower;
+                let out_of_reach = s.step_start.distance(hip) > 0.98 * reach;
+                // The rest position's motion, as the controller sees it.
+                let rest = shown.rotation * legs[i].rest + shown.translation;
+                let mut motion = velocity + turn.cross(rest - shown.translation);
+                motion.y = 0.0;
+                let ahead = (s.step_start - s.anchor).dot(motion.normalize_or_zero());
+                if let Some(landed) = landed_at[i].filter(|&landed| {
+                    k < landed + frames && ahead > 0.0 && !at_midline && !out_of_reach
+                }) {
                     quick.push(format!(
                         "leg {i} landed at frame {landed}, stepped again at {k} from {ahead:.3} m ahead"
                     ));

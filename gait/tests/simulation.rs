@@ -487,14 +487,11 @@ fn regression_turning_in_place_never_crosses_the_feet() {
     assert!(before > 0.0, "{before}");
 }
 
-/// A generated walker's legs (creature seed 5005): a long body whose front hips are near the
-/// midline (0.47 m out, 1.6 m ahead of the centre), mirrored.
-fn narrow_front_legs() -> Vec<Leg> {
+/// A generated walker's legs: each `(left hip, segment length)` mirrored to the right, its
+/// foot at rest straight under the hip on the ground.
+fn mirrored_legs(pairs: &[(Vec3, f32)]) -> Vec<Leg> {
     let mut legs = Vec::new();
-    for (hip, upper) in [
-        (Vec3::new(0.466, 2.734, 1.611), 1.777),
-        (Vec3::new(0.635, 2.395, -1.188), 1.557),
-    ] {
+    for &(hip, upper) in pairs {
         for side in [1.0, -1.0] {
             let hip = Vec3::new(side * hip.x, hip.y, hip.z);
             let rest = Vec3::new(hip.x, 0.0, hip.z);
@@ -502,6 +499,15 @@ fn narrow_front_legs() -> Vec<Leg> {
         }
     }
     legs
+}
+
+/// A generated walker's legs (creature seed 5005): a long body whose front hips are near the
+/// midline (0.47 m out, 1.6 m ahead of the centre).
+fn narrow_front_legs() -> Vec<Leg> {
+    mirrored_legs(&[
+        (Vec3::new(0.466, 2.734, 1.611), 1.777),
+        (Vec3::new(0.635, 2.395, -1.188), 1.557),
+    ])
 }
 
 /// The farthest a foot moves across the ground between two updates while it stays on it (×
@@ -545,4 +551,31 @@ fn regression_turning_in_place_never_drags_a_foot_at_the_midline_margin() {
             );
         }
     }
+}
+
+#[test]
+fn regression_a_lifting_foot_does_not_drift_across_the_midline() {
+    // A generated walker's legs (creature seed 5465: front hips 0.27 m off the midline, 1.4 m
+    // ahead) turning in place at 1.57 rad/s, 30 updates a second: a foot that reached the
+    // midline margin stepped, but drifted on across the midline while it lifted off (and for
+    // the update the shown body lags by).
+    let legs = mirrored_legs(&[
+        (Vec3::new(0.275, 2.205, 1.395), 1.434),
+        (Vec3::new(0.461, 1.902, -0.648), 1.236),
+    ]);
+    let (dt, rate) = (1.0 / 30.0, 1.57);
+    let mut controller = Controller::new(&legs, &options()).unwrap();
+    let mut worst = f32::NEG_INFINITY;
+    for step in 0..300 {
+        let pose = Pose::from_yaw(Vec3::ZERO, rate * step as f32 * dt);
+        controller
+            .update(dt, pose, Vec3::ZERO, Vec3::Y * rate, &Plane::GROUND)
+            .unwrap();
+        let shown = controller.reacted_pose();
+        for (leg, state) in legs.iter().zip(controller.leg_states()) {
+            let x = (shown.rotation.inverse() * (state.foot - shown.translation)).x;
+            worst = worst.max(-x * leg.rest.x.signum());
+        }
+    }
+    assert!(worst < 0.0, "a foot went {worst} m past the midline");
 }

@@ -222,10 +222,12 @@ impl Creature {
     }
 
     /// Bakes a walker's `turn` clip: turning in place to its left at about a quarter turn per
-    /// second, one full turn, the legs stepping with the rotation and the neck and tail bent
-    /// toward the turn (0.35 rad over each, shared by its bones). It is cut, like
-    /// [`bake_walk_loop`](Self::bake_walk_loop), at the frame from 3.5 s to 4.5 s with the
-    /// same feet planted as the first that best completes the turn; the rate is then retried
+    /// second, slower for a long walker whose farthest foot would sweep round faster than it
+    /// walks (one turn in 12 s at the slowest), one full turn, the legs stepping with the
+    /// rotation and the neck and tail bent toward the turn (0.35 rad over each, shared by its
+    /// bones). It is cut, like [`bake_walk_loop`](Self::bake_walk_loop), at the frame within
+    /// half a second of the full turn with the same feet planted as the first that best
+    /// completes the turn; the rate is then retried
     /// (up to twice) so that the turn completes exactly at the cut, and the best try kept.
     /// Its loop is closed exactly (the root ends where it started, a full turn later, any
     /// shortfall of the turn spread over the clip, each foot's mismatch spread over its swings
@@ -239,7 +241,7 @@ impl Creature {
     ///
     /// let walker = generate(7, &Params::DEFAULT.with_kind(Kind::Walker))?;
     /// let turn = walker.bake_turn()?;
-    /// assert!(turn.duration() > 3.0 && turn.duration() < 5.0);
+    /// assert!(turn.duration() > 3.0 && turn.duration() < 12.6);
     /// # Ok::<(), creature::Error>(())
     /// ```
     ///

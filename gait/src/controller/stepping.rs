@@ -184,10 +184,15 @@ impl Controller {
                 flags |= ESCAPE;
             }
             // Coming near the body's midline (a long body turning in place swings its outer
-            // feet across): step now, out of turn, before the feet cross.
+            // feet across): step now, out of turn, before the feet cross. Where the foot will be
+            // once it is off the ground: it drifts on (opposite its rest position's motion,
+            // in the body's frame) for the update the body as shown lags by and the lift-off,
+            // no longer than `plant_fraction` of a step at the slowest progress.
             let side = leg.rest.x;
             if leg.kind == LimbKind::Leg && side != 0.0 {
-                let local_x = (shown.1.transpose() * (state.foot - shown.0)).x;
+                let to_body = shown.1.transpose();
+                let lead = dt + o.plant_fraction / o.settle_rate;
+                let local_x = (to_body * (state.foot - shown.0 - *motion * lead)).x;
                 if local_x * side.signum() < o.midline_margin * side.abs() {
                     flags |= WANT | ESCAPE;
                 }

@@ -4,6 +4,8 @@
 
 use alloc::vec::Vec;
 
+use core::f32::consts::{PI, TAU};
+
 use glam::{Quat, Vec3};
 
 use creature_gait::{Leg, LimbKind, Pose};
@@ -107,7 +109,24 @@ impl GaitRun {
         // held while the foot is planted: a correction outward at the end of a turn in place
         // is outward all along (in world space, half a turn earlier, it would pull the foot
         // across the body). It reaches the exact world correction with the last swing.
-        let end_rotation = self.bodies[last].rotation;
+        // Each frame's heading from the last frame's, unwrapped: over a full turn it runs
+        // through ±π, where a rotation taken the shortest way round flips the correction to the
+        // other side of the body from one frame to the next.
+        let yaw = |q: Quat| {
+            let f = q * Vec3::Z;
+            glam::Vec2::new(f.z, f.x).to_angle()
+        };
+        let mut turned = alloc::vec![0.0f32; keep];
+        for f in (0..last).rev() {
+            // Both in [-π, π]: one turn at most to take off.
+            let mut step = yaw(self.bodies[f].rotation) - yaw(self.bodies[f + 1].rotation);
+            if step > PI {
+                step -= TAU;
+            } else if step < -PI {
+                step += TAU;
+            }
+            turned[f] = turned[f + 1] + step;
+        }
         for leg in 0..self.legs {
             let delta = motion.transform_point(self.foot(0, leg)) - self.foot(last, leg);
             // Progress through the correction: by the swing frames' heights above the ground,
@@ -142,8 +161,7 @@ impl GaitRun {
                     let s = (done / swings).min(1.0);
                     // Turned by the heading only: the body's lean would tip the correction
                     // up or down.
-                    let relative = heading(self.bodies[f].rotation * end_rotation.inverse());
-                    offset = Quat::IDENTITY.slerp(relative, 1.0 - s) * across * s;
+                    offset = Quat::from_rotation_y((1.0 - s) * turned[f]) * across * s;
                 }
                 let rise = if f > lift_off {
                     delta.y * (f - lift_off) as f32 / (last - lift_off) as f32

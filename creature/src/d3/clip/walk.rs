@@ -40,6 +40,9 @@ fn limit_turn_rate(rotations: &mut [Quat], max: f32) {
 /// slide, as the audit of delivered creatures counts them.
 const GROUND_CONTACT: f32 = 0.005;
 
+/// The longest a `turn` takes to turn once (seconds), however long the walker.
+const MAX_TURN_SECONDS: f32 = 12.0;
+
 /// How many cuts of its window a turn tries to close its loop at.
 const TURN_CUTS: usize = 8;
 
@@ -58,7 +61,22 @@ pub(crate) fn walk_loop(c: &Creature) -> Result<Clip, Error> {
 pub(crate) fn turn(c: &Creature) -> Result<Clip, Error> {
     let setup = c.gait.as_ref().ok_or(Error::NoGait)?;
     let full = core::f32::consts::TAU;
-    let window = (3.5 * CLIP_FPS) as usize..(4.5 * CLIP_FPS) as usize + 1;
+    // A quarter turn a second, or slower: no foot's rest position sweeps round faster than
+    // the creature walks (a long body's end feet would be carried past the midline between two
+    // frames), but a full turn in at most `MAX_TURN_SECONDS`.
+    let farthest = setup
+        .legs
+        .iter()
+        .filter(|l| l.kind == LimbKind::Leg)
+        .map(|l| glam::Vec2::new(l.rest.x, l.rest.z).length())
+        .fold(0.0, f32::max);
+    let mut rate = core::f32::consts::FRAC_PI_2;
+    if farthest * rate > c.speed {
+        rate = (c.speed / farthest).max(full / MAX_TURN_SECONDS);
+    }
+    // The cut: half a second either side of the full turn at that rate.
+    let seconds = full / rate;
+    let window = ((seconds - 0.5) * CLIP_FPS) as usize..((seconds + 0.5) * CLIP_FPS) as usize + 1;
     // The turn's shortfall (or excess) at the cut is spread over the clip, which moves the
     // hips over the planted feet: it weighs as far as it moves the farthest hip.
     let radius = setup
@@ -71,14 +89,13 @@ pub(crate) fn turn(c: &Creature) -> Result<Clip, Error> {
     // rate), keeping the best of three.
     // A try at `rate`: its score, run, cut and the rate that completes the turn at the cut.
     let attempt = |rate: f32| -> Result<(f32, GaitRun, usize, f32), Error> {
-        let run = c.simulate_gait(5.0, 0.0, rate)?;
+        let run = c.simulate_gait(seconds + 1.0, 0.0, rate)?;
         let shortfall = |f: usize| radius * (f as f32 / CLIP_FPS * rate - full).abs();
         let end = best_cut(&run, window.clone(), shortfall);
         let score = run.mismatch(end) + shortfall(end);
         let next = full / (end.max(1) as f32 / CLIP_FPS);
         Ok((score, run, end, next))
     };
-    let mut rate = core::f32::consts::FRAC_PI_2;
     let (mut score, run, end, mut next) = attempt(rate)?;
     let mut best = (score, rate, run, end);
     for _ in 1..3 {

@@ -165,3 +165,14 @@ fn regression_a_long_walker_turns_no_faster_than_its_feet_follow() {
     assert!(turn.duration() > 6.0, "{} s", turn.duration());
     walkers_pass(&[5887, 5634, 5616], &[Check::FeetCross]);
 }
+
+#[test]
+fn regression_sideways_knees_of_an_upright_leg_are_not_flipped_across_the_body() {
+    // A knee's pole was flipped whenever, square to the leg, it dipped at all: the left leg of
+    // seed 87 (nearly upright, knees bending sideways) had its knee turned in, toward the right
+    // leg, and the two legs passed through each other in the turn.
+    walkers_pass(&[87, 477, 785], &[Check::LegsIntersect]);
+    let c = d3::generate(87, &d3::Params::DEFAULT.with_kind(Kind::Walker)).unwrap();
+    let legs = &c.gait.as_ref().unwrap().legs;
+    assert!(legs[0].pole.x > 0.0 && legs[1].pole.x < 0.0, "{legs:?}");
+}

@@ -443,10 +443,13 @@ pub(crate) fn add_limb(
             };
             // The knee bends toward the pole, square to the hip–foot line; a leg slanted far
             // (its foot moved under the mass) bends its knee the other way rather than down
-            // toward the ground.
+            // toward the ground. Only far: square to a leg that is nearly upright, a level pole
+            // dips a little, and a sideways knee flipped for that would point across the body
+            // into the other leg.
             let pole = (bone.pole)(knee, out);
             let axis = (end - hip).normalize_or(Vec3::NEG_Y);
-            let pole = if (pole - axis * pole.dot(axis)).y < 0.0 {
+            let square = pole - axis * pole.dot(axis);
+            let pole = if square.y < -0.5 * square.length() {
                 -pole
             } else {
                 pole

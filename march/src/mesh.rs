@@ -36,7 +36,10 @@ pub struct MeshOptions {
     pub clearance: f32,
     /// Delaunay refinement (Ruppert's, with Üngör's off-centres) adds points until every triangle's
     /// smallest angle is at least this many degrees; ring edges may be split, the outline's
-    /// shape is kept. 0 turns refinement off. From 0 to 33. Default 20.
+    /// shape is kept up to the rounding of the split points to `f32` (which moves the mesh's
+    /// area by at most 2⁻¹⁴ of the rings' area in all: a split that would move it further is
+    /// not made, and [`MeshQuality::refinement_complete`] may then be `false`). 0 turns
+    /// refinement off. From 0 to 33. Default 20.
     pub min_angle: f32,
     /// The most points refinement may add; `None` allows ten times the starting count.
     /// Default `None`.

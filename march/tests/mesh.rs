@@ -308,3 +308,75 @@ fn thin_rings_with_a_long_extent_triangulate() {
         }
     }
 }
+
+/// Twice the signed area of a mesh, in `f64` (exact products of `f32` coordinates).
+fn mesh_area2(mesh: &Mesh2) -> f64 {
+    mesh.triangles
+        .iter()
+        .map(|t| {
+            let [a, b, c] = t.map(|i| mesh.positions[i as usize].as_dvec2());
+            (b - a).perp_dot(c - a)
+        })
+        .sum()
+}
+
+/// Regression (fuzz, `triangulate`): refinement split the ring edges of a triangle about
+/// 1.5e-5 wide at midpoints rounded to `f32`, each off its edge by up to half a unit in the
+/// last place, and the mesh covered 0.4 % more than the triangle (spade's CDT: exactly it).
+/// The slivers the rounded split points add or cut are now bounded by 2⁻¹⁴ of the area.
+#[test]
+fn regression_refinement_keeps_the_area_of_a_thin_triangle() {
+    let points = vec![
+        Vec2::new(-8.0, -8.0),
+        Vec2::new(3.000_03, 3.0),
+        Vec2::new(0.0, 0.0),
+    ];
+    let exact = {
+        let [a, b, c] = [points[0], points[1], points[2]].map(Vec2::as_dvec2);
+        (b - a).perp_dot(c - a)
+    };
+    assert!(exact > 0.0);
+    let rings = vec![Ring {
+        points,
+        hole: false,
+        parent: None,
+    }];
+    for options in [
+        MeshOptions::DEFAULT,
+        MeshOptions::DEFAULT.with_min_angle(33.0),
+        MeshOptions::DEFAULT.with_interior_spacing(0.0),
+    ] {
+        let mesh = triangulate(&rings, &options).unwrap();
+        check_mesh(&mesh, &rings, true);
+        let area = mesh_area2(&mesh);
+        assert!(
+            (area - exact).abs() <= exact / 16384.0,
+            "mesh twice-area {area} vs the triangle's {exact} ({options:?})"
+        );
+    }
+}
+
+/// Regression (fuzz, `triangulate`, a 10 s timeout): a 4-point ring 131,075 long and about 100
+/// wide with interior spacing 20 puts some 37,000 lattice points inside; its long left edge
+/// lies on their hull, so before the constraint is inserted thousands of edges from those
+/// points to a far super vertex cross it, and finding each edge by walking the super vertex's
+/// star made inserting it cubic. It meshes in well under a second now.
+#[test]
+fn regression_a_long_ring_with_a_dense_lattice_meshes_quickly() {
+    let rings = vec![Ring {
+        points: vec![
+            Vec2::new(0.0, 7.089_700_3e-38),
+            Vec2::new(0.75, 3.0),
+            Vec2::new(-100.0, -99.957_275),
+            Vec2::new(1.387_778_8e-15, -131_075.03),
+        ],
+        hole: false,
+        parent: None,
+    }];
+    let options = MeshOptions::DEFAULT
+        .with_min_angle(20.035_156)
+        .with_max_added_vertices(Some(255));
+    let mesh = triangulate(&rings, &options).unwrap();
+    assert!(mesh.positions.len() > 10_000, "{}", mesh.positions.len());
+    check_mesh(&mesh, &rings, true);
+}

@@ -716,7 +716,10 @@ fn regression_wyvill_culling_keeps_a_ball_whose_rounded_q_is_below_one() {
         assert_eq!(f2.error_bound(), 0.0);
         assert_eq!(f3.error_bound(), 0.0);
         let p = Vec2::new(r, 0.0);
-        assert!(f2.value_exact(p) > 0.0, "the case needs a positive exact value");
+        assert!(
+            f2.value_exact(p) > 0.0,
+            "the case needs a positive exact value"
+        );
         for x in rim {
             for p in [Vec2::new(x, 0.0), Vec2::new(0.0, x)] {
                 assert_eq!(f2.value(p).to_bits(), f2.value_exact(p).to_bits(), "{p}");

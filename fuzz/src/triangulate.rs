@@ -196,24 +196,6 @@ fn rings_are_simple(rings: &[Ring]) -> bool {
     true
 }
 
-/// Even–odd containment in `f64`.
-fn inside(rings: &[Ring], x: f64, y: f64) -> bool {
-    let mut odd = false;
-    for ring in rings {
-        let n = ring.points.len();
-        for i in 0..n {
-            let (a, b) = (
-                ring.points[i].as_dvec2(),
-                ring.points[(i + 1) % n].as_dvec2(),
-            );
-            if (a.y > y) != (b.y > y) && x < a.x + (y - a.y) / (b.y - a.y) * (b.x - a.x) {
-                odd = !odd;
-            }
-        }
-    }
-    odd
-}
-
 /// The area spade's constrained triangulation of the ring edges covers inside the rings, or
 /// `None` when spade cannot take the points (coordinates outside its range).
 fn spade_area(rings: &[Ring]) -> Option<Result<f64, String>> {
@@ -237,12 +219,38 @@ fn spade_area(rings: &[Ring]) -> Option<Result<f64, String>> {
             cdt.add_constraint(a, b);
         }
     }
+    // Which faces lie inside, by even–odd parity of the constraint edges crossed from the
+    // outer face (as the mesher decides), not by testing a centroid: a sliver's centroid
+    // rounds onto its edge's line, and its area in plain `f64` cancels to 0 (regression: the
+    // ring (3.000002, 6), (0, 5.9e-39), (−100, −100), (0, 0) has a wedge 5.9e-39 wide that
+    // the centroid test left out, and spade's area was 3 % of the ring's).
+    let mut inside: Vec<Option<bool>> = vec![None; cdt.num_all_faces()];
+    let mut stack = Vec::new();
+    for face in cdt.inner_faces() {
+        for e in face.adjacent_edges() {
+            if e.rev().face().is_outer() && inside[face.fix().index()].is_none() {
+                inside[face.fix().index()] = Some(e.is_constraint_edge());
+                stack.push(face);
+            }
+        }
+    }
+    while let Some(face) = stack.pop() {
+        let side = inside[face.fix().index()].unwrap();
+        for e in face.adjacent_edges() {
+            if let Some(next) = e.rev().face().as_inner() {
+                let slot = &mut inside[next.fix().index()];
+                if slot.is_none() {
+                    *slot = Some(side ^ e.is_constraint_edge());
+                    stack.push(next);
+                }
+            }
+        }
+    }
     let mut area = 0.0;
     for face in cdt.inner_faces() {
-        let [a, b, c] = face.positions();
-        let (cx, cy) = ((a.x + b.x + c.x) / 3.0, (a.y + b.y + c.y) / 3.0);
-        if inside(rings, cx, cy) {
-            area += ((b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y)).abs() / 2.0;
+        if inside[face.fix().index()] == Some(true) {
+            let [a, b, c] = face.positions().map(|p| robust::Coord { x: p.x, y: p.y });
+            area += robust::orient2d(a, b, c).abs() / 2.0;
         }
     }
     Some(Ok(area))

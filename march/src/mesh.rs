@@ -728,7 +728,10 @@ fn quality(
         }
     }
     if let Some((y, x)) = worst {
-        q.min_angle = crate::math::atan2(y, x).to_degrees();
+        // No triangle's smallest angle exceeds 60°; rounding of the tangent and `atan2` gave
+        // 60.000004 for near-equilateral ones (regression:
+        // `regression_min_angle_of_an_equilateral_triangle_is_at_most_60`).
+        q.min_angle = crate::math::atan2(y, x).to_degrees().min(60.0);
     }
     // Refinement leaves alone the triangles at input corners sharper than the limit (a
     // pinch between two blobs): it is complete only where the limit really holds.

@@ -380,3 +380,41 @@ fn regression_a_long_ring_with_a_dense_lattice_meshes_quickly() {
     assert!(mesh.positions.len() > 10_000, "{}", mesh.positions.len());
     check_mesh(&mesh, &rings, true);
 }
+
+/// Regression (fuzz, `triangulate`): `quality.min_angle` of a near-equilateral triangle came
+/// out as 60.000004° (`atan2` of the rounded tangent), above the 60° no triangle's smallest
+/// angle can exceed.
+#[test]
+fn regression_min_angle_of_an_equilateral_triangle_is_at_most_60() {
+    let mut above = Vec::new();
+    for k in 0..400 {
+        let center = Vec2::new(k as f32 * 7.3 - 1000.0, -8.0 + k as f32 * 0.37);
+        for scale in [0.01, 0.7, 1.0, 37.5, 1000.0] {
+            let points: Vec<Vec2> = (0..3)
+                .map(|i| {
+                    let angle = i as f32 / 3.0 * core::f32::consts::TAU;
+                    center + Vec2::from_angle(angle) * 0.5 * scale
+                })
+                .collect();
+            let rings = vec![Ring {
+                points,
+                hole: false,
+                parent: None,
+            }];
+            let options = MeshOptions::DEFAULT
+                .with_interior_spacing(0.0)
+                .with_min_angle(0.0);
+            let mesh = triangulate(&rings, &options).unwrap();
+            assert_eq!(mesh.triangles.len(), 1);
+            if !(mesh.quality.min_angle <= 60.0) {
+                above.push((center, scale, mesh.quality.min_angle));
+            }
+        }
+    }
+    assert!(
+        above.is_empty(),
+        "{} above 60°: {:?}",
+        above.len(),
+        &above[..above.len().min(4)]
+    );
+}

@@ -128,6 +128,19 @@ pub fn options(input: &Input, rings: &[Ring]) -> MeshOptions {
         .with_simplify(simplify)
 }
 
+/// The rings' bounding box, in `f64`.
+fn bounds(rings: &[Ring]) -> (glam::DVec2, glam::DVec2) {
+    let (mut lo, mut hi) = (
+        glam::DVec2::splat(f64::INFINITY),
+        glam::DVec2::splat(f64::NEG_INFINITY),
+    );
+    for p in rings.iter().flat_map(|r| &r.points) {
+        lo = lo.min(p.as_dvec2());
+        hi = hi.max(p.as_dvec2());
+    }
+    (lo, hi)
+}
+
 fn extent(rings: &[Ring]) -> f32 {
     let (mut lo, mut hi) = (Vec2::splat(f32::INFINITY), Vec2::splat(f32::NEG_INFINITY));
     for p in rings.iter().flat_map(|r| &r.points) {
@@ -318,10 +331,15 @@ pub fn run(input: &Input) {
     let options = options(input, &rings);
     if options.validate().is_ok() && options.interior_spacing > 0.0 {
         // Keep an execution short: skip between ~20k interior lattice points and well past
-        // MAX_INTERIOR_POINTS, where triangulate must refuse at once (checked below).
-        let e = f64::from(extent(&rings));
-        let count = (e / f64::from(options.interior_spacing)).powi(2);
-        if count > 20_000.0 && count < 4.0 * creature_march::MAX_INTERIOR_POINTS as f64 {
+        // MAX_INTERIOR_POINTS, where triangulate refuses at once. The count is triangulate's
+        // own, over the bounding box (a thin box holds far fewer points than the square of
+        // its extent: a triangle 6.5e6 by 49 took minutes). Simplified rings may have a
+        // smaller box, so with `simplify` every large lattice is skipped.
+        let (lo, hi) = bounds(&rings);
+        let spacing = f64::from(options.interior_spacing);
+        let count = ((hi.x - lo.x) / spacing + 1.0) * ((hi.y - lo.y) / (spacing * 0.866) + 1.0);
+        let refused = count > 4.0 * creature_march::MAX_INTERIOR_POINTS as f64;
+        if count > 20_000.0 && (!refused || options.simplify > 0.0) {
             return;
         }
     }

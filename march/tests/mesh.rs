@@ -418,3 +418,32 @@ fn regression_min_angle_of_an_equilateral_triangle_is_at_most_60() {
         &above[..above.len().min(4)]
     );
 }
+
+/// Regression (fuzz, `triangulate`, a 10 s timeout that ran for minutes): a thin triangle
+/// 6.5e6 long holds some 30,000 interior lattice points at spacing 20; inserting its long
+/// edges after them meant flipping tens of thousands of crossing edges out of the way,
+/// quadratic in their number. The ring edges now go in before the interior points.
+#[test]
+fn regression_a_long_thin_triangle_with_many_interior_points_meshes_quickly() {
+    let rings = vec![Ring {
+        points: vec![
+            Vec2::new(3.0, 6.0),
+            Vec2::new(0.0, 3.0),
+            Vec2::new(-6_553_600.0, -43.25),
+        ],
+        hole: false,
+        parent: None,
+    }];
+    let options = MeshOptions::DEFAULT
+        .with_clearance(0.0)
+        .with_min_angle(5.5e-44)
+        .with_max_added_vertices(Some(0));
+    let mesh = triangulate(&rings, &options).unwrap();
+    assert!(mesh.positions.len() > 20_000, "{}", mesh.positions.len());
+    let area: f64 = mesh_area2(&mesh);
+    let [a, b, c] =
+        [rings[0].points[0], rings[0].points[1], rings[0].points[2]].map(Vec2::as_dvec2);
+    // The ring is clockwise; the mesh's triangles are counter-clockwise.
+    let exact = (b - a).perp_dot(c - a).abs();
+    assert!((area - exact).abs() <= exact * 1e-9, "{area} vs {exact}");
+}

@@ -657,13 +657,12 @@ fn min_angle_deg(a: Vec2, b: Vec2, c: Vec2) -> f32 {
 /// angle's tangent is `2·area / dot` of its two edges, the smallest angle is the one opposite
 /// the shortest edge (it is acute: at most 60°), and the twice-area is taken at the corner
 /// between the two shorter edges, where it loses the least to rounding.
+///
+/// In `f64`, scaled back into `f32` with the ratio kept: in `f32` the edges' products
+/// overflow for coordinates near `f32::MAX` (finding 12 of issue 17) and underflow for tiny
+/// ones (regression: a sliver with vertices 5e-32 and 9e-38 from the origin read 29.5° for
+/// 0.00016°); in `f64` neither happens to the products of `f32` coordinates.
 fn min_angle_tan(a: Vec2, b: Vec2, c: Vec2) -> (f32, f32) {
-    let (y, x) = min_angle_tan_f32(a, b, c);
-    if y.is_finite() && x.is_finite() {
-        return (y, x);
-    }
-    // Coordinates so large that the edges' products overflow `f32`: the same in `f64`, scaled
-    // back into `f32` with the ratio kept.
     let [a, b, c] = [a, b, c].map(|p| p.as_dvec2());
     let corners = [
         (b - a, c - a, (c - b).length_squared()),
@@ -686,30 +685,6 @@ fn min_angle_tan(a: Vec2, b: Vec2, c: Vec2) -> (f32, f32) {
     } else {
         (0.0, 1.0)
     }
-}
-
-/// [`min_angle_tan`] in `f32`, exact enough for every mesh of coordinates below about 1e18.
-fn min_angle_tan_f32(a: Vec2, b: Vec2, c: Vec2) -> (f32, f32) {
-    // Corner `k`: its two edges, and the squared length of the edge opposite it.
-    let corners = [
-        (b - a, c - a, (c - b).length_squared()),
-        (c - b, a - b, (a - c).length_squared()),
-        (a - c, b - c, (b - a).length_squared()),
-    ];
-    let mut smallest = corners[0];
-    let mut widest = corners[0];
-    for corner in corners {
-        if corner.2 < smallest.2 {
-            smallest = corner;
-        }
-        if corner.2 > widest.2 {
-            widest = corner;
-        }
-    }
-    (
-        widest.0.perp_dot(widest.1).abs(),
-        smallest.0.dot(smallest.1),
-    )
 }
 
 fn quality(

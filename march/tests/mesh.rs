@@ -447,3 +447,35 @@ fn regression_a_long_thin_triangle_with_many_interior_points_meshes_quickly() {
     let exact = (b - a).perp_dot(c - a).abs();
     assert!((area - exact).abs() <= exact * 1e-9, "{area} vs {exact}");
 }
+
+/// Regression (fuzz, `triangulate`): `quality.min_angle` was computed in `f32`, where the
+/// products of coordinates 5e-32 and 9e-38 from the origin underflow, and a mesh whose
+/// smallest angle is 0.00016° reported 29.5°.
+#[test]
+fn regression_min_angle_of_a_mesh_with_tiny_coordinates_is_measured() {
+    let rings = vec![Ring {
+        points: vec![
+            Vec2::new(3.0, -5.354_085e-32),
+            Vec2::new(-5.375_081_3e-32, -5.375_081_3e-32),
+            Vec2::new(2.69e-43, 9.403_955e-38),
+            Vec2::new(4.48e-43, 2.015_625),
+        ],
+        hole: false,
+        parent: None,
+    }];
+    let options = MeshOptions::DEFAULT.with_max_added_vertices(Some(255));
+    let mesh = triangulate(&rings, &options).unwrap();
+    let mut smallest = f64::INFINITY;
+    for t in &mesh.triangles {
+        let p = t.map(|i| mesh.positions[i as usize].as_dvec2());
+        for k in 0..3 {
+            let (u, w) = (p[(k + 1) % 3] - p[k], p[(k + 2) % 3] - p[k]);
+            smallest = smallest.min(u.angle_to(w).abs().to_degrees());
+        }
+    }
+    assert!(
+        (f64::from(mesh.quality.min_angle) - smallest).abs() <= 0.01,
+        "reported {} but the smallest angle is {smallest}",
+        mesh.quality.min_angle
+    );
+}

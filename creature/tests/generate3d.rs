@@ -385,3 +385,33 @@ fn joints_are_named_by_what_they_are() {
         }
     }
 }
+
+/// Regression (a `valid_params_give_a_valid_3d_creature` case): the body's B-spline skin
+/// weights are summed per joint when bones past the spine's ends fold into one, and three
+/// terms summing to 1 in exact arithmetic gave a lone weight of 1.0000001 in `f32`.
+#[test]
+fn regression_folded_body_weights_stay_within_one() {
+    let mut params = d3::Params::DEFAULT.with_kind(d3::Kind::Flier);
+    params.profiles = 4;
+    params.rings = 23;
+    params.segments = 7;
+    params.limb_sides = 3;
+    params.slice_width = Span::new(0.475_813_78, 2.038_242_6);
+    params.slice_height = Span::new(1.851_451, 2.375_108);
+    params.slice_step = Span::new(0.718_887_2, 0.965_049_3);
+    params.body_scale = Span::new(0.1, 5.712_998_4);
+    params.speed_factor = Span::new(0.1, 0.1);
+    params.bone_length = 0.362_105_16;
+    params.spine_bones = IntSpan::new(9, 9);
+    params.spine_bend = 71.837_06;
+    params.head_size = Span::new(0.5, 0.5);
+    params.ground_clearance = Span::new(0.0, 0.0);
+    params.clips = false;
+    assert_eq!(params.validate(), Ok(()));
+    let c = generate(13_913_734_948_305_511_869, &params).unwrap();
+    for w in &c.mesh.weights {
+        assert!(w.iter().all(|x| (0.0..=1.0).contains(x)), "weights {w:?}");
+    }
+    let problems = check(&c);
+    assert!(problems.is_empty(), "{problems:?}");
+}

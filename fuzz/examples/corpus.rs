@@ -180,6 +180,31 @@ fn main() {
         m,
     );
 
+    // Later finding (`new-`): a Wyvill ball of radius 1.0003113 culled the point on its rim
+    // where `d² = R²` rounds to `q = 1 − 2⁻²⁴` (culled 0, exact about 2e-22, bound 0).
+    let r = 1.000_311_3_f32;
+    let mut e = Enc::new();
+    e.bool(false).u8(1).f32s(&[1.0, 0.0]).f32(1e-4);
+    e.opt(Some(|e: &mut Enc| {
+        e.f32(7.4e-10);
+    }));
+    e.vec(&[([0.0f32, 0.0], r)], |e, (c, r)| {
+        e.f32s(c).f32(*r);
+    });
+    e.vec(&[0.0f32], |e, z| {
+        e.f32(*z);
+    });
+    e.u8(1);
+    e.vec(&[[0.0, 0.0, r], [r, 0.0, 0.0], [0.0, -r, 0.0]], |e, p| {
+        e.f32s(p);
+    });
+    write::<f::metaball_3d::Input>(
+        "metaball_3d",
+        "new-wyvill-rim-culled",
+        &e.bytes(),
+        f::metaball_3d::run,
+    );
+
     // Finding 4: image_png with a size whose byte count overflows.
     let mut e = Enc::new();
     e.bool(false)

@@ -36,7 +36,10 @@ pub struct MeshOptions {
     pub clearance: f32,
     /// Delaunay refinement (Ruppert's, with Üngör's off-centres) adds points until every triangle's
     /// smallest angle is at least this many degrees; ring edges may be split, the outline's
-    /// shape is kept. 0 turns refinement off. From 0 to 33. Default 20.
+    /// shape is kept up to the rounding of the split points to `f32` (which moves the mesh's
+    /// area by at most 2⁻¹⁴ of the rings' area in all: a split that would move it further is
+    /// not made, and [`MeshQuality::refinement_complete`] may then be `false`). 0 turns
+    /// refinement off. From 0 to 33. Default 20.
     pub min_angle: f32,
     /// The most points refinement may add; `None` allows ten times the starting count.
     /// Default `None`.
@@ -255,7 +258,8 @@ fn mesh_rings(outline: &[&[Vec2]], options: &MeshOptions) -> Result<Mesh2, March
     // size, each a pseudo-random half of what is left, each along a Z curve through the box.
     // The curve keeps the walks short; the rounds keep the flips few (rings inserted along
     // the curve alone cost about twice the flips: points on a convex arc in order are the
-    // incremental algorithm's worst case). Then the ring edges, most of them already there.
+    // incremental algorithm's worst case). The ring points go in first, then the ring edges
+    // (most of them already there), then the interior points, each group in this order.
     // One integer key per point, sorted as integers: the round (5 bits), the curve position
     // (2 × 15 bits) and the point's index (29 bits; more points than that sort by pairs).
     let mut order: Vec<u64> = Vec::with_capacity(count);
@@ -281,10 +285,12 @@ fn mesh_rings(outline: &[&[Vec2]], options: &MeshOptions) -> Result<Mesh2, March
         );
         pairs.sort_unstable();
     }
-    let sorted = order
-        .iter()
-        .map(|&key| (key & ((1 << 29) - 1)) as u32)
-        .chain(pairs.iter().map(|&(_, k)| k));
+    let sorted = || {
+        order
+            .iter()
+            .map(|&key| (key & ((1 << 29) - 1)) as usize)
+            .chain(pairs.iter().map(|&(_, k)| k as usize))
+    };
     // The vertex of each point, and the point of each vertex (for error reports).
     let mut vertex = alloc::vec![NONE; count];
     let mut point_of = alloc::vec![NONE; count + FIRST_VERTEX];
@@ -302,16 +308,17 @@ fn mesh_rings(outline: &[&[Vec2]], options: &MeshOptions) -> Result<Mesh2, March
             near: points[k],
         }
     };
-    for k in sorted {
-        let k = k as usize;
+    // The ring points, then the ring edges, then the interior points: an edge inserted after
+    // the interior points would cross every edge between them and the far side of the ring
+    // (or a super vertex), which flipping out of its way costs the square of their number
+    // (regression: a thin triangle 6.5e6 long with interior spacing 20, some 30,000 lattice
+    // points inside, took minutes). Inserted first, an edge crosses ring edges only.
+    for k in sorted().filter(|&k| k < outline_len) {
         match cdt.insert(points[k].as_dvec2()) {
             Ok(v) => {
                 vertex[k] = v;
                 point_of[v as usize] = k as u32;
             }
-            // Interior points keep a clearance from the rings and are distinct; one that
-            // still lands on a vertex is left out.
-            Err(_) if k >= outline_len => {}
             Err(CdtError::Occupied(v) | CdtError::Crossing(v)) => {
                 return Err(crossing(k, v, &point_of));
             }
@@ -329,6 +336,14 @@ fn mesh_rings(outline: &[&[Vec2]], options: &MeshOptions) -> Result<Mesh2, March
             }
         }
         start += n;
+    }
+    for k in sorted().filter(|&k| k >= outline_len) {
+        // Interior points keep a clearance from the rings and are distinct; one that still
+        // lands on a vertex or a ring edge is left out.
+        if let Ok(v) = cdt.insert(points[k].as_dvec2()) {
+            vertex[k] = v;
+            point_of[v as usize] = k as u32;
+        }
     }
     cdt.mark_inside();
     let mut refinement_complete = true;
@@ -642,13 +657,12 @@ fn min_angle_deg(a: Vec2, b: Vec2, c: Vec2) -> f32 {
 /// angle's tangent is `2·area / dot` of its two edges, the smallest angle is the one opposite
 /// the shortest edge (it is acute: at most 60°), and the twice-area is taken at the corner
 /// between the two shorter edges, where it loses the least to rounding.
+///
+/// In `f64`, scaled back into `f32` with the ratio kept: in `f32` the edges' products
+/// overflow for coordinates near `f32::MAX` (finding 12 of issue 17) and underflow for tiny
+/// ones (regression: a sliver with vertices 5e-32 and 9e-38 from the origin read 29.5° for
+/// 0.00016°); in `f64` neither happens to the products of `f32` coordinates.
 fn min_angle_tan(a: Vec2, b: Vec2, c: Vec2) -> (f32, f32) {
-    let (y, x) = min_angle_tan_f32(a, b, c);
-    if y.is_finite() && x.is_finite() {
-        return (y, x);
-    }
-    // Coordinates so large that the edges' products overflow `f32`: the same in `f64`, scaled
-    // back into `f32` with the ratio kept.
     let [a, b, c] = [a, b, c].map(|p| p.as_dvec2());
     let corners = [
         (b - a, c - a, (c - b).length_squared()),
@@ -671,30 +685,6 @@ fn min_angle_tan(a: Vec2, b: Vec2, c: Vec2) -> (f32, f32) {
     } else {
         (0.0, 1.0)
     }
-}
-
-/// [`min_angle_tan`] in `f32`, exact enough for every mesh of coordinates below about 1e18.
-fn min_angle_tan_f32(a: Vec2, b: Vec2, c: Vec2) -> (f32, f32) {
-    // Corner `k`: its two edges, and the squared length of the edge opposite it.
-    let corners = [
-        (b - a, c - a, (c - b).length_squared()),
-        (c - b, a - b, (a - c).length_squared()),
-        (a - c, b - c, (b - a).length_squared()),
-    ];
-    let mut smallest = corners[0];
-    let mut widest = corners[0];
-    for corner in corners {
-        if corner.2 < smallest.2 {
-            smallest = corner;
-        }
-        if corner.2 > widest.2 {
-            widest = corner;
-        }
-    }
-    (
-        widest.0.perp_dot(widest.1).abs(),
-        smallest.0.dot(smallest.1),
-    )
 }
 
 fn quality(
@@ -725,7 +715,10 @@ fn quality(
         }
     }
     if let Some((y, x)) = worst {
-        q.min_angle = crate::math::atan2(y, x).to_degrees();
+        // No triangle's smallest angle exceeds 60°; rounding of the tangent and `atan2` gave
+        // 60.000004 for near-equilateral ones (regression:
+        // `regression_min_angle_of_an_equilateral_triangle_is_at_most_60`).
+        q.min_angle = crate::math::atan2(y, x).to_degrees().min(60.0);
     }
     // Refinement leaves alone the triangles at input corners sharper than the limit (a
     // pinch between two blobs): it is complete only where the limit really holds.

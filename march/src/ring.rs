@@ -79,10 +79,6 @@ impl D2 {
         self.x * o.y - self.y * o.x
     }
 
-    fn dot(self, o: Self) -> f64 {
-        self.x * o.x + self.y * o.y
-    }
-
     fn min(self, o: Self) -> Self {
         Self {
             x: self.x.min(o.x),
@@ -424,8 +420,13 @@ pub(crate) fn validate_structure(rings: &[Ring]) -> Result<(), MarchError> {
     Ok(())
 }
 
+/// `> 0` when `c` lies left of `a → b`, `< 0` right, `0` on the line: exact (Shewchuk's
+/// adaptive predicate). In plain `f64`, `3 − 1e-45` rounds to 3, and a ring whose edges cross
+/// 1e-45 from the origin passed `validate_rings`, then failed `triangulate` (regression:
+/// `regression_validate_rings_sees_a_crossing_at_tiny_coordinates`).
 fn orient(a: D2, b: D2, c: D2) -> f64 {
-    (b - a).perp_dot(c - a)
+    let coord = |p: D2| robust::Coord { x: p.x, y: p.y };
+    robust::orient2d(coord(a), coord(b), coord(c))
 }
 
 fn on_segment(a: D2, b: D2, p: D2) -> bool {
@@ -475,7 +476,9 @@ pub(crate) fn find_crossing(rings: &[&[Vec2]]) -> Option<(usize, usize, Vec2)> {
             }
             // A spike: the next edge folds back along this one.
             let c = points[(i + 2) % n].into_d2();
-            if n >= 3 && orient(a, b, c) == 0.0 && (a - b).dot(c - b) > 0.0 {
+            // Collinear, so `c` is on the ray from `b` through `a` exactly when one of the two
+            // lies on the segment from `b` to the other (comparisons only: exact).
+            if n >= 3 && orient(a, b, c) == 0.0 && (on_segment(b, a, c) || on_segment(b, c, a)) {
                 return Some((r, r, points[(i + 1) % n]));
             }
             segments.push(Segment {

@@ -422,3 +422,32 @@ fn regression_refined_trace_of_two_discs_does_not_self_cross() {
         }
     }
 }
+
+/// Regression (fuzz, `triangulate`): `validate_rings` tested orientations in plain `f64`,
+/// where `3 − 1e-45` rounds to 3, and accepted this ring although its first and third edges
+/// cross near (1e-45, 1.5e-36); `triangulate`, on exact predicates, then said `RingsCross`.
+#[test]
+fn regression_validate_rings_sees_a_crossing_at_tiny_coordinates() {
+    let rings = [Ring {
+        points: vec![
+            Vec2::new(3.000_002, 6.0),
+            Vec2::new(0.0, 1.504_632_8e-36),
+            Vec2::new(1.836_709_9e-38, 20.000_063),
+            Vec2::new(1e-45, 0.0),
+        ],
+        hole: false,
+        parent: None,
+    }];
+    assert!(
+        matches!(
+            validate_rings(&rings),
+            Err(MarchError::RingsCross {
+                ring_a: 0,
+                ring_b: 0,
+                ..
+            })
+        ),
+        "{:?}",
+        validate_rings(&rings)
+    );
+}

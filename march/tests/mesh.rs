@@ -308,3 +308,174 @@ fn thin_rings_with_a_long_extent_triangulate() {
         }
     }
 }
+
+/// Twice the signed area of a mesh, in `f64` (exact products of `f32` coordinates).
+fn mesh_area2(mesh: &Mesh2) -> f64 {
+    mesh.triangles
+        .iter()
+        .map(|t| {
+            let [a, b, c] = t.map(|i| mesh.positions[i as usize].as_dvec2());
+            (b - a).perp_dot(c - a)
+        })
+        .sum()
+}
+
+/// Regression (fuzz, `triangulate`): refinement split the ring edges of a triangle about
+/// 1.5e-5 wide at midpoints rounded to `f32`, each off its edge by up to half a unit in the
+/// last place, and the mesh covered 0.4 % more than the triangle (spade's CDT: exactly it).
+/// The slivers the rounded split points add or cut are now bounded by 2⁻¹⁴ of the area.
+#[test]
+fn regression_refinement_keeps_the_area_of_a_thin_triangle() {
+    let points = vec![
+        Vec2::new(-8.0, -8.0),
+        Vec2::new(3.000_03, 3.0),
+        Vec2::new(0.0, 0.0),
+    ];
+    let exact = {
+        let [a, b, c] = [points[0], points[1], points[2]].map(Vec2::as_dvec2);
+        (b - a).perp_dot(c - a)
+    };
+    assert!(exact > 0.0);
+    let rings = vec![Ring {
+        points,
+        hole: false,
+        parent: None,
+    }];
+    for options in [
+        MeshOptions::DEFAULT,
+        MeshOptions::DEFAULT.with_min_angle(33.0),
+        MeshOptions::DEFAULT.with_interior_spacing(0.0),
+    ] {
+        let mesh = triangulate(&rings, &options).unwrap();
+        check_mesh(&mesh, &rings, true);
+        let area = mesh_area2(&mesh);
+        assert!(
+            (area - exact).abs() <= exact / 16384.0,
+            "mesh twice-area {area} vs the triangle's {exact} ({options:?})"
+        );
+    }
+}
+
+/// Regression (fuzz, `triangulate`, a 10 s timeout): a 4-point ring 131,075 long and about 100
+/// wide with interior spacing 20 puts some 37,000 lattice points inside; its long left edge
+/// lies on their hull, so before the constraint is inserted thousands of edges from those
+/// points to a far super vertex cross it, and finding each edge by walking the super vertex's
+/// star made inserting it cubic. It meshes in well under a second now.
+#[test]
+fn regression_a_long_ring_with_a_dense_lattice_meshes_quickly() {
+    let rings = vec![Ring {
+        points: vec![
+            Vec2::new(0.0, 7.089_700_3e-38),
+            Vec2::new(0.75, 3.0),
+            Vec2::new(-100.0, -99.957_275),
+            Vec2::new(1.387_778_8e-15, -131_075.03),
+        ],
+        hole: false,
+        parent: None,
+    }];
+    let options = MeshOptions::DEFAULT
+        .with_min_angle(20.035_156)
+        .with_max_added_vertices(Some(255));
+    let mesh = triangulate(&rings, &options).unwrap();
+    assert!(mesh.positions.len() > 10_000, "{}", mesh.positions.len());
+    check_mesh(&mesh, &rings, true);
+}
+
+/// Regression (fuzz, `triangulate`): `quality.min_angle` of a near-equilateral triangle came
+/// out as 60.000004° (`atan2` of the rounded tangent), above the 60° no triangle's smallest
+/// angle can exceed.
+#[test]
+fn regression_min_angle_of_an_equilateral_triangle_is_at_most_60() {
+    let mut above = Vec::new();
+    for k in 0..400 {
+        let center = Vec2::new(k as f32 * 7.3 - 1000.0, -8.0 + k as f32 * 0.37);
+        for scale in [0.01, 0.7, 1.0, 37.5, 1000.0] {
+            let points: Vec<Vec2> = (0..3)
+                .map(|i| {
+                    let angle = i as f32 / 3.0 * core::f32::consts::TAU;
+                    center + Vec2::from_angle(angle) * 0.5 * scale
+                })
+                .collect();
+            let rings = vec![Ring {
+                points,
+                hole: false,
+                parent: None,
+            }];
+            let options = MeshOptions::DEFAULT
+                .with_interior_spacing(0.0)
+                .with_min_angle(0.0);
+            let mesh = triangulate(&rings, &options).unwrap();
+            assert_eq!(mesh.triangles.len(), 1);
+            if !(mesh.quality.min_angle <= 60.0) {
+                above.push((center, scale, mesh.quality.min_angle));
+            }
+        }
+    }
+    assert!(
+        above.is_empty(),
+        "{} above 60°: {:?}",
+        above.len(),
+        &above[..above.len().min(4)]
+    );
+}
+
+/// Regression (fuzz, `triangulate`, a 10 s timeout that ran for minutes): a thin triangle
+/// 6.5e6 long holds some 30,000 interior lattice points at spacing 20; inserting its long
+/// edges after them meant flipping tens of thousands of crossing edges out of the way,
+/// quadratic in their number. The ring edges now go in before the interior points.
+#[test]
+fn regression_a_long_thin_triangle_with_many_interior_points_meshes_quickly() {
+    let rings = vec![Ring {
+        points: vec![
+            Vec2::new(3.0, 6.0),
+            Vec2::new(0.0, 3.0),
+            Vec2::new(-6_553_600.0, -43.25),
+        ],
+        hole: false,
+        parent: None,
+    }];
+    let options = MeshOptions::DEFAULT
+        .with_clearance(0.0)
+        .with_min_angle(5.5e-44)
+        .with_max_added_vertices(Some(0));
+    let mesh = triangulate(&rings, &options).unwrap();
+    assert!(mesh.positions.len() > 20_000, "{}", mesh.positions.len());
+    let area: f64 = mesh_area2(&mesh);
+    let [a, b, c] =
+        [rings[0].points[0], rings[0].points[1], rings[0].points[2]].map(Vec2::as_dvec2);
+    // The ring is clockwise; the mesh's triangles are counter-clockwise.
+    let exact = (b - a).perp_dot(c - a).abs();
+    assert!((area - exact).abs() <= exact * 1e-9, "{area} vs {exact}");
+}
+
+/// Regression (fuzz, `triangulate`): `quality.min_angle` was computed in `f32`, where the
+/// products of coordinates 5e-32 and 9e-38 from the origin underflow, and a mesh whose
+/// smallest angle is 0.00016° reported 29.5°.
+#[test]
+fn regression_min_angle_of_a_mesh_with_tiny_coordinates_is_measured() {
+    let rings = vec![Ring {
+        points: vec![
+            Vec2::new(3.0, -5.354_085e-32),
+            Vec2::new(-5.375_081_3e-32, -5.375_081_3e-32),
+            Vec2::new(2.69e-43, 9.403_955e-38),
+            Vec2::new(4.48e-43, 2.015_625),
+        ],
+        hole: false,
+        parent: None,
+    }];
+    let options = MeshOptions::DEFAULT.with_max_added_vertices(Some(255));
+    let mesh = triangulate(&rings, &options).unwrap();
+    let mut smallest = f64::INFINITY;
+    for t in &mesh.triangles {
+        let p = t.map(|i| mesh.positions[i as usize].as_dvec2());
+        for k in 0..3 {
+            let (u, w) = (p[(k + 1) % 3] - p[k], p[(k + 2) % 3] - p[k]);
+            smallest = smallest.min(u.angle_to(w).abs().to_degrees());
+        }
+    }
+    assert!(
+        (f64::from(mesh.quality.min_angle) - smallest).abs() <= 0.01,
+        "reported {} but the smallest angle is {smallest}",
+        mesh.quality.min_angle
+    );
+}

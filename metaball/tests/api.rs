@@ -699,3 +699,37 @@ fn steep_block_samples_are_within_the_documented_bound() {
     let bound = field.sample_error_bound();
     assert!((1.8e-5..1.9e-5).contains(&bound), "{bound}");
 }
+
+/// Regression (fuzz, `metaball_3d`): a Wyvill ball culled a point on its rim whose rounded
+/// `q = d² · (1/R²)` is just below 1, so `value` was 0 where `value_exact` was positive and
+/// `error_bound` 0. For R = 1.0003113, `d² = R²` rounds to `q = 1 − 2⁻²⁴`.
+#[test]
+fn regression_wyvill_culling_keeps_a_ball_whose_rounded_q_is_below_one() {
+    let r = 1.000_311_3_f32;
+    let rim = [r, -r, 1.0 + 0.002, 1.000_712];
+    for cell_size in [None, Some(7.4e-10), Some(1.0), Some(100.0)] {
+        let options = FieldOptions::DEFAULT
+            .with_falloff(Falloff::WYVILL)
+            .with_cell_size(cell_size);
+        let f2 = Field2::with_options(&[Ball2::new(Vec2::ZERO, r, 0)], &options).unwrap();
+        let f3 = Field3::with_options(&[Ball3::new(Vec3::ZERO, r, 0)], &options).unwrap();
+        assert_eq!(f2.error_bound(), 0.0);
+        assert_eq!(f3.error_bound(), 0.0);
+        let p = Vec2::new(r, 0.0);
+        assert!(
+            f2.value_exact(p) > 0.0,
+            "the case needs a positive exact value"
+        );
+        for x in rim {
+            for p in [Vec2::new(x, 0.0), Vec2::new(0.0, x)] {
+                assert_eq!(f2.value(p).to_bits(), f2.value_exact(p).to_bits(), "{p}");
+                let (lo, hi) = f2.bounds();
+                if f2.value(p) > 0.0 {
+                    assert!(p.cmpge(lo).all() && p.cmple(hi).all(), "{p} outside bounds");
+                }
+            }
+            let p = Vec3::new(0.0, 0.0, x);
+            assert_eq!(f3.value(p).to_bits(), f3.value_exact(p).to_bits(), "{p}");
+        }
+    }
+}

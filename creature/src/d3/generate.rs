@@ -400,7 +400,10 @@ fn spine_influences(
                 let bone = (j + d).clamp(0.0, (bones - 1) as f32) as usize;
                 let joint = carrier(bone);
                 match inf.joints[..slots].iter().position(|&x| x == joint) {
-                    Some(k) => inf.weights[k] += w,
+                    // The three terms sum to 1 exactly, not always in `f32`: a joint holding
+                    // all three got 1.0000001 (regression:
+                    // `regression_folded_body_weights_stay_within_one`).
+                    Some(k) => inf.weights[k] = (inf.weights[k] + w).min(1.0),
                     None => {
                         inf.joints[slots] = joint;
                         inf.weights[slots] = w;

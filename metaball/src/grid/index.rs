@@ -41,11 +41,21 @@ impl<const D: usize> Core<D> {
         debug_assert!(balls.len() <= crate::MAX_FIELD_BALLS);
         for (index, &(center, radius, id)) in balls.iter().enumerate() {
             let r2 = radius * radius;
-            let cutoff = radius * math::sqrt(q_cut);
-            let cutoff_d2 = r2 * q_cut;
+            let inv_r2 = 1.0 / r2;
+            let (cutoff, cutoff_d2) = match kernel {
+                // Compact support: the kernel is exactly 0 from `q = 1` on, so culling must
+                // keep every ball whose rounded `q = d² · (1/R²)` is below 1, or the culled
+                // value misses a term `value_exact` sums while `error_bound` is 0
+                // (regression: `d² = R²` can round to `q < 1`).
+                Kernel::Wyvill { .. } => {
+                    let d2 = first_d2_reaching(r2 * q_cut, inv_r2, q_cut);
+                    (next_up(math::sqrt(d2)), d2)
+                }
+                _ => (radius * math::sqrt(q_cut), r2 * q_cut),
+            };
             compiled.push(Entry {
                 center,
-                inv_r2: 1.0 / r2,
+                inv_r2,
                 cutoff_d2,
                 reach: pad(math::sqrt(cutoff_d2)),
                 // The caller keeps to `MAX_FIELD_BALLS` (`u32::MAX`) balls.
@@ -303,6 +313,44 @@ impl<const D: usize> Core<D> {
 fn floor_nonnegative(x: f32) -> f32 {
     if x < 8_388_608.0 {
         (x as u32) as f32
+    } else {
+        x
+    }
+}
+
+/// The smallest squared distance `d2` (non-negative, starting the search at `guess`, which is
+/// within a few units in the last place) whose rounded `d2 · inv_r2` is at least `q_cut`: a ball
+/// is culled exactly where its kernel sees `q ≥ q_cut`. The product is monotonic in `d2`, so
+/// stepping one `f32` at a time finds it; `inv_r2` and `guess` are normal for radii in
+/// [`RADIUS_RANGE`](crate::RADIUS_RANGE), and the bounded loops only guard against the
+/// impossible.
+fn first_d2_reaching(guess: f32, inv_r2: f32, q_cut: f32) -> f32 {
+    let mut d2 = guess;
+    for _ in 0..64 {
+        if d2 * inv_r2 >= q_cut {
+            break;
+        }
+        d2 = next_up(d2);
+    }
+    for _ in 0..64 {
+        let below = next_down(d2);
+        if !(below >= 0.0 && below * inv_r2 >= q_cut) {
+            break;
+        }
+        d2 = below;
+    }
+    d2
+}
+
+/// The next `f32` above a finite non-negative `x`.
+fn next_up(x: f32) -> f32 {
+    f32::from_bits(x.to_bits() + 1)
+}
+
+/// The next `f32` below a positive finite `x` (0 stays 0).
+fn next_down(x: f32) -> f32 {
+    if x > 0.0 {
+        f32::from_bits(x.to_bits() - 1)
     } else {
         x
     }

@@ -192,6 +192,11 @@ impl Lattice {
             Vec3A::from(us / us.dot(t)),
             Vec3A::from(st / st.dot(u)),
         ];
+        // Axes so short that their products are subnormal pass the ratio above on rounding
+        // noise, but their dual basis overflows.
+        if !dual.iter().all(|d| d.is_finite()) {
+            return Err(FfdError::DegenerateAxes { volume_ratio });
+        }
         let [l, m, n] = divisions;
         let count = (l + 1) * (m + 1) * (n + 1);
         let mut lattice = Self {

@@ -371,3 +371,21 @@ fn regression_control_points_near_f32_max_never_give_nan_inside() {
     assert!(lattice.distribute_slices(Axis::U, &[1e14; 13]).is_err());
     assert_eq!(lattice, before);
 }
+
+#[test]
+fn regression_axes_with_subnormal_products_are_degenerate() {
+    // Found by the fuzz smoke: axes about 4.65e-15 long passed the volume check on rounding
+    // noise (their products are subnormal) while the dual basis overflowed to inf and NaN.
+    let a = -4.653358e-15;
+    let axes = [
+        Vec3::new(-4.6532873e-15, a, a),
+        Vec3::splat(a),
+        Vec3::new(a, 1.539667e-38, -1.7763568e-15),
+    ];
+    let result = Lattice::new(Vec3::new(3e-45, 2.511e-42, 0.0), axes, [7, 7, 7]);
+    assert!(
+        matches!(result, Err(FfdError::DegenerateAxes { .. })),
+        "{:?}",
+        result.map(|l| l.divisions())
+    );
+}

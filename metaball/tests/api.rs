@@ -661,6 +661,19 @@ fn tiny_far_balls_are_found_with_an_explicit_cell_size() {
             assert!(!field.shares(c, 2).is_empty(), "{cell_size:?} {c}");
             let (v, _) = field.value_and_gradient(c);
             assert_eq!(v.to_bits(), culled.to_bits());
+            // The grid sampler finds them too, from an origin on the centre or steps away.
+            for (back, step) in [(0.0, 1.0), (1.0, 0.05), (3.0, 0.37), (2.0, 20.0)] {
+                let origin = c - Vec2::splat(back * step);
+                let n = back as usize;
+                let grid = field.sample_grid(origin, step, n + 1, n + 1).unwrap();
+                let g = grid[n * (n + 1) + n];
+                let at = origin + step * Vec2::splat(n as f32);
+                let exact = field.value_exact(at);
+                assert!(
+                    (g - exact).abs() <= field.error_bound() + 1e-5 * exact,
+                    "{cell_size:?} grid from {origin} step {step}: {g}, exact {exact} at {at}"
+                );
+            }
         }
     }
 }
@@ -731,5 +744,31 @@ fn regression_wyvill_culling_keeps_a_ball_whose_rounded_q_is_below_one() {
             let p = Vec3::new(0.0, 0.0, x);
             assert_eq!(f3.value(p).to_bits(), f3.value_exact(p).to_bits(), "{p}");
         }
+    }
+}
+
+/// Found by the fuzz smoke: with a step below the coordinates' resolution (1e-5 at 1e4)
+/// several grid samples round onto a ball's centre, but the sampler took the ball's columns
+/// from a division, which placed them past its reach: 0 there, where `value` is 1.65.
+#[test]
+fn regression_grid_samples_rounded_onto_a_ball_see_it() {
+    let balls = [
+        Ball2::new(Vec2::new(-10000.0, 4.01e-43), 9.999_847e-6, 0),
+        Ball2::new(Vec2::new(-10000.0, -9998.781), 1e-5, 1),
+    ];
+    let falloff = Falloff::Exponential { blobbiness: -0.5 };
+    let options = FieldOptions::DEFAULT
+        .with_falloff(falloff)
+        .with_cell_size(Some(1.0));
+    let field = Field2::with_options(&balls, &options).unwrap();
+    let origin = Vec2::new(-10000.0, -9998.781);
+    let grid = field.sample_grid(origin, 1e-5, 8, 2).unwrap();
+    for (n, &g) in grid.iter().enumerate() {
+        let at = origin + 1e-5 * Vec2::new((n % 8) as f32, (n / 8) as f32);
+        let exact = field.value_exact(at);
+        assert!(
+            (g - exact).abs() <= field.error_bound() + 1e-5 * exact,
+            "sample {n} at {at}: {g}, exact {exact}"
+        );
     }
 }

@@ -268,8 +268,18 @@ fn index_range(lo: f32, hi: f32, origin: f32, step: f32, count: usize) -> Option
         return None;
     }
     // Clamped into [0, count − 1] before the casts.
-    let first = (first.max(0.0) as usize).min(count - 1);
-    let last = (last.clamp(0.0, max) as usize + 1).min(count - 1);
+    let mut first = (first.max(0.0) as usize).min(count - 1);
+    let mut last = (last.clamp(0.0, max) as usize + 1).min(count - 1);
+    // The samples are where `origin + step * i` rounds to: a step below the coordinates'
+    // resolution puts several on one spot, past the indices the division gives. Widened
+    // over every sample whose rounded coordinate is in `[lo, hi]` (at most `count` steps).
+    let at = |i: usize| origin + step * i as f32;
+    while first > 0 && at(first - 1) >= lo {
+        first -= 1;
+    }
+    while last + 1 < count && at(last + 1) <= hi {
+        last += 1;
+    }
     Some((first, last))
 }
 

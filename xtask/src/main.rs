@@ -66,7 +66,7 @@ environment:
 
 type Task = fn(&Workspace) -> Result<(), String>;
 
-const TASKS: [(&str, Task); 12] = [
+const TASKS: [(&str, Task); 11] = [
     ("tidy", tidy),
     ("fmt", fmt),
     ("clippy", clippy),

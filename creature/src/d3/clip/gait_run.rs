@@ -112,14 +112,11 @@ impl GaitRun {
         // Each frame's heading from the last frame's, unwrapped: over a full turn it runs
         // through ±π, where a rotation taken the shortest way round flips the correction to the
         // other side of the body from one frame to the next.
-        let yaw = |q: Quat| {
-            let f = q * Vec3::Z;
-            glam::Vec2::new(f.z, f.x).to_angle()
-        };
         let mut turned = alloc::vec![0.0f32; keep];
         for f in (0..last).rev() {
             // Both in [-π, π]: one turn at most to take off.
-            let mut step = yaw(self.bodies[f].rotation) - yaw(self.bodies[f + 1].rotation);
+            let mut step =
+                heading_angle(self.bodies[f].rotation) - heading_angle(self.bodies[f + 1].rotation);
             if step > PI {
                 step -= TAU;
             } else if step < -PI {
@@ -251,8 +248,13 @@ impl GaitRun {
 /// The rotation about the vertical that turns +Z to where `rotation` points it (the heading,
 /// lean and roll aside).
 pub(super) fn heading(rotation: Quat) -> Quat {
+    Quat::from_rotation_y(heading_angle(rotation))
+}
+
+/// The angle of [`heading`] about the vertical, in `[-π, π]`.
+fn heading_angle(rotation: Quat) -> f32 {
     let f = rotation * Vec3::Z;
-    Quat::from_rotation_y(glam::Vec2::new(f.z, f.x).to_angle())
+    glam::Vec2::new(f.z, f.x).to_angle()
 }
 
 /// The frame of `range` with the same feet planted as frame 0 that has the smallest

@@ -579,3 +579,34 @@ fn regression_a_lifting_foot_does_not_drift_across_the_midline() {
     }
     assert!(worst < 0.0, "a foot went {worst} m past the midline");
 }
+
+#[test]
+fn regression_swaying_never_carries_a_foot_across_the_midline() {
+    // A generated walker's legs (creature seed 6904: rear hips 0.073 m off the midline, a
+    // 1.36 m body) walking at 0.564 m/s, 30 updates a second: the sway (the planted feet's
+    // mean angle about the body's origin) turned the body 5° while a rear foot trailed 1 m
+    // behind it, which carried that foot across the midline in the body's frame.
+    let legs = mirrored_legs(&[
+        (Vec3::new(0.1529, 0.8968, 0.5747), 0.5829),
+        (Vec3::new(0.0730, 0.9174, -0.3794), 0.5963),
+    ]);
+    let options = GaitOptions::DEFAULT.with_speed_multiplier(1.1);
+    let (dt, speed) = (1.0 / 30.0, 0.564);
+    let mut controller = Controller::new(&legs, &options).unwrap();
+    let mut worst = f32::INFINITY;
+    for step in 0..300 {
+        let pose = Pose::from_yaw(Vec3::Z * (speed * step as f32 * dt), 0.0);
+        controller
+            .update(dt, pose, Vec3::Z * speed, Vec3::ZERO, &Plane::GROUND)
+            .unwrap();
+        let shown = controller.reacted_pose();
+        for (leg, state) in legs.iter().zip(controller.leg_states()) {
+            let x = (shown.rotation.inverse() * (state.foot - shown.translation)).x;
+            // As a fraction of its hip's distance from the midline.
+            worst = worst.min(x * leg.rest.x.signum() / leg.rest.x.abs());
+        }
+    }
+    // The sway keeps at least half of each foot's margin, and the steps keep the feet near
+    // their hips' lines: a quarter of the side is well clear of the midline.
+    assert!(worst > 0.25, "a foot kept only {worst} of its side");
+}

@@ -1,13 +1,15 @@
 //! Reaction: the body's bob, breathing, sway (yaw), pitch and roll from its feet, each leg's
 //! hip roll, and the reaction scaled back so no planted foot is out of reach.
 
-use glam::{BVec4A, Mat3A, Quat, Vec2, Vec3, Vec4};
+use glam::{BVec4A, Mat3A, Quat, Vec2, Vec3, Vec3A, Vec4};
 
 use super::joints::lane;
 use super::{Controller, LegState};
 use crate::ik::V3;
 use crate::leg::{LimbKind, Pose};
-use crate::math::{atan2, atan2_lanes, clamp_sym, quat_yxz_sin_cos, sin_cos_lanes, sin_turns_arg};
+use crate::math::{
+    atan2, atan2_lanes, clamp_sym, quat_yxz_sin_cos, sin_cos, sin_cos_lanes, sin_turns_arg, sqrt,
+};
 
 /// A leg's hip roll (see `Controller::react`): none without a partner, else its own angle
 /// from the height difference to partner `j` over the lever, or the opposite of the partner's
@@ -81,7 +83,6 @@ impl Controller {
         let slope = |num: f32, den: f32| if den > 1e-12 { atan2(num, den) } else { 0.0 };
         let (pitch, roll) = (-slope(ez, zz), slope(ex, xx));
         let k = self.react_k;
-        let r = &mut self.reaction;
         let (bob_t, yaw_t, pitch_t, roll_t) = if count == 0 {
             (0.0, 0.0, 0.0, 0.0)
         } else {
@@ -94,8 +95,14 @@ impl Controller {
                 clamp_sym(o.sway_gain * roll, o.sway_limit),
             )
         };
+        let yaw = clamp_sym(
+            self.reaction.yaw + (yaw_t - self.reaction.yaw) * k,
+            o.sway_limit,
+        );
+        let yaw = self.sway_keeping_sides(pose, rotation, yaw);
+        let r = &mut self.reaction;
         r.bob = clamp_sym(r.bob + (bob_t - r.bob) * k, o.bob_limit * self.mean_size);
-        r.yaw = clamp_sym(r.yaw + (yaw_t - r.yaw) * k, o.sway_limit);
+        r.yaw = yaw;
         r.pitch = clamp_sym(r.pitch + (pitch_t - r.pitch) * k, o.sway_limit);
         r.roll = clamp_sym(r.roll + (roll_t - r.roll) * k, o.sway_limit);
         let w = self.blend;
@@ -136,6 +143,53 @@ impl Controller {
             };
             self.states[i].hip_roll = roll * self.blend;
         }
+    }
+
+    /// `yaw` (a sway before blending) turned back toward none, as little as needed, so that the
+    /// sway carries no walking foot off the midline (planted or swinging) across more than
+    /// half its margin from it, nor a foot already across any further: the sway turns the
+    /// body about its origin, so a foot moves across the body's frame by as much as it lies
+    /// ahead or behind, and a long body with a narrow stance would cross its end feet.
+    ///
+    /// In the body's frame (`pose` with `rotation`, unreacted), a foot at `(x, z)` seen from
+    /// the sway `ψ` is at `x cos ψ − z sin ψ`; on its side (`a`, `b` the foot's `x` and `z` times
+    /// its side's sign) it keeps `a cos ψ − b sin ψ = R cos(ψ + φ)` with `R = |(a, b)|` and
+    /// `φ = atan2(b, a)`. That is at least `need` for `ψ + φ` within `±acos(need / R)`, an
+    /// interval about `ψ = 0` (where it is `a ≥ need`): a sway past it is held at its end.
+    fn sway_keeping_sides(&self, pose: &Pose, rotation: &Mat3A, yaw: f32) -> f32 {
+        let w = self.blend;
+        let mut sway = yaw * w;
+        if sway == 0.0 {
+            return yaw;
+        }
+        let (sin, cos) = sin_cos(sway);
+        let inverse = rotation.transpose();
+        let mut held = false;
+        for (leg, state) in self.legs.iter().zip(&self.states) {
+            if leg.kind != LimbKind::Leg || leg.rest.x == 0.0 {
+                continue;
+            }
+            let local = inverse * Vec3A::from(state.foot - pose.translation);
+            let side = leg.rest.x.signum();
+            let (a, b) = (side * local.x, side * local.z);
+            let need = (0.5 * a).min(a);
+            if a * cos - b * sin >= need {
+                continue;
+            }
+            let radius = sqrt(a * a + b * b);
+            if !(radius > 0.0) {
+                continue;
+            }
+            let reach = atan2(sqrt((radius * radius - need * need).max(0.0)), need);
+            let phi = atan2(b, a);
+            sway = if sway > 0.0 {
+                sway.min(reach - phi).max(0.0)
+            } else {
+                sway.max(-reach - phi).min(0.0)
+            };
+            held = true;
+        }
+        if held { sway / w } else { yaw }
     }
 
     /// Each foot's angle from its leg's rest direction, seen from above about the body's origin

@@ -176,6 +176,15 @@ fn regression_a_narrow_walker_does_not_sway_its_rear_feet_across() {
 }
 
 #[test]
+fn regression_feet_on_a_side_keep_apart_along_the_body() {
+    // A rear foot's step, overshooting ahead of its rest position, landed beside (or past) the
+    // front foot still planted behind its own, and the front leg swung through the rear one
+    // (seeds 7988, 5190: `walk`); closing a turn's loop brought two feet on a side together
+    // (4235, 4570, 6857).
+    walkers_pass(&[7988, 5190, 4235, 4570, 6857], &[Check::LegsIntersect]);
+}
+
+#[test]
 fn regression_sideways_knees_of_an_upright_leg_are_not_flipped_across_the_body() {
     // A knee's pole was flipped whenever, square to the leg, it dipped at all: the left leg of
     // seed 87 (nearly upright, knees bending sideways) had its knee turned in, toward the right

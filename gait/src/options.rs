@@ -107,6 +107,14 @@ pub struct GaitOptions {
     /// feet never cross to the other side when a long body turns in place. Step targets stay no
     /// closer to the midline than halfway from the margin to the rest position. Default 0.5.
     pub midline_margin: f32,
+    /// How far apart, along the body, the feet of two walking legs on the same side land, ×
+    /// the mean of the two legs' sizes, `[0, 1]`: a step's target stays that far behind the
+    /// foot (or the step target) of a leg whose rest position is ahead, and ahead of one whose
+    /// rest position is behind, so that a rear foot does not land on or past a front foot that
+    /// trails, and the legs never pass through each other. At most half the two rest
+    /// positions' distance along the body, and a target is never moved further than its reach
+    /// from the rest position. 0 turns it off. Default 0.25.
+    pub foot_spacing: f32,
 }
 
 impl GaitOptions {
@@ -144,6 +152,7 @@ impl GaitOptions {
         centre_of_mass: Vec3::ZERO,
         plant_fraction: 0.15,
         midline_margin: 0.5,
+        foot_spacing: 0.25,
     };
 
     /// Sets [`reach`](Self::reach).
@@ -193,6 +202,13 @@ impl GaitOptions {
     #[must_use]
     pub const fn with_midline_margin(mut self, value: f32) -> Self {
         self.midline_margin = value;
+        self
+    }
+
+    /// Sets [`foot_spacing`](Self::foot_spacing).
+    #[must_use]
+    pub const fn with_foot_spacing(mut self, value: f32) -> Self {
+        self.foot_spacing = value;
         self
     }
 
@@ -319,6 +335,7 @@ impl GaitOptions {
         in_range(self.step_height, "step height", 0.0, 2.0)?;
         in_range(self.plant_fraction, "plant fraction", 0.0, 0.45)?;
         in_range(self.midline_margin, "midline margin", 0.0, 1.0)?;
+        in_range(self.foot_spacing, "foot spacing", 0.0, 1.0)?;
         in_range(self.overshoot, "overshoot", 0.0, 1.0)?;
         in_range(self.overshoot_speed, "overshoot speed", tiny, 100.0)?;
         in_range(self.speed_multiplier, "speed multiplier", tiny, 10.0)?;

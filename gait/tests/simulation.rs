@@ -591,22 +591,68 @@ fn regression_swaying_never_carries_a_foot_across_the_midline() {
         (Vec3::new(0.0730, 0.9174, -0.3794), 0.5963),
     ]);
     let options = GaitOptions::DEFAULT.with_speed_multiplier(1.1);
-    let (dt, speed) = (1.0 / 30.0, 0.564);
-    let mut controller = Controller::new(&legs, &options).unwrap();
     let mut worst = f32::INFINITY;
-    for step in 0..300 {
-        let pose = Pose::from_yaw(Vec3::Z * (speed * step as f32 * dt), 0.0);
-        controller
-            .update(dt, pose, Vec3::Z * speed, Vec3::ZERO, &Plane::GROUND)
-            .unwrap();
-        let shown = controller.reacted_pose();
-        for (leg, state) in legs.iter().zip(controller.leg_states()) {
-            let x = (shown.rotation.inverse() * (state.foot - shown.translation)).x;
+    for local in feet_walking_straight(&legs, &options, 0.564) {
+        for (leg, foot) in legs.iter().zip(local) {
             // As a fraction of its hip's distance from the midline.
-            worst = worst.min(x * leg.rest.x.signum() / leg.rest.x.abs());
+            worst = worst.min(foot.x * leg.rest.x.signum() / leg.rest.x.abs());
         }
     }
     // The sway keeps at least half of each foot's margin, and the steps keep the feet near
     // their hips' lines: a quarter of the side is well clear of the midline.
     assert!(worst > 0.25, "a foot kept only {worst} of its side");
+}
+
+/// The feet in the body's frame as shown, per update, walking `legs` straight at `speed` for
+/// 10 s, 30 updates a second.
+fn feet_walking_straight(legs: &[Leg], options: &GaitOptions, speed: f32) -> Vec<Vec<Vec3>> {
+    let dt = 1.0 / 30.0;
+    let mut controller = Controller::new(legs, options).unwrap();
+    (0..300)
+        .map(|step| {
+            let pose = Pose::from_yaw(Vec3::Z * (speed * step as f32 * dt), 0.0);
+            controller
+                .update(dt, pose, Vec3::Z * speed, Vec3::ZERO, &Plane::GROUND)
+                .unwrap();
+            let shown = controller.reacted_pose();
+            controller
+                .leg_states()
+                .iter()
+                .map(|s| shown.rotation.inverse() * (s.foot - shown.translation))
+                .collect()
+        })
+        .collect()
+}
+
+/// The nearest two feet on a side come along the body (front foot's `z` minus the rear
+/// foot's, in the body's frame as shown), walking `legs` straight at `speed` for 10 s.
+fn nearest_along(legs: &[Leg], options: &GaitOptions, speed: f32) -> f32 {
+    let mut least = f32::INFINITY;
+    for local in feet_walking_straight(legs, options, speed) {
+        for (a, leg_a) in legs.iter().enumerate() {
+            for (b, leg_b) in legs.iter().enumerate() {
+                if leg_a.rest.x * leg_b.rest.x > 0.0 && leg_a.rest.z > leg_b.rest.z {
+                    least = least.min(local[a].z - local[b].z);
+                }
+            }
+        }
+    }
+    least
+}
+
+#[test]
+fn regression_a_rear_foot_does_not_land_on_a_trailing_front_foot() {
+    // A generated walker's legs (creature seed 7988: hips 0.69 m apart along the body, legs
+    // 1.4 m tall) walking at 0.84 m/s: a rear foot's step, overshooting ahead of its rest
+    // position, landed beside the front foot still planted far behind its own, and the front
+    // leg swung through the rear one.
+    let legs = mirrored_legs(&[
+        (Vec3::new(0.4512, 1.3988, 0.2703), 0.9092),
+        (Vec3::new(0.3920, 1.3888, -0.4179), 0.9027),
+    ]);
+    let spaced = nearest_along(&legs, &GaitOptions::DEFAULT, 0.839);
+    let unspaced = nearest_along(&legs, &GaitOptions::DEFAULT.with_foot_spacing(0.0), 0.839);
+    // The spacing: a quarter of the legs' size, at most half the hips' distance (0.34 m).
+    assert!(spaced > 0.3, "feet {spaced} m apart along the body");
+    assert!(unspaced < 0.1, "without the spacing: {unspaced} m");
 }

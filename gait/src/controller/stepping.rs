@@ -3,7 +3,7 @@
 
 use glam::{Mat3A, Vec3};
 
-use super::{Controller, MAX_COORDINATE, horizontal};
+use super::{Controller, LegState, MAX_COORDINATE, horizontal};
 use crate::ground::Ground;
 use crate::leg::{Leg, LimbKind, Pose};
 use crate::math::{abs, sin_turns, sqrt};
@@ -88,7 +88,7 @@ impl Controller {
             }
             if state.stepping {
                 let (target, target_normal) = step_target(
-                    leg,
+                    (leg, i, &self.legs, &self.states),
                     o,
                     anchor,
                     anchor_normal,
@@ -97,6 +97,7 @@ impl Controller {
                     rest_world.y,
                     ground,
                 );
+                let state = &mut self.states[i];
                 // The target follows the motion until the foot is over it; then it comes
                 // straight down onto it.
                 let plant = o.plant_fraction;
@@ -284,18 +285,18 @@ impl Controller {
             if !(escape || (flags & WANT != 0 && in_turn)) {
                 continue;
             }
-            let state = &mut self.states[i];
-            let normal = state.normal;
+            let normal = self.states[i].normal;
             let (target, target_normal) = step_target(
-                leg,
+                (leg, i, &self.legs, &self.states),
                 o,
-                state.anchor,
+                self.states[i].anchor,
                 || normal,
                 self.motion[i],
                 (forward, shown.0, &shown.1),
                 self.rest_world[i].y,
                 ground,
             );
+            let state = &mut self.states[i];
             state.stepping = true;
             state.planted = false;
             state.escaping = escape;
@@ -394,12 +395,13 @@ fn down_ray(point: Vec3, size: f32, o: &GaitOptions) -> (Vec3, f32) {
 /// reach in that direction × overshoot (ramped in with speed, × the speed multiplier, capped at
 /// the reach), kept on the leg's own side of the body's midline (see
 /// [`GaitOptions::midline_margin`]), projected onto the ground from `rest_y` (the rest
-/// position's height) or the anchor, whichever is higher. `frame` is the body's forward
-/// direction, position and rotation.
+/// position's height) or the anchor, whichever is higher, and apart from the feet of the
+/// legs beside it (see [`GaitOptions::foot_spacing`]). `leg` is the leg, its index, and every
+/// leg with its state; `frame` is the body's forward direction, position and rotation.
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
 fn step_target<G: Ground + ?Sized>(
-    leg: &Leg,
+    leg: (&Leg, usize, &[Leg], &[LegState]),
     o: &GaitOptions,
     anchor: Vec3,
     anchor_normal: impl FnOnce() -> Vec3,
@@ -408,6 +410,7 @@ fn step_target<G: Ground + ?Sized>(
     rest_y: f32,
     ground: &G,
 ) -> (Vec3, Vec3) {
+    let (leg, index, legs, states) = leg;
     let (forward, body, rotation) = frame;
     let speed = motion.length();
     let mut target = anchor;
@@ -434,6 +437,9 @@ fn step_target<G: Ground + ?Sized>(
     if leg.kind == LimbKind::Arm {
         return (target, Vec3::Y);
     }
+    if o.foot_spacing > 0.0 {
+        target = spaced_target(leg, index, legs, states, o, anchor, target, (body, rotation));
+    }
     if target == anchor {
         return (anchor, anchor_normal());
     }
@@ -443,4 +449,61 @@ fn step_target<G: Ground + ?Sized>(
         Some(hit) => hit,
         None => (anchor, anchor_normal()),
     }
+}
+
+/// `target` (of walking leg `leg`, index `index` of `legs`) moved along the body, as little as
+/// needed and no further than the reach from `anchor`, so that it stays
+/// [`GaitOptions::foot_spacing`] behind the foot of each leg on the same side whose rest
+/// position is ahead (where that foot lands, if it is stepping), and as far ahead of each one
+/// behind. `frame` is the body's position and rotation.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn spaced_target(
+    leg: &Leg,
+    index: usize,
+    legs: &[Leg],
+    states: &[LegState],
+    o: &GaitOptions,
+    anchor: Vec3,
+    target: Vec3,
+    frame: (Vec3, &Mat3A),
+) -> Vec3 {
+    let (body, rotation) = frame;
+    // Along the body: the body's forward axis (the rotation's third column).
+    let forward = Vec3::from(rotation.z_axis);
+    let along = |p: Vec3| forward.dot(p - body);
+    let before = along(target);
+    let mut z = before;
+    for (j, (other, state)) in legs.iter().zip(states).enumerate() {
+        let gap = other.rest.z - leg.rest.z;
+        if j == index
+            || other.kind != LimbKind::Leg
+            || !state.grounded
+            || !(other.rest.x * leg.rest.x > 0.0)
+            || gap == 0.0
+        {
+            continue;
+        }
+        let spacing = (o.foot_spacing * 0.5 * (leg.size + other.size)).min(0.5 * abs(gap));
+        let foot = if state.stepping {
+            state.step_target
+        } else {
+            state.foot
+        };
+        let other = along(foot);
+        z = if gap > 0.0 {
+            z.min(other - spacing)
+        } else {
+            z.max(other + spacing)
+        };
+    }
+    if z == before {
+        return target;
+    }
+    // No further from the anchor than the reach that way.
+    let home = along(anchor);
+    let back = o.reach.evaluate(-1.0) * leg.size;
+    let ahead = o.reach.evaluate(1.0) * leg.size;
+    let z = z.clamp(home.min(before) - back, home.max(before) + ahead);
+    target + forward * (z - before)
 }

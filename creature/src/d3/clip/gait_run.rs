@@ -245,6 +245,38 @@ impl GaitRun {
     }
 }
 
+impl GaitRun {
+    /// How far (metres) the two nearest feet of walking legs on the same side are apart along
+    /// the body, in their rest positions' order, over every frame (negative: a foot passed the
+    /// other; `legs`, the run's). Infinite with no two legs on a side.
+    pub(super) fn foot_spacing(&self, legs: &[Leg]) -> f32 {
+        // The pairs: a leg ahead of another on its side.
+        let pairs: Vec<(usize, usize)> = (0..legs.len())
+            .flat_map(|i| (0..legs.len()).map(move |j| (i, j)))
+            .filter(|&(i, j)| {
+                let (a, b) = (&legs[i], &legs[j]);
+                a.kind == LimbKind::Leg
+                    && b.kind == LimbKind::Leg
+                    && a.rest.x * b.rest.x > 0.0
+                    && a.rest.z > b.rest.z
+            })
+            .collect();
+        let mut least = f32::INFINITY;
+        if pairs.is_empty() {
+            return least;
+        }
+        for (frame, body) in self.bodies.iter().enumerate() {
+            // Along the body: its forward axis.
+            let forward = body.rotation * Vec3::Z;
+            let along = |leg: usize| forward.dot(self.foot(frame, leg) - body.translation);
+            for &(i, j) in &pairs {
+                least = least.min(along(i) - along(j));
+            }
+        }
+        least
+    }
+}
+
 /// The rotation about the vertical that turns +Z to where `rotation` points it (the heading,
 /// lean and roll aside).
 pub(super) fn heading(rotation: Quat) -> Quat {

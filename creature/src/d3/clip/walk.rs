@@ -46,6 +46,27 @@ const MAX_TURN_SECONDS: f32 = 12.0;
 /// How many cuts of its window a turn tries to close its loop at.
 const TURN_CUTS: usize = 8;
 
+/// What a closing is judged by, for a run (see [`Creature::closed_or_cut`]): its feet's
+/// [`midline_margin`](GaitRun::midline_margin), [`foot_spacing`](GaitRun::foot_spacing),
+/// [`ground_slide`](GaitRun::ground_slide) and [`overreach`](GaitRun::overreach).
+struct Figures {
+    midline: f32,
+    apart: f32,
+    slide: f32,
+    overreach: f32,
+}
+
+impl Figures {
+    fn of(run: &GaitRun, legs: &[Leg], ground: f32) -> Self {
+        Self {
+            midline: run.midline_margin(legs),
+            apart: run.foot_spacing(legs),
+            slide: run.ground_slide(ground),
+            overreach: run.overreach(legs),
+        }
+    }
+}
+
 /// A looping `walk` (see [`Creature::bake_walk_loop`]).
 pub(crate) fn walk_loop(c: &Creature) -> Result<Clip, Error> {
     let setup = c.gait.as_ref().ok_or(Error::NoGait)?;
@@ -146,7 +167,8 @@ impl Creature {
     /// `run` cut after frame `end` with its loop closed by `motion`, unless closing it leaves a
     /// planted foot further out of its leg's reach than the plain cut does (the spread
     /// correction can stretch a leg that was nearly straight), brings a foot much nearer the
-    /// body's midline (or across it), or would slide a foot that
+    /// body's midline (or across it) or two feet on a side much nearer each other along the
+    /// body (or past each other), or would slide a foot that
     /// never lifts in the clip (a walker so slow that it takes no step in it): then the plain
     /// cut, whose [`Clip::loop_error`] says how far it is from looping (`legs`: the run's).
     fn closed_or_cut(&self, run: GaitRun, end: usize, motion: &Pose, legs: &[Leg]) -> GaitRun {
@@ -184,17 +206,19 @@ impl Creature {
     ) -> Option<GaitRun> {
         let mut cut = run.clone();
         cut.truncate(end + 1);
+        let ground = GROUND_CONTACT * self.length;
+        let plain = Figures::of(&cut, legs, ground);
         [false, true]
             .into_iter()
-            .find_map(|hold_seam| self.closed_well(run, &cut, end, motion, legs, hold_seam))
+            .find_map(|hold_seam| self.closed_well(run, &plain, end, motion, legs, hold_seam))
     }
 
     /// `run` closed at `end` by `motion` (holding feet down at the seam or not), if that is no
-    /// worse than `cut`, the plain cut (see [`close_well`](Self::close_well)).
+    /// worse than the plain cut, whose figures are `cut` (see [`close_well`](Self::close_well)).
     fn closed_well(
         &self,
         run: &GaitRun,
-        cut: &GaitRun,
+        cut: &Figures,
         end: usize,
         motion: &Pose,
         legs: &[Leg],
@@ -204,18 +228,22 @@ impl Creature {
         let ground = GROUND_CONTACT * self.length;
         let planted_shift = closed.close_loop(end, motion, hold_seam, ground);
         let tolerance = 1e-4 * self.length;
+        let now = Figures::of(&closed, legs, ground);
         // Closing must not bring a foot nearer the midline than the plain cut does, past it, or
         // nearer than half its margin.
-        let (closed_side, cut_side) = (closed.midline_margin(legs), cut.midline_margin(legs));
-        let side_kept = closed_side >= (0.5 * cut_side).min(cut_side - tolerance);
+        let side_kept = now.midline >= (0.5 * cut.midline).min(cut.midline - tolerance);
+        // Nor bring two feet on a side nearer each other along the body than the plain cut
+        // does, past each other, or nearer than half their spacing.
+        let apart_kept = now.apart >= (0.5 * cut.apart).min(cut.apart - tolerance);
         // Nor slide a foot along the ground (a correction made while the foot is only lifting
         // off) more than the plain cut does or half what the audit allows.
-        let slide_kept = closed.ground_slide(ground)
-            <= (cut.ground_slide(ground) + tolerance).max(0.5 * GROUND_CONTACT * self.length);
+        let slide_kept =
+            now.slide <= (cut.slide + tolerance).max(0.5 * GROUND_CONTACT * self.length);
         (planted_shift <= tolerance
             && side_kept
+            && apart_kept
             && slide_kept
-            && closed.overreach(legs) <= cut.overreach(legs) + tolerance)
+            && now.overreach <= cut.overreach + tolerance)
             .then_some(closed)
     }
 

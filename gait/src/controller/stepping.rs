@@ -438,7 +438,16 @@ fn step_target<G: Ground + ?Sized>(
         return (target, Vec3::Y);
     }
     if o.foot_spacing > 0.0 {
-        target = spaced_target(leg, index, legs, states, o, anchor, target, (body, rotation));
+        target = spaced_target(
+            leg,
+            index,
+            legs,
+            states,
+            o,
+            anchor,
+            target,
+            (body, rotation),
+        );
     }
     if target == anchor {
         return (anchor, anchor_normal());

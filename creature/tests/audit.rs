@@ -7,11 +7,12 @@
 
 #![allow(clippy::unwrap_used, clippy::std_instead_of_alloc)]
 
-use std::collections::BTreeMap;
+mod tally;
 
 use creature::d3::{self, Kind};
 use creature::export::glb_3d;
-use creature_audit::{Check, Limits, Report, audit_glb};
+use creature_audit::{Check, Limits, audit_glb};
+use tally::{Tally, listed};
 
 fn seeds() -> u64 {
     std::env::var("CREATURE_AUDIT_SEEDS")
@@ -20,74 +21,21 @@ fn seeds() -> u64 {
         .unwrap_or(12)
 }
 
-/// A report's failures, one after another.
-fn listed(report: &Report) -> String {
-    report
-        .failures()
-        .map(ToString::to_string)
-        .collect::<Vec<_>>()
-        .join("; ")
-}
-
-/// Audits `seeds` creatures of `kind`; the number failing each check, and the first failures.
-fn audit_kind(
-    kind: Kind,
-    first_seed: u64,
-    seeds: u64,
-) -> (BTreeMap<Check, (usize, String)>, Vec<String>) {
-    let params = d3::Params::DEFAULT.with_kind(kind);
-    let mut counts: BTreeMap<Check, (usize, String)> = BTreeMap::new();
-    let mut examples = Vec::new();
-    for seed in first_seed..first_seed + seeds {
-        let c = d3::generate(seed, &params).unwrap();
-        let glb = glb_3d(&c, &c.clips).unwrap();
-        let report: Report = audit_glb(&glb, &Limits::DEFAULT).unwrap();
-        let mut failed: Vec<Check> = report.failures().map(|m| m.check).collect();
-        failed.sort();
-        failed.dedup();
-        for check in &failed {
-            let entry = counts.entry(*check).or_default();
-            entry.0 += 1;
-            if entry.1.is_empty()
-                && let Some(m) = report.failures().find(|m| m.check == *check)
-            {
-                entry.1 = format!("seed {seed}: {m}");
-            }
-        }
-        if !failed.is_empty() {
-            examples.push(format!("seed {seed}: {}", listed(&report)));
-        }
-    }
-    (counts, examples)
-}
-
 fn run(kind: Kind, enforced: &[Check]) {
     let n = seeds();
     let first = std::env::var("CREATURE_AUDIT_FIRST_SEED")
         .ok()
         .and_then(|s| s.parse().ok())
         .unwrap_or(0);
-    let (counts, examples) = audit_kind(kind, first, n);
-    println!("audit {kind:?}: {n} seeds, {} fail", examples.len());
-    for check in Check::ALL {
-        if let Some((k, first)) = counts.get(&check) {
-            println!("  {:<22} {k:>5}   first: {first}", check.name());
-        }
+    let params = d3::Params::DEFAULT.with_kind(kind);
+    let mut tally = Tally::default();
+    for seed in first..first + n {
+        let c = d3::generate(seed, &params).unwrap();
+        tally.add(&format!("seed {seed}"), &c);
     }
-    if std::env::var_os("CREATURE_AUDIT_VERBOSE").is_some() {
-        for e in &examples {
-            println!("  {e}");
-        }
+    if let Err(e) = tally.finish(&format!("{kind:?}"), enforced) {
+        panic!("{e}");
     }
-    let broken: Vec<String> = enforced
-        .iter()
-        .filter_map(|c| counts.get(c).map(|(k, _)| format!("{}: {k}", c.name())))
-        .collect();
-    assert!(
-        broken.is_empty(),
-        "{kind:?}s failing enforced checks ({n} seeds): {}",
-        broken.join(", ")
-    );
 }
 
 #[test]

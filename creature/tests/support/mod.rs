@@ -159,8 +159,21 @@ impl fmt::Display for SweepStats {
 
 // --- 3D creatures ---
 
-/// Every problem of `c`, empty when it is valid.
+/// Every problem of `c`, empty when it is valid: [`check_3d_data`] and [`check_3d_estimates`].
 pub fn check_3d(c: &d3::Creature) -> Vec<String> {
+    let mut p = check_3d_data(c);
+    if p.iter().all(|s| s != "empty mesh") {
+        p.extend(check_3d_estimates(c));
+    }
+    p
+}
+
+/// The problems of `c`'s data: finite attributes, indices in range, no degenerate triangle,
+/// weights on valid joints, one skeleton tree, the lattice, bends, the rest pose above the
+/// floor, walkers' feet on the ground at rest and their walk and turn clips baked and
+/// well-formed. How the creature stands and moves as delivered is the audit's
+/// (`creature-audit`, `tests/audit.rs`).
+pub fn check_3d_data(c: &d3::Creature) -> Vec<String> {
     let mut p = Vec::new();
     let m = &c.mesh;
     let n = m.positions.len();
@@ -241,15 +254,35 @@ pub fn check_3d(c: &d3::Creature) -> Vec<String> {
         p.push(format!("bend {:?}", c.quality.bend_degrees));
     }
     if c.kind == CreatureKind::Walker {
-        if !(c.quality.stability_margin.unwrap_or(-1.0) > 0.0) {
-            p.push(format!("unstable: {:?}", c.quality.stability_margin));
-        }
         // Every foot at rest reaches the ground (y = 0).
         for leg in c.plan.limbs_of(LimbKind::Leg) {
             let foot = leg.foot.unwrap_or(Vec3::splat(f32::NAN)) + Vec3::Y * c.ground_offset;
             if !(foot.y.abs() <= 1e-3 * size) {
                 p.push(format!("foot not on the ground: {foot}"));
             }
+        }
+        if c.plan.leg_pairs() == 0 {
+            p.push("walker without legs".into());
+        }
+        if let Err(e) = baked_skate(c) {
+            p.push(format!("bake: {e}"));
+        }
+    }
+    p
+}
+
+/// The problems the generator's own estimates show: walkers' stability margin (from bone
+/// widths and a nominal foot), 2 s of the gait controller's foot skate and overstretch, the
+/// baked walk's and turn's planted feet moving, legs of a side sweeping the same stretch of
+/// the body, and the skinned mesh under the floor in every third frame. The sweep leaves
+/// these to the audit of the delivered creature; the regression tests of the bugs they found
+/// keep them.
+pub fn check_3d_estimates(c: &d3::Creature) -> Vec<String> {
+    let mut p = Vec::new();
+    let size = c.length;
+    if c.kind == CreatureKind::Walker {
+        if !(c.quality.stability_margin.unwrap_or(-1.0) > 0.0) {
+            p.push(format!("unstable: {:?}", c.quality.stability_margin));
         }
         match walk(c) {
             Ok((skate, overstretch)) => {
@@ -280,12 +313,10 @@ pub fn check_3d(c: &d3::Creature) -> Vec<String> {
                 }
             }
         }
-        match baked_skate(c) {
-            Ok(skate) if skate > 1e-3 * size => {
-                p.push(format!("baked walk or turn skates {skate}"))
-            }
-            Ok(_) => {}
-            Err(e) => p.push(format!("bake: {e}")),
+        if let Ok(skate) = baked_skate(c)
+            && skate > 1e-3 * size
+        {
+            p.push(format!("baked walk or turn skates {skate}"));
         }
         // No two legs on one side sweep overlapping stretches of the body.
         let legs: Vec<_> = c.plan.limbs_of(LimbKind::Leg).collect();
@@ -295,9 +326,6 @@ pub fn check_3d(c: &d3::Creature) -> Vec<String> {
                     p.push(format!("legs overlap on bones {} and {}", a.bone, b.bone));
                 }
             }
-        }
-        if c.plan.leg_pairs() == 0 {
-            p.push("walker without legs".into());
         }
     }
     p

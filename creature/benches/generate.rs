@@ -98,6 +98,15 @@ fn bench_3d(c: &mut Criterion) {
             });
         });
     }
+    // Walkers as `generate` delivers them with the default params: clips baked.
+    let params = d3::Params::DEFAULT.with_kind(d3::Kind::Walker);
+    group.bench_function("walker_with_clips_per_creature", |b| {
+        let mut seed = 0;
+        b.iter(|| {
+            seed = (seed + 1) % SEEDS;
+            black_box(generate(black_box(seed), &params).expect("valid"))
+        });
+    });
     // Baking 2 s of walk (61 frames after a 1 s warm-up) for walker 7.
     let walker = generate(
         7,

@@ -40,13 +40,15 @@ fn run(kind: Kind, enforced: &[Check]) {
 
 #[test]
 fn audit_walkers() {
-    // Not yet enforced for walkers (issue 16 is open): a foot sliding, legs touching and
-    // jerks (10 of 10,000 walkers fail one).
+    // Not yet enforced for walkers (issue 16 is open): a foot sliding and legs touching (3 of
+    // 10,000 walkers fail one).
     run(
         Kind::Walker,
         &[
             Check::Tips,
             Check::FeetCross,
+            Check::KeyTurn,
+            Check::AngularSpeed,
             Check::FootInAir,
             Check::FootNeverDown,
             Check::BelowGround,
@@ -130,6 +132,13 @@ fn regression_feet_on_a_side_keep_apart_along_the_body() {
     // (seeds 7988, 5190: `walk`); closing a turn's loop brought two feet on a side together
     // (4235, 4570, 6857).
     walkers_pass(&[7988, 5190, 4235, 4570, 6857], &[Check::LegsIntersect]);
+}
+
+#[test]
+fn regression_a_quick_swing_turns_its_knee_no_faster_than_a_joint_may() {
+    // A short swing (a loop's closing correction, or a foot swung out sideways and back) bent
+    // the knee 46° between two keys, 24 rad/s (seeds 1311, 5897, 6550 in `turn`).
+    walkers_pass(&[1311, 5897, 6550], &[Check::KeyTurn, Check::AngularSpeed]);
 }
 
 #[test]

@@ -36,6 +36,40 @@ fn limit_turn_rate(rotations: &mut [Quat], max: f32) {
     }
 }
 
+/// The most a leg's joint turns from one frame to the next while its foot is in the air, in
+/// radians (18 rad/s at [`CLIP_FPS`]; the audit of delivered creatures allows 20).
+const MAX_LEG_TURN_PER_FRAME: f32 = 0.6;
+
+/// Each rotation whose frame is `free` turned no further than `max` radians from its
+/// neighbours, the others kept: forward, backward and forward again, each frame moved toward
+/// the one before (after), so a limited stretch leaves and rejoins the kept frames within the
+/// limit where the limit allows.
+fn limit_free_turn_rate(rotations: &mut [Quat], free: &[bool], max: f32) {
+    let toward = |from: Quat, to: Quat| {
+        let angle = from.angle_between(to);
+        if angle > max {
+            Some(from.slerp(to, max / angle).normalize())
+        } else {
+            None
+        }
+    };
+    let n = rotations.len().min(free.len());
+    for pass in 0..3 {
+        for k in 1..n {
+            let (f, near) = if pass == 1 {
+                (n - 1 - k, n - k)
+            } else {
+                (k, k - 1)
+            };
+            if free[f]
+                && let Some(q) = toward(rotations[near], rotations[f])
+            {
+                rotations[f] = q;
+            }
+        }
+    }
+}
+
 /// How near the ground (× body length) a foot counts as on it, and how far a planted foot may
 /// slide, as the audit of delivered creatures counts them.
 const GROUND_CONTACT: f32 = 0.005;
@@ -418,8 +452,35 @@ impl Creature {
             }
         }
         // Each leg's hip, knee and foot tracks, then the neck and tail bent toward a turn.
-        for tracks in legs {
-            let [mut hip, mut knee, mut foot] = tracks.rotations;
+        let ground = GROUND_CONTACT * self.length;
+        for (i, tracks) in legs.into_iter().enumerate() {
+            let [mut hip, mut knee, mut foot] = tracks.rotations.clone();
+            if tracks.leg.kind == LimbKind::Leg {
+                // A quick swing's joints turn no faster than a leg's may: limited only while
+                // the foot is off the ground, so it lifts, lands and stands exactly where the
+                // gait puts it.
+                let free: Vec<bool> = (0..frames)
+                    .map(|f| !run.planted(f, i) && run.foot(f, i).y > ground)
+                    .collect();
+                for rotations in [&mut hip, &mut knee, &mut foot] {
+                    limit_free_turn_rate(rotations, &free, MAX_LEG_TURN_PER_FRAME);
+                }
+                // Unless that lowers the foot to the ground or brings it across the body's
+                // midline: that frame keeps the gait's pose.
+                for f in (0..frames).filter(|&f| free[f]) {
+                    let unlimited = tracks.foot_at(f, &tracks.rotations[0], &tracks.rotations[1]);
+                    let limited = tracks.foot_at(f, &hip, &knee);
+                    let (world, side) = (bodies[f].transform_point(limited), tracks.leg.rest.x);
+                    let kept_side = limited.x * side.signum()
+                        >= (unlimited.x * side.signum()).min(0.0)
+                        || side == 0.0;
+                    if !(world.y > 0.0 && kept_side) {
+                        hip[f] = tracks.rotations[0][f];
+                        knee[f] = tracks.rotations[1][f];
+                        foot[f] = tracks.rotations[2][f];
+                    }
+                }
+            }
             if tracks.leg.kind == LimbKind::Arm {
                 // Arms hang free: damped, no joint turns faster than the limit (the two-bone
                 // solution can flip an elbow between two frames as the hand passes its pole).
@@ -501,4 +562,36 @@ struct LegTracks<'a> {
     translations: Vec<Vec3>,
     /// The hip's, the knee's and the foot's rotations per frame.
     rotations: [Vec<Quat>; 3],
+}
+
+impl LegTracks<'_> {
+    /// The foot (the lower segment's end) in body space at frame `frame` with the hip and knee
+    /// rotations `hip` and `knee` (tracks as [`rotations`](Self::rotations) holds them).
+    fn foot_at(&self, frame: usize, hip: &[Quat], knee: &[Quat]) -> Vec3 {
+        let root = self.parent.transform_point3(self.translations[frame]);
+        let parent = Quat::from_mat3a(&self.parent.matrix3).normalize();
+        let turn = parent * hip[frame];
+        root + turn * (self.rest_upper * self.leg.upper)
+            + turn * (knee[frame] * (self.rest_lower * self.leg.lower))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn free_frames_turn_within_the_limit_and_kept_frames_stay() {
+        // Kept at 0 and 1 rad about X, with three free frames between that jump straight to
+        // the end: limited to 0.3 rad a frame, they leave and rejoin the kept frames.
+        let angles = [0.0, 0.0, 1.0, 1.0, 1.0];
+        let mut track: Vec<Quat> = angles.iter().map(|&a| Quat::from_rotation_x(a)).collect();
+        let free = [false, true, true, true, false];
+        limit_free_turn_rate(&mut track, &free, 0.3);
+        assert_eq!(track[0], Quat::from_rotation_x(0.0));
+        assert_eq!(track[4], Quat::from_rotation_x(1.0));
+        for pair in track.windows(2) {
+            assert!(pair[0].angle_between(pair[1]) <= 0.3 + 1e-5, "{track:?}");
+        }
+    }
 }

@@ -115,6 +115,11 @@ pub struct GaitOptions {
     /// positions' distance along the body, and a target is never moved further than its reach
     /// from the rest position. 0 turns it off. Default 0.25.
     pub foot_spacing: f32,
+    /// The shortest a step's swing takes, seconds, `(0, 10]`: however fast its rest position
+    /// moves (the outer feet of a long body turning in place), a foot is in the air this long
+    /// at least, so it visibly lifts and lands rather than jump along the ground in an update
+    /// or two. Default 0.1.
+    pub min_swing_time: f32,
 }
 
 impl GaitOptions {
@@ -153,6 +158,7 @@ impl GaitOptions {
         plant_fraction: 0.15,
         midline_margin: 0.5,
         foot_spacing: 0.25,
+        min_swing_time: 0.1,
     };
 
     /// Sets [`reach`](Self::reach).
@@ -209,6 +215,13 @@ impl GaitOptions {
     #[must_use]
     pub const fn with_foot_spacing(mut self, value: f32) -> Self {
         self.foot_spacing = value;
+        self
+    }
+
+    /// Sets [`min_swing_time`](Self::min_swing_time).
+    #[must_use]
+    pub const fn with_min_swing_time(mut self, value: f32) -> Self {
+        self.min_swing_time = value;
         self
     }
 
@@ -336,6 +349,7 @@ impl GaitOptions {
         in_range(self.plant_fraction, "plant fraction", 0.0, 0.45)?;
         in_range(self.midline_margin, "midline margin", 0.0, 1.0)?;
         in_range(self.foot_spacing, "foot spacing", 0.0, 1.0)?;
+        in_range(self.min_swing_time, "min swing time", tiny, 10.0)?;
         in_range(self.overshoot, "overshoot", 0.0, 1.0)?;
         in_range(self.overshoot_speed, "overshoot speed", tiny, 100.0)?;
         in_range(self.speed_multiplier, "speed multiplier", tiny, 10.0)?;

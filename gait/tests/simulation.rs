@@ -603,25 +603,41 @@ fn regression_swaying_never_carries_a_foot_across_the_midline() {
     assert!(worst > 0.25, "a foot kept only {worst} of its side");
 }
 
+/// Drives a controller of `legs` for 10 s, 30 updates a second, moving forward at `speed` and
+/// turning at `rate`; `each` sees it after every update.
+fn drive(
+    legs: &[Leg],
+    options: &GaitOptions,
+    (speed, rate): (f32, f32),
+    mut each: impl FnMut(&Controller),
+) {
+    let dt = 1.0 / 30.0;
+    let mut controller = Controller::new(legs, options).unwrap();
+    for step in 0..300 {
+        let t = step as f32 * dt;
+        let pose = Pose::from_yaw(Vec3::Z * (speed * t), rate * t);
+        controller
+            .update(dt, pose, Vec3::Z * speed, Vec3::Y * rate, &Plane::GROUND)
+            .unwrap();
+        each(&controller);
+    }
+}
+
 /// The feet in the body's frame as shown, per update, walking `legs` straight at `speed` for
 /// 10 s, 30 updates a second.
 fn feet_walking_straight(legs: &[Leg], options: &GaitOptions, speed: f32) -> Vec<Vec<Vec3>> {
-    let dt = 1.0 / 30.0;
-    let mut controller = Controller::new(legs, options).unwrap();
-    (0..300)
-        .map(|step| {
-            let pose = Pose::from_yaw(Vec3::Z * (speed * step as f32 * dt), 0.0);
-            controller
-                .update(dt, pose, Vec3::Z * speed, Vec3::ZERO, &Plane::GROUND)
-                .unwrap();
-            let shown = controller.reacted_pose();
+    let mut feet = Vec::new();
+    drive(legs, options, (speed, 0.0), |controller| {
+        let shown = controller.reacted_pose();
+        feet.push(
             controller
                 .leg_states()
                 .iter()
                 .map(|s| shown.rotation.inverse() * (s.foot - shown.translation))
-                .collect()
-        })
-        .collect()
+                .collect(),
+        );
+    });
+    feet
 }
 
 /// The nearest two feet on a side come along the body (front foot's `z` minus the rear
@@ -655,4 +671,41 @@ fn regression_a_rear_foot_does_not_land_on_a_trailing_front_foot() {
     // The spacing: a quarter of the legs' size, at most half the hips' distance (0.34 m).
     assert!(spaced > 0.3, "feet {spaced} m apart along the body");
     assert!(unspaced < 0.1, "without the spacing: {unspaced} m");
+}
+
+/// The fewest updates any step of `legs` lasts, turning in place at `rate` for 10 s, 30
+/// updates a second.
+fn shortest_swing(legs: &[Leg], options: &GaitOptions, rate: f32) -> usize {
+    let mut running = vec![0usize; legs.len()];
+    let mut shortest = usize::MAX;
+    drive(legs, options, (0.0, rate), |controller| {
+        for (run, state) in running.iter_mut().zip(controller.leg_states()) {
+            if state.stepping {
+                *run += 1;
+            } else if *run > 0 {
+                shortest = shortest.min(*run);
+                *run = 0;
+            }
+        }
+    });
+    shortest
+}
+
+#[test]
+fn regression_a_long_body_turning_in_place_lifts_every_step() {
+    // A long body's outer feet, turning in place, have rest positions that move so fast that a
+    // step's progress (by the rest position's motion) ran to the end in an update or two: the
+    // foot jumped along the ground (creature seed 8370, 0.22 m in one frame). A step lasts
+    // `min_swing_time` (0.1 s: 3 updates) at least.
+    let legs = mirrored_legs(&[
+        (Vec3::new(0.6318, 1.4108, 1.5514), 0.9170),
+        (Vec3::new(0.4844, 1.4073, -0.0290), 0.9148),
+        (Vec3::new(0.3160, 1.1726, -1.6262), 0.7622),
+    ]);
+    let options = GaitOptions::DEFAULT.with_speed_multiplier(1.17);
+    let rate = core::f32::consts::TAU / 4.43;
+    let quick = shortest_swing(&legs, &options.with_min_swing_time(1e-6), rate);
+    assert!(quick <= 2, "without the minimum: {quick} updates");
+    let shortest = shortest_swing(&legs, &options, rate);
+    assert!(shortest >= 3, "a step of {shortest} updates");
 }

@@ -108,7 +108,9 @@ impl Controller {
                 let target = state.step_target;
                 let moved = horizontal(anchor - state.prev_anchor).length();
                 let by_motion = moved / state.swing_length.max(1e-6);
-                state.progress = (state.progress + by_motion.max(o.settle_rate * dt)).min(1.0);
+                state.progress = (state.progress
+                    + by_motion.max(o.settle_rate * dt).min(dt / o.min_swing_time))
+                .min(1.0);
                 if state.progress >= 1.0 {
                     state.foot = target;
                     state.stepping = false;

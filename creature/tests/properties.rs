@@ -686,3 +686,38 @@ fn valid_params_give_creatures_that_pass_the_audit() {
         .collect();
     assert!(broken.is_empty(), "{}", broken.join("; "));
 }
+
+/// Regression (found by the 3D validity property once a step's swing had a minimum time): a
+/// rate-limited swing left the foot's own track as the gait had it, so the foot tilted with the
+/// slowed knee and its sole dipped under the floor (0.3 mm on a 10 cm walker, frame 81 of its
+/// `turn`). A limited frame's foot is turned level first, and a frame whose sole would still
+/// dip keeps the gait's pose.
+#[test]
+fn regression_a_slowed_swing_keeps_the_sole_above_the_floor() {
+    let params = d3::Params::DEFAULT
+        .with_kind(d3::Kind::Walker)
+        .with_profiles(4)
+        .with_resolution(12, 3)
+        .with_limb_sides(8)
+        .with_flat_normals(false)
+        .with_slices(
+            Span::new(1.059_054_5, 2.978_338_2),
+            Span::new(0.858_293_4, 1.569_480_1),
+            Span::new(0.566_521_64, 2.475_814_8),
+        )
+        .with_swimmer_slices(
+            Span::new(0.3, 0.3),
+            Span::new(0.3, 0.3),
+            Span::new(0.3, 0.3),
+        )
+        .with_body_scale(Span::new(0.1, 0.1))
+        .with_speed_factor(Span::new(0.141_557_4, 2.297_479_9))
+        .with_bone_length(0.1)
+        .with_spine_bones(IntSpan::new(5, 8))
+        .with_spine_bend(65.407_48)
+        .with_head_size(Span::new(0.5, 0.5))
+        .with_ground_clearance(Span::new(0.0, 0.0))
+        .with_clips(true);
+    let c = generate(5_674_394_465_910_248_868, &params).unwrap();
+    assert_eq!(support::check_3d(&c), Vec::<String>::new());
+}

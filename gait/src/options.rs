@@ -115,10 +115,10 @@ pub struct GaitOptions {
     /// positions' distance along the body, and a target is never moved further than its reach
     /// from the rest position. 0 turns it off. Default 0.25.
     pub foot_spacing: f32,
-    /// The shortest a step's swing takes, seconds, `(0, 10]`: however fast its rest position
-    /// moves (the outer feet of a long body turning in place), a foot is in the air this long
-    /// at least, so it visibly lifts and lands rather than jump along the ground in an update
-    /// or two. Default 0.1.
+    /// The shortest a step's swing takes (seconds), `(0, 10]`; a leg of size `s` under 1 takes
+    /// `min_swing_time × √s` at least (a pendulum's time: a small leg swings faster). However fast its rest position moves (the outer feet of a long body turning in
+    /// place), a foot is in the air that long, so it visibly lifts and lands rather than jump
+    /// along the ground in an update or two. Default 0.1.
     pub min_swing_time: f32,
 }
 

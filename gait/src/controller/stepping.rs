@@ -109,7 +109,9 @@ impl Controller {
                 let moved = horizontal(anchor - state.prev_anchor).length();
                 let by_motion = moved / state.swing_length.max(1e-6);
                 state.progress = (state.progress
-                    + by_motion.max(o.settle_rate * dt).min(dt / o.min_swing_time))
+                    + by_motion
+                        .max(o.settle_rate * dt)
+                        .min(dt / (o.min_swing_time * sqrt(leg.size.min(1.0)))))
                 .min(1.0);
                 if state.progress >= 1.0 {
                     state.foot = target;

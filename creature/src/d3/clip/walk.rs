@@ -411,6 +411,7 @@ impl Creature {
                 rest_upper: (rest(hip + 1) - rest(hip)).normalize_or(Vec3::NEG_Y),
                 rest_lower: (rest(hip + 2) - rest(hip + 1)).normalize_or(Vec3::NEG_Y),
                 knee_radius: self.ring_radius(hip + 1),
+                foot_radius: self.ring_radius(hip + 2),
                 translations: Vec::with_capacity(frames),
                 rotations: core::array::from_fn(|_| Vec::with_capacity(frames)),
             })
@@ -462,22 +463,41 @@ impl Creature {
                 let free: Vec<bool> = (0..frames)
                     .map(|f| !run.planted(f, i) && run.foot(f, i).y > ground)
                     .collect();
-                for rotations in [&mut hip, &mut knee, &mut foot] {
+                for rotations in [&mut hip, &mut knee] {
                     limit_free_turn_rate(rotations, &free, MAX_LEG_TURN_PER_FRAME);
                 }
-                // Unless that lowers the foot to the ground or brings it across the body's
-                // midline: that frame keeps the gait's pose.
-                for f in (0..frames).filter(|&f| free[f]) {
-                    let unlimited = tracks.foot_at(f, &tracks.rotations[0], &tracks.rotations[1]);
-                    let limited = tracks.foot_at(f, &hip, &knee);
-                    let (world, side) = (bodies[f].transform_point(limited), tracks.leg.rest.x);
-                    let kept_side = limited.x * side.signum()
-                        >= (unlimited.x * side.signum()).min(0.0)
-                        || side == 0.0;
-                    if !(world.y > 0.0 && kept_side) {
-                        hip[f] = tracks.rotations[0][f];
-                        knee[f] = tracks.rotations[1][f];
-                        foot[f] = tracks.rotations[2][f];
+                // The foot of a limited frame turned level again, then limited too.
+                let parent = Quat::from_mat3a(&tracks.parent.matrix3).normalize();
+                let [hip_0, knee_0, foot_0] = &tracks.rotations;
+                let limited = |f: usize, hip: &[Quat], knee: &[Quat]| {
+                    free[f] && (hip[f] != hip_0[f] || knee[f] != knee_0[f])
+                };
+                for f in (0..frames).filter(|&f| limited(f, &hip, &knee)) {
+                    let body = &bodies[f];
+                    foot[f] = ((body.rotation * parent * hip[f] * knee[f]).inverse()
+                        * heading(body.rotation))
+                    .normalize();
+                }
+                limit_free_turn_rate(&mut foot, &free, MAX_LEG_TURN_PER_FRAME);
+                // Unless that lowers the foot (its sole, tilted or not) to the ground or brings
+                // it across the body's midline: that frame keeps the gait's pose.
+                for f in 0..frames {
+                    if !(limited(f, &hip, &knee) || foot[f] != foot_0[f]) {
+                        continue;
+                    }
+                    let body = &bodies[f];
+                    let unlimited = tracks.foot_at(f, hip_0, knee_0);
+                    let at = tracks.foot_at(f, &hip, &knee);
+                    let side = tracks.leg.rest.x;
+                    let kept_side = side == 0.0
+                        || at.x * side.signum() >= (unlimited.x * side.signum()).min(0.0);
+                    let up = (body.rotation * parent * hip[f] * knee[f] * foot[f]) * Vec3::Y;
+                    let tilt = up.cross(Vec3::Y).length();
+                    let sole = body.transform_point(at).y - tracks.foot_radius * tilt;
+                    if !(sole > 0.0 && kept_side) {
+                        hip[f] = hip_0[f];
+                        knee[f] = knee_0[f];
+                        foot[f] = foot_0[f];
                     }
                 }
             }
@@ -558,6 +578,8 @@ struct LegTracks<'a> {
     rest_lower: Vec3,
     /// How far the knee's ring of vertices reaches (it stays this far above the floor).
     knee_radius: f32,
+    /// How far the foot's vertices reach from it (a tilted sole dips by this × the tilt).
+    foot_radius: f32,
     /// The hip's translation per frame.
     translations: Vec<Vec3>,
     /// The hip's, the knee's and the foot's rotations per frame.

@@ -45,6 +45,14 @@ const MAX_LEG_TURN_PER_FRAME: f32 = 0.6;
 /// the one before (after), so a limited stretch leaves and rejoins the kept frames within the
 /// limit where the limit allows.
 fn limit_free_turn_rate(rotations: &mut [Quat], free: &[bool], max: f32) {
+    let n = rotations.len().min(free.len());
+    // Most tracks turn slower everywhere: two unit quaternions are within `max` of each other
+    // when their dot product's size is at least cos(max / 2).
+    let near = crate::math::cos(0.5 * max);
+    if (1..n).all(|k| !(free[k] || free[k - 1]) || rotations[k].dot(rotations[k - 1]).abs() >= near)
+    {
+        return;
+    }
     let toward = |from: Quat, to: Quat| {
         let angle = from.angle_between(to);
         if angle > max {
@@ -53,7 +61,6 @@ fn limit_free_turn_rate(rotations: &mut [Quat], free: &[bool], max: f32) {
             None
         }
     };
-    let n = rotations.len().min(free.len());
     for pass in 0..3 {
         for k in 1..n {
             let (f, near) = if pass == 1 {
@@ -411,7 +418,6 @@ impl Creature {
                 rest_upper: (rest(hip + 1) - rest(hip)).normalize_or(Vec3::NEG_Y),
                 rest_lower: (rest(hip + 2) - rest(hip + 1)).normalize_or(Vec3::NEG_Y),
                 knee_radius: self.ring_radius(hip + 1),
-                foot_radius: self.ring_radius(hip + 2),
                 translations: Vec::with_capacity(frames),
                 rotations: core::array::from_fn(|_| Vec::with_capacity(frames)),
             })
@@ -481,6 +487,7 @@ impl Creature {
                 limit_free_turn_rate(&mut foot, &free, MAX_LEG_TURN_PER_FRAME);
                 // Unless that lowers the foot (its sole, tilted or not) to the ground or brings
                 // it across the body's midline: that frame keeps the gait's pose.
+                let mut foot_radius = None;
                 for f in 0..frames {
                     if !(limited(f, &hip, &knee) || foot[f] != foot_0[f]) {
                         continue;
@@ -493,7 +500,9 @@ impl Creature {
                         || at.x * side.signum() >= (unlimited.x * side.signum()).min(0.0);
                     let up = (body.rotation * parent * hip[f] * knee[f] * foot[f]) * Vec3::Y;
                     let tilt = up.cross(Vec3::Y).length();
-                    let sole = body.transform_point(at).y - tracks.foot_radius * tilt;
+                    let foot_radius =
+                        *foot_radius.get_or_insert_with(|| self.ring_radius(tracks.hip + 2));
+                    let sole = body.transform_point(at).y - foot_radius * tilt;
                     if !(sole > 0.0 && kept_side) {
                         hip[f] = hip_0[f];
                         knee[f] = knee_0[f];
@@ -578,8 +587,6 @@ struct LegTracks<'a> {
     rest_lower: Vec3,
     /// How far the knee's ring of vertices reaches (it stays this far above the floor).
     knee_radius: f32,
-    /// How far the foot's vertices reach from it (a tilted sole dips by this × the tilt).
-    foot_radius: f32,
     /// The hip's translation per frame.
     translations: Vec<Vec3>,
     /// The hip's, the knee's and the foot's rotations per frame.

@@ -618,8 +618,16 @@ impl Field2 {
     /// factor, so a ball costs one `exp` per row and column it reaches rather than one per
     /// sample. Each sample sums exactly the balls `value` would, in the same order, so it
     /// differs from `value` by rounding only, within
-    /// [`sample_error_bound`](Self::sample_error_bound)` × value`, and obeys the same
-    /// [`error_bound`](Self::error_bound); it is not bit-identical to `value`. An exponential
+    /// [`sample_error_bound`](Self::sample_error_bound)` × value`; it is not bit-identical to
+    /// `value`. Against [`value_exact`](Self::value_exact) the two bounds add, since
+    /// `|sample − exact| ≤ |sample − value| + |value − exact|`: a sample is within
+    /// [`error_bound`](Self::error_bound)` + sample_error_bound × value` of the exact sum (up
+    /// to the rounding by which `value` itself may differ from `value_exact`). The second term
+    /// matters for steep falloffs, whose `sample_error_bound` grows with the exponent at the
+    /// cutoff (regression: these docs once said a sample obeys `error_bound` alone; with
+    /// blobbiness −76 and epsilon 0.025, three balls, a sample read 94,498.58 where `value`
+    /// and `value_exact` read 94,499.73, 1.2e-5 relative, within the `sample_error_bound` of
+    /// 3.4e-5 but 15 times `error_bound`). An exponential
     /// falloff so steep that a factor could underflow (`blobbiness + ln(epsilon) < −80`, i.e.
     /// `blobbiness` below about −70.8 at the default epsilon) and [`Falloff::Wyvill`] are not
     /// split: each sample is then `value` itself.
@@ -667,9 +675,9 @@ impl Field2 {
     /// `exp` of [`value`](Self::value)). Against `value` at the same point it sums the same
     /// balls in the same order (so
     /// a sample is 0 exactly where `value` is) and differs only by rounding: within
-    /// [`sample_error_bound`](Self::sample_error_bound)` × value` (tested), and it obeys the
-    /// same
-    /// [`error_bound`](Self::error_bound) against the exact sum. It is **not** bit-identical
+    /// [`sample_error_bound`](Self::sample_error_bound)` × value` (tested), so within
+    /// [`error_bound`](Self::error_bound)` + sample_error_bound × value` of the exact sum, as
+    /// for [`sample_grid`](Self::sample_grid). It is **not** bit-identical
     /// to `value`, nor to `sample_grid` (which uses the platform's `exp`). For
     /// [`Falloff::Wyvill`] (no separable form) and the steepest exponential falloffs (as in
     /// [`sample_grid`](Self::sample_grid)) each sample is `value` itself.

@@ -772,3 +772,48 @@ fn regression_grid_samples_rounded_onto_a_ball_see_it() {
         );
     }
 }
+
+/// Found by the fuzz smoke (`metaball_2d`, `new-sample-grid-steep-falloff-adds-sample-error`):
+/// the docs said a grid sample obeys `error_bound` against `value_exact`, as `value` does, and
+/// the fuzz target checked that (with `1e-5` relative for rounding). It does not: a sample is
+/// within `sample_error_bound × value` of `value` and `value` within `error_bound` of the
+/// exact sum, so the two add. With a steep falloff (blobbiness −76, exponent at the cutoff
+/// `L ≈ 79.6`) the first is `(7 L + 2 n + 11) · 2⁻²⁴ ≈ 3.4e-5` relative: at (146.07391,
+/// 100.15896) the sample read 94,498.58 where `value` and `value_exact` read 94,499.73 (the sum
+/// in `f64` is 94,498.47: the split sample is the closer one), 1.15 apart against an
+/// `error_bound` of 0.074. Three balls, not many: the exponent's rounding, amplified by `L`.
+#[test]
+fn regression_steep_falloff_samples_are_within_error_bound_plus_sample_error() {
+    let balls = [
+        Ball2::new(Vec2::new(-64.52212, 99.99324), 50.0, 0),
+        Ball2::new(Vec2::new(100.0, 100.0), 50.0, 1),
+        Ball2::new(Vec2::new(100.0, 100.0), 9.998_353, 2),
+    ];
+    let options = FieldOptions::DEFAULT
+        .with_falloff(Falloff::Exponential {
+            blobbiness: -75.93633,
+        })
+        .with_epsilon(0.024_608_286)
+        .with_cell_size(Some(24.541_914));
+    let field = Field2::with_options(&balls, &options).unwrap();
+    let rel = field.sample_error_bound();
+    assert!((3.4e-5..3.5e-5).contains(&rel), "{rel}");
+    let (origin, step, size) = (Vec2::new(56.616_867, 85.24945), 14.909_508, 9);
+    let grid = field.sample_grid(origin, step, size, size).unwrap();
+    let mut block = vec![0.0; size * size];
+    field
+        .sample_block(origin, step, size, size, &mut block)
+        .unwrap();
+    let mut worst = 0.0f32;
+    for n in 0..size * size {
+        let p = origin + step * Vec2::new((n % size) as f32, (n / size) as f32);
+        let (v, exact) = (field.value(p), field.value_exact(p));
+        let bound = field.error_bound() + rel * v + 1e-6 * exact;
+        for s in [grid[n], block[n]] {
+            assert!((s - exact).abs() <= bound, "{p}: {s} vs exact {exact}");
+            worst = worst.max((s - exact).abs() / exact.max(f32::MIN_POSITIVE));
+        }
+    }
+    // The case is one that `error_bound` plus `1e-5` relative does not cover.
+    assert!(worst > 1e-5, "{worst}");
+}

@@ -209,6 +209,69 @@ fn rings_are_simple(rings: &[Ring]) -> bool {
     true
 }
 
+/// Twice the areas of triangles, summed exactly: a Shewchuk expansion (non-overlapping `f64`
+/// parts, smallest first, grown by error-free sums), rounded once at the end.
+///
+/// `robust::orient2d` gives an orientation's exact *sign*, but its value is only the plain
+/// `f64` estimate `(a − c) × (b − c)` whenever that clears its error bound: off by up to about
+/// `3.3e-16` times the sum of the two products' magnitudes, all of a thin triangle's area
+/// (regression: the tiny ring (−8, −8), (3, 3), (4.8e-33, −3.03e-13), a triangle 3e-13 wide
+/// and 15 long, has the exact area 1.667407e-12; `orient2d` read 1.667999e-12 for the mesh's
+/// two halves and 1.662670e-12 for spade's one triangle, 0.3 % apart, past the 1e-3 check,
+/// though both meshes cover the ring exactly).
+#[derive(Debug, Default)]
+struct ExactArea {
+    parts: Vec<f64>,
+}
+
+impl ExactArea {
+    /// Adds `x` exactly (Shewchuk's grow-expansion, zero parts dropped).
+    fn add(&mut self, x: f64) {
+        let mut q = x;
+        let mut kept = 0;
+        for i in 0..self.parts.len() {
+            let e = self.parts[i];
+            // Knuth's two-sum: `s + err == q + e` exactly.
+            let s = q + e;
+            let b = s - q;
+            let err = (q - (s - b)) + (e - b);
+            if err != 0.0 {
+                self.parts[kept] = err;
+                kept += 1;
+            }
+            q = s;
+        }
+        self.parts.truncate(kept);
+        if q != 0.0 {
+            self.parts.push(q);
+        }
+    }
+
+    /// Adds `a × b` exactly: the rounded product and its error (`mul_add`, exact unless the
+    /// error underflows, which products of `f32` coordinates cannot: they are exact in `f64`).
+    fn add_product(&mut self, a: f64, b: f64) {
+        let p = a * b;
+        self.add(a.mul_add(b, -p));
+        self.add(p);
+    }
+
+    /// Adds twice the signed area of the triangle `abc` (positive counter-clockwise):
+    /// `(b − a) × (c − a)` expanded into six products, each summed exactly.
+    fn add_triangle(&mut self, [a, b, c]: [[f64; 2]; 3]) {
+        for (p, q, r) in [(a, b, c), (b, c, a), (c, a, b)] {
+            // Σ over the rotations of p.x (q.y − r.y).
+            self.add_product(p[0], q[1]);
+            self.add_product(-p[0], r[1]);
+        }
+    }
+
+    /// The sum, rounded: the parts added smallest first (non-overlapping, so within a few
+    /// units in the last place).
+    fn value(&self) -> f64 {
+        self.parts.iter().sum()
+    }
+}
+
 /// The area spade's constrained triangulation of the ring edges covers inside the rings, or
 /// `None` when spade cannot take the points (coordinates outside its range).
 fn spade_area(rings: &[Ring]) -> Option<Result<f64, String>> {
@@ -259,14 +322,15 @@ fn spade_area(rings: &[Ring]) -> Option<Result<f64, String>> {
             }
         }
     }
-    let mut area = 0.0;
+    // Summed exactly: `orient2d`'s value is only an estimate (see `ExactArea`). Spade's inner
+    // faces are counter-clockwise.
+    let mut area = ExactArea::default();
     for face in cdt.inner_faces() {
         if inside[face.fix().index()] == Some(true) {
-            let [a, b, c] = face.positions().map(|p| robust::Coord { x: p.x, y: p.y });
-            area += robust::orient2d(a, b, c).abs() / 2.0;
+            area.add_triangle(face.positions().map(|p| [p.x, p.y]));
         }
     }
-    Some(Ok(area))
+    Some(Ok(area.value() / 2.0))
 }
 
 fn check_mesh(mesh: &Mesh2, rings: &[Ring], options: &MeshOptions) -> f64 {
@@ -276,7 +340,7 @@ fn check_mesh(mesh: &Mesh2, rings: &[Ring], options: &MeshOptions) -> f64 {
         "non-finite mesh vertex"
     );
     let mut used = vec![false; n];
-    let mut area = 0.0;
+    let mut area = ExactArea::default();
     for t in &mesh.triangles {
         for &i in t {
             assert!((i as usize) < n, "triangle index {i} of {n}");
@@ -301,7 +365,8 @@ fn check_mesh(mesh: &Mesh2, rings: &[Ring], options: &MeshOptions) -> f64 {
             o > 0.0,
             "triangle {t:?} ({a}, {b}, {c}) is not counter-clockwise"
         );
-        area += o / 2.0;
+        // The exact area, not `o / 2` (see `ExactArea`).
+        area.add_triangle([a, b, c].map(|p| p.as_dvec2().to_array()));
     }
     assert!(used.iter().all(|u| *u), "a vertex no triangle uses");
     if options.simplify == 0.0 {
@@ -323,7 +388,7 @@ fn check_mesh(mesh: &Mesh2, rings: &[Ring], options: &MeshOptions) -> f64 {
         q.min_angle
     );
     assert!(q.below_limit <= mesh.triangles.len() && q.below_20 <= mesh.triangles.len());
-    area
+    area.value() / 2.0
 }
 
 pub fn run(input: &Input) {
@@ -417,5 +482,37 @@ pub fn run(input: &Input) {
             panic!("validate_rings and triangulate accept the rings, spade does not: {e}")
         }
         _ => {}
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use arbitrary::{Arbitrary, Unstructured};
+
+    use super::ExactArea;
+
+    /// The smoke's finding: a ring 3e-13 wide whose mesh and spade's triangulation both cover
+    /// it exactly, but whose areas from `orient2d`'s estimates were 0.3 % apart.
+    #[test]
+    fn regression_tiny_ring_areas_are_summed_exactly() {
+        let bytes = include_bytes!("../corpus/triangulate/new-tiny-ring-area-orient2d-estimate");
+        let input = super::Input::arbitrary_take_rest(Unstructured::new(bytes)).unwrap();
+        super::run(&input);
+        // The ring, and its mesh's two halves split at the midpoint (−2.5, −2.5) of the long
+        // edge: 2 A = 11 (|y| + x) for the third vertex (x, y).
+        let (a, b) = ([-8.0, -8.0], [3.0, 3.0]);
+        let c = [
+            f64::from(4.814_825e-33_f32),
+            f64::from(-3.031_648_8e-13_f32),
+        ];
+        let twice = 11.0 * (-c[1] + c[0]);
+        let mut ring = ExactArea::default();
+        ring.add_triangle([a, c, b]);
+        let mut halves = ExactArea::default();
+        halves.add_triangle([c, b, [-2.5, -2.5]]);
+        halves.add_triangle([a, c, [-2.5, -2.5]]);
+        for sum in [ring.value(), halves.value()] {
+            assert!((sum - twice).abs() <= 1e-15 * twice, "{sum} vs {twice}");
+        }
     }
 }

@@ -305,19 +305,20 @@ fn spade_area(rings: &[Ring]) -> Option<Result<f64, String>> {
     for face in cdt.inner_faces() {
         for e in face.adjacent_edges() {
             if e.rev().face().is_outer() && inside[face.fix().index()].is_none() {
-                inside[face.fix().index()] = Some(e.is_constraint_edge());
-                stack.push(face);
+                let side = e.is_constraint_edge();
+                inside[face.fix().index()] = Some(side);
+                stack.push((face, side));
             }
         }
     }
-    while let Some(face) = stack.pop() {
-        let side = inside[face.fix().index()].unwrap();
+    while let Some((face, side)) = stack.pop() {
         for e in face.adjacent_edges() {
             if let Some(next) = e.rev().face().as_inner() {
                 let slot = &mut inside[next.fix().index()];
                 if slot.is_none() {
-                    *slot = Some(side ^ e.is_constraint_edge());
-                    stack.push(next);
+                    let next_side = side ^ e.is_constraint_edge();
+                    *slot = Some(next_side);
+                    stack.push((next, next_side));
                 }
             }
         }

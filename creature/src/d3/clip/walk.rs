@@ -407,19 +407,23 @@ impl Creature {
             .legs
             .iter()
             .zip(&setup.hip_joints)
-            .map(|(leg, &hip)| LegTracks {
-                leg,
-                hip,
-                parent: joints
+            .map(|(leg, &hip)| {
+                let parent = joints
                     .get(hip)
                     .and_then(|j| j.parent)
                     .and_then(|p| body_global.get(p).copied())
-                    .unwrap_or(Affine3A::IDENTITY),
-                rest_upper: (rest(hip + 1) - rest(hip)).normalize_or(Vec3::NEG_Y),
-                rest_lower: (rest(hip + 2) - rest(hip + 1)).normalize_or(Vec3::NEG_Y),
-                knee_radius: self.ring_radius(hip + 1),
-                translations: Vec::with_capacity(frames),
-                rotations: core::array::from_fn(|_| Vec::with_capacity(frames)),
+                    .unwrap_or(Affine3A::IDENTITY);
+                LegTracks {
+                    leg,
+                    hip,
+                    parent,
+                    parent_rotation: Quat::from_mat3a(&parent.matrix3).normalize(),
+                    rest_upper: (rest(hip + 1) - rest(hip)).normalize_or(Vec3::NEG_Y),
+                    rest_lower: (rest(hip + 2) - rest(hip + 1)).normalize_or(Vec3::NEG_Y),
+                    knee_radius: self.ring_radius(hip + 1),
+                    translations: Vec::with_capacity(frames),
+                    rotations: core::array::from_fn(|_| Vec::with_capacity(frames)),
+                }
             })
             .collect();
         // Nothing under the floor: a frame whose body would dip below it (its lean, bob or
@@ -443,7 +447,7 @@ impl Creature {
                 let hip_rotation = rotation_arc(rest_upper, upper);
                 let lower = (ik.end - middle).normalize_or(rest_lower);
                 let knee_rotation = rotation_arc(rest_lower, hip_rotation.inverse() * lower);
-                let parent_rotation = Quat::from_mat3a(&parent.matrix3).normalize();
+                let parent_rotation = tracks.parent_rotation;
                 tracks
                     .translations
                     .push(parent.inverse().transform_point3(ik.root));
@@ -473,7 +477,7 @@ impl Creature {
                     limit_free_turn_rate(rotations, &free, MAX_LEG_TURN_PER_FRAME);
                 }
                 // The foot of a limited frame turned level again, then limited too.
-                let parent = Quat::from_mat3a(&tracks.parent.matrix3).normalize();
+                let parent = tracks.parent_rotation;
                 let [hip_0, knee_0, foot_0] = &tracks.rotations;
                 let limited = |f: usize, hip: &[Quat], knee: &[Quat]| {
                     free[f] && (hip[f] != hip_0[f] || knee[f] != knee_0[f])
@@ -580,8 +584,9 @@ struct LegTracks<'a> {
     leg: &'a Leg,
     /// The hip joint; the knee and the foot are the next two.
     hip: usize,
-    /// The hip's parent (a spine joint, maybe bent) in body space.
+    /// The hip's parent (a spine joint, maybe bent) in body space, and its rotation.
     parent: Affine3A,
+    parent_rotation: Quat,
     /// The rest directions of the leg's upper and lower segments.
     rest_upper: Vec3,
     rest_lower: Vec3,
@@ -598,8 +603,7 @@ impl LegTracks<'_> {
     /// rotations `hip` and `knee` (tracks as [`rotations`](Self::rotations) holds them).
     fn foot_at(&self, frame: usize, hip: &[Quat], knee: &[Quat]) -> Vec3 {
         let root = self.parent.transform_point3(self.translations[frame]);
-        let parent = Quat::from_mat3a(&self.parent.matrix3).normalize();
-        let turn = parent * hip[frame];
+        let turn = self.parent_rotation * hip[frame];
         root + turn * (self.rest_upper * self.leg.upper)
             + turn * (knee[frame] * (self.rest_lower * self.leg.lower))
     }

@@ -158,3 +158,101 @@ fn regression_sideways_knees_of_an_upright_leg_are_not_flipped_across_the_body()
     let legs = &c.gait.as_ref().unwrap().legs;
     assert!(legs[0].pole.x > 0.0 && legs[1].pole.x < 0.0, "{legs:?}");
 }
+
+/// Fails if the creature of `seed` and `params` fails any of `checks`.
+fn passes(seed: u64, params: &d3::Params, checks: &[Check]) {
+    let c = d3::generate(seed, params).unwrap();
+    let report = audit_glb(&glb_3d(&c, &c.clips).unwrap(), &Limits::DEFAULT).unwrap();
+    for &check in checks {
+        assert!(!report.fails(check), "seed {seed}: {}", listed(&report));
+    }
+}
+
+/// A flier of valid params as the params property drew them: `(width, height, step)` of its
+/// slices, its body scale, speed factor, bone length, spine bones, bend, head size and
+/// clearance.
+#[allow(clippy::too_many_arguments)]
+fn flier(
+    mesh: (u32, u32, u32, u32, bool),
+    slices: [(f32, f32); 3],
+    scale: (f32, f32),
+    speed: (f32, f32),
+    bone_length: f32,
+    spine_bones: (u32, u32),
+    spine_bend: f32,
+    head: (f32, f32),
+    clearance: (f32, f32),
+) -> d3::Params {
+    use creature::{IntSpan, Span};
+    let span = |(a, b): (f32, f32)| Span::new(a, b);
+    let (profiles, rings, segments, sides, flat) = mesh;
+    d3::Params::DEFAULT
+        .with_kind(Kind::Flier)
+        .with_profiles(profiles)
+        .with_resolution(rings, segments)
+        .with_limb_sides(sides)
+        .with_flat_normals(flat)
+        .with_slices(span(slices[0]), span(slices[1]), span(slices[2]))
+        .with_body_scale(span(scale))
+        .with_speed_factor(span(speed))
+        .with_bone_length(bone_length)
+        .with_spine_bones(IntSpan::new(spine_bones.0, spine_bones.1))
+        .with_spine_bend(spine_bend)
+        .with_head_size(span(head))
+        .with_ground_clearance(span(clearance))
+}
+
+#[test]
+fn regression_a_fast_fliers_dangling_legs_do_not_whirl() {
+    // A fast flier's short dangling legs were springs damped against the air at a tenth of
+    // critical, stiffened to trail behind at 17 m/s: the bob rang them, and a hip whirled
+    // round (up to 180° between two keys of `fly`). They are now simulated flying with the
+    // body, trailing in their rest direction and damped at 0.7 of critical.
+    let params = flier(
+        (4, 14, 4, 3, true),
+        [
+            (0.994_159_3, 1.039_162_8),
+            (0.606_776_5, 1.339_082_8),
+            (0.695_626_2, 1.422_667_4),
+        ],
+        (2.455_140_6, 6.808_189_4),
+        (1.718_118_1, 4.711_306_6),
+        0.369_513_54,
+        (26, 37),
+        178.213,
+        (1.634_431, 1.977_957_4),
+        (0.050_255_79, 0.471_187_5),
+    );
+    passes(
+        17_832_793_757_359_882_385,
+        &params,
+        &[Check::KeyTurn, Check::AngularSpeed],
+    );
+}
+
+#[test]
+fn regression_a_coarse_fliers_tail_bends_within_its_skin() {
+    // On a coarse mesh (2 profiles, 4 rings) no vertex was mostly weighted to some tail
+    // joints, so they had no bend limit: one swung 55° in `hover` and stretched the skin to
+    // 1.54 of its rest length. Such a joint takes its nearest spine neighbour's thickness.
+    let params = flier(
+        (2, 4, 9, 3, true),
+        [
+            (2.013_578, 2.413_838_6),
+            (0.769_067, 1.785_924_8),
+            (0.341_956_38, 2.615_084_2),
+        ],
+        (4.441_711, 9.789_626),
+        (0.444_320_14, 2.797_783_4),
+        0.246_018,
+        (20, 33),
+        39.219_963,
+        (0.777_901_1, 1.729_058_7),
+        (0.373_015_46, 0.830_393_5),
+    );
+    passes(
+        8_069_181_287_398_322_298,
+        &params,
+        &[Check::Stretch, Check::Squash],
+    );
+}

@@ -709,3 +709,45 @@ fn regression_a_long_body_turning_in_place_lifts_every_step() {
     let shortest = shortest_swing(&legs, &options, rate);
     assert!(shortest >= 3, "a step of {shortest} updates");
 }
+
+#[test]
+fn regression_a_chain_on_a_body_moving_far_per_update_stays_behind_its_root() {
+    // The body moved 0.5 m in an update while the chain's segments are 0.1 m: every sub-step
+    // pinned the root at the new place at once, so the chain's first joint, left 0.5 m back,
+    // was projected behind the root and the chain whirled. The sub-steps now carry the rest
+    // (the root included) from the last update's place to this one's. (Damped at 0.7 of
+    // critical, the chain trails without ringing.)
+    let mut c = Controller::chains_only(1.0, &GaitOptions::DEFAULT).unwrap();
+    let chain = c
+        .add_chain(
+            creature_gait::Chain::new(Vec3::ZERO, Vec3::NEG_Y, 2, 0.1)
+                .with_spring(1_000.0, 44.0)
+                .with_gravity(9.81),
+        )
+        .unwrap();
+    let ground = Plane::horizontal(-100.0);
+    let (dt, speed) = (1.0 / 30.0, 15.0);
+    let mut worst = 0.0f32;
+    for frame in 0..90 {
+        let at = Vec3::Z * (speed * dt * frame as f32);
+        c.update(
+            dt,
+            Pose::from_yaw(at, 0.0),
+            Vec3::Z * speed,
+            Vec3::ZERO,
+            &ground,
+        )
+        .unwrap();
+        let points = c.chain(chain).unwrap();
+        for w in points.windows(2) {
+            // Trailing (−Z) and hanging (−Y) it may be; never ahead of, nor above, its root.
+            let d = (w[1] - w[0]).normalize();
+            worst = worst.max(d.angle_between(Vec3::new(0.0, -1.0, -1.0).normalize()));
+        }
+    }
+    assert!(
+        worst < core::f32::consts::FRAC_PI_2 * 0.9,
+        "{} degrees",
+        worst.to_degrees()
+    );
+}

@@ -23,6 +23,10 @@ pub(super) struct ChainState {
     output: Vec<Vec3>,
     /// The rest joints of the current update (reused storage: no allocation per update).
     rest: Vec<Vec3>,
+    /// The rest joints of the previous update: the sub-steps move the rest (the root pinned
+    /// to the body included) from these to `rest`, so a body that moves far in one update
+    /// does not yank the chain across its root.
+    previous: Vec<Vec3>,
 }
 
 impl Controller {
@@ -40,6 +44,7 @@ impl Controller {
             velocities: alloc::vec![Vec3::ZERO; rest.len()],
             output: rest.clone(),
             positions: rest.clone(),
+            previous: rest.clone(),
             rest,
         });
         if self.initialized {
@@ -56,30 +61,35 @@ impl Controller {
         s.velocities.iter_mut().for_each(|v| *v = Vec3::ZERO);
         s.output.clone_from(&s.rest);
         s.positions.clone_from(&s.rest);
+        s.previous.clone_from(&s.rest);
     }
 
     pub(super) fn follow(&mut self, i: usize, dt: f32, pose: &Pose, angular_velocity: Vec3) {
         let (chain, state) = (&self.chains[i], &mut self.chain_states[i]);
         // A validated chain has a segment at least: a root and a joint.
         debug_assert!(state.positions.len() >= 2 && state.positions.len() == state.rest.len());
+        core::mem::swap(&mut state.previous, &mut state.rest);
         chain_rest(
             chain,
             pose,
             angular_velocity.y * chain.turn_bend,
             &mut state.rest,
         );
-        let rest = &state.rest;
+        let (rest, previous) = (&state.rest, &state.previous);
         let rate = (2.0 * sqrt(chain.stiffness) + chain.damping).max(1.0 / CHAIN_SUBSTEP);
         let substeps = (ceil(dt * rate) as u32).clamp(1, MAX_CHAIN_SUBSTEPS);
         let h = (dt / substeps as f32).min(1.0 / rate);
         let len = chain.segment_length;
         if dt > 0.0 {
-            for _ in 0..substeps {
-                state.positions[0] = rest[0];
+            for step in 1..=substeps {
+                // The rest of this sub-step: on the way from the previous update's to this one's.
+                let t = step as f32 / substeps as f32;
+                let at = |k: usize| previous[k].lerp(rest[k], t);
+                state.positions[0] = at(0);
                 for k in 1..state.positions.len() {
                     let x = state.positions[k];
                     let v = state.velocities[k];
-                    let accel = (rest[k] - x) * chain.stiffness - v * chain.damping
+                    let accel = (at(k) - x) * chain.stiffness - v * chain.damping
                         + Vec3::NEG_Y * chain.gravity;
                     let v = v + accel * h;
                     let moved = x + v * h;

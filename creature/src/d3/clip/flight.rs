@@ -81,7 +81,10 @@ pub(crate) fn flight(c: &Creature, name: &'static str, speed: f32) -> Result<Cli
     for step in 0..warm_up + frames {
         let t = (step as f32 - warm_up as f32) * dt;
         let position = offset(t);
-        flight.update(dt, position, Vec3::Z * speed)?;
+        // The chains are simulated in the frame that flies with the body at its steady speed
+        // (their damping then acts on motion relative to the flight, as the air's would; the
+        // trail is in their rest direction), so only the bob and the drift move them.
+        flight.update(dt, position - Vec3::Z * (speed * t))?;
         if step < warm_up {
             continue;
         }
@@ -134,6 +137,12 @@ pub(crate) fn flight(c: &Creature, name: &'static str, speed: f32) -> Result<Cli
 /// The part of its bend limit each joint of a flier's tail chain may take.
 const CHAIN_BEND_SHARE: f32 = 0.75;
 
+/// How far a flier's chains trail behind their limbs in flight, as a fraction of their length.
+const FLIGHT_TRAIL: f32 = 0.3;
+
+/// A flier's chains' damping as a fraction of critical damping.
+const CHAIN_DAMPING_RATIO: f32 = 0.7;
+
 /// The least height of a flier's lowest vertex in flight, as a fraction of its body length.
 const FLIGHT_CLEARANCE: f32 = 0.02;
 
@@ -173,20 +182,19 @@ impl FlightChains {
                 continue;
             }
             let direction = span.normalize();
-            // Damping 6 /s; the spring such that gravity sags a chain by about 15% of its
-            // length and flight trails it by about 30%.
-            let damping = 6.0;
-            let stiffness = (gravity / (0.15 * length))
-                .max(damping * speed / (0.3 * length))
-                .clamp(20.0, 10_000.0);
-            let chain = Chain::new(
-                position(root),
-                direction,
-                segments,
-                length / segments as f32,
-            )
-            .with_spring(stiffness, damping)
-            .with_gravity(*gravity);
+            // Flying, a chain rests trailing by about 30% of its length behind its limb.
+            let rest = if speed > 0.0 {
+                (direction - FLIGHT_TRAIL * Vec3::Z).normalize_or(direction)
+            } else {
+                direction
+            };
+            // The spring such that gravity sags a chain by about 15% of its length, damped to
+            // [`CHAIN_DAMPING_RATIO`] of critical (at least 6 /s), so the bob does not ring it.
+            let stiffness = (gravity / (0.15 * length)).clamp(20.0, 10_000.0);
+            let damping = (2.0 * CHAIN_DAMPING_RATIO * crate::math::sqrt(stiffness)).max(6.0);
+            let chain = Chain::new(position(root), rest, segments, length / segments as f32)
+                .with_spring(stiffness, damping)
+                .with_gravity(*gravity);
             let index = controller.add_chain(chain)?;
             out.push((joints.clone(), direction, index));
         }
@@ -204,13 +212,13 @@ impl FlightChains {
             .copied()
     }
 
-    fn update(&mut self, dt: f32, position: Vec3, velocity: Vec3) -> Result<(), Error> {
+    fn update(&mut self, dt: f32, position: Vec3) -> Result<(), Error> {
         // No ground under a flier.
         let ground = Plane::horizontal(f32::MIN / 4.0);
         self.controller.update(
             dt,
             Pose::from_yaw(position, 0.0),
-            velocity,
+            Vec3::ZERO,
             Vec3::ZERO,
             &ground,
         )?;

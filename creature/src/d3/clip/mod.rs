@@ -167,11 +167,14 @@ impl Creature {
                 }
             }
         }
+        // A joint no vertex is mostly weighted to (a coarse mesh) still bends the skin its
+        // neighbours carry: it takes the nearest spine joint's thickness.
+        let along: Vec<f32> = spine.iter().map(|&j| thickness[j]).collect();
         for k in 1..points.len() - 1 {
             let shorter = points[k]
                 .distance(points[k - 1])
                 .min(points[k].distance(points[k + 1]));
-            let r = thickness[spine[k]];
+            let r = nearest_positive(&along, k);
             if r > 0.0 {
                 limits[spine[k]] = BEND_PER_THICKNESS * shorter / r;
             }
@@ -212,6 +215,17 @@ impl Creature {
         };
         spine.iter().take(c).skip(1).rev().copied().collect()
     }
+}
+
+/// `values[k]` if positive, or else the positive value nearest to `k` (the earlier one of two
+/// as near); 0 if there is none.
+fn nearest_positive(values: &[f32], k: usize) -> f32 {
+    (0..values.len())
+        .flat_map(|d| [k.checked_sub(d), k.checked_add(d)])
+        .flatten()
+        .filter_map(|i| values.get(i).copied())
+        .find(|&v| v > 0.0)
+        .unwrap_or(0.0)
 }
 
 /// A baked clip's [`Clip::loop_error`]: the largest rotation angle between its first and last

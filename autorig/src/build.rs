@@ -730,8 +730,11 @@ fn socket_for(
         }
         found
     };
+    // A coarse ring may have a single vertex beside a short bone, which is then both its
+    // left and its right: the socket has no width, and two limbs of a pair would share a
+    // point. The slabs' other vertices give it two sides.
     let mut chosen = scan(true);
-    if chosen.entry[0] == usize::MAX {
+    if chosen.entry[0] == usize::MAX || chosen.entry[0] == chosen.entry[1] {
         chosen = scan(false);
     }
     let pick = |k: usize| -> Option<(u32, Vec3)> {

@@ -40,22 +40,7 @@ fn run(kind: Kind, enforced: &[Check]) {
 
 #[test]
 fn audit_walkers() {
-    // Not yet enforced for walkers (issue 16 is open): legs touching (2 of 10,000 walkers).
-    run(
-        Kind::Walker,
-        &[
-            Check::Tips,
-            Check::FootSlides,
-            Check::FeetCross,
-            Check::KeyTurn,
-            Check::AngularSpeed,
-            Check::FootInAir,
-            Check::FootNeverDown,
-            Check::BelowGround,
-            Check::Stretch,
-            Check::Squash,
-        ],
-    );
+    run(Kind::Walker, &Check::ALL);
 }
 
 #[test]
@@ -168,11 +153,12 @@ fn passes(seed: u64, params: &d3::Params, checks: &[Check]) {
     }
 }
 
-/// A flier of valid params as the params property drew them: `(width, height, step)` of its
-/// slices, its body scale, speed factor, bone length, spine bones, bend, head size and
-/// clearance.
+/// A creature's params as the params property drew them: its kind, mesh (profiles, rings,
+/// segments, limb sides, flat normals), `(width, height, step)` of its slices, its body
+/// scale, speed factor, bone length, spine bones, bend, head size and clearance.
 #[allow(clippy::too_many_arguments)]
-fn flier(
+fn drawn(
+    kind: Kind,
     mesh: (u32, u32, u32, u32, bool),
     slices: [(f32, f32); 3],
     scale: (f32, f32),
@@ -187,7 +173,7 @@ fn flier(
     let span = |(a, b): (f32, f32)| Span::new(a, b);
     let (profiles, rings, segments, sides, flat) = mesh;
     d3::Params::DEFAULT
-        .with_kind(Kind::Flier)
+        .with_kind(kind)
         .with_profiles(profiles)
         .with_resolution(rings, segments)
         .with_limb_sides(sides)
@@ -208,7 +194,8 @@ fn regression_a_fast_fliers_dangling_legs_do_not_whirl() {
     // critical, stiffened to trail behind at 17 m/s: the bob rang them, and a hip whirled
     // round (up to 180° between two keys of `fly`). They are now simulated flying with the
     // body, trailing in their rest direction and damped at 0.7 of critical.
-    let params = flier(
+    let params = drawn(
+        Kind::Flier,
         (4, 14, 4, 3, true),
         [
             (0.994_159_3, 1.039_162_8),
@@ -235,7 +222,8 @@ fn regression_a_coarse_fliers_tail_bends_within_its_skin() {
     // On a coarse mesh (2 profiles, 4 rings) no vertex was mostly weighted to some tail
     // joints, so they had no bend limit: one swung 55° in `hover` and stretched the skin to
     // 1.54 of its rest length. Such a joint takes its nearest spine neighbour's thickness.
-    let params = flier(
+    let params = drawn(
+        Kind::Flier,
         (2, 4, 9, 3, true),
         [
             (2.013_578, 2.413_838_6),
@@ -255,4 +243,68 @@ fn regression_a_coarse_fliers_tail_bends_within_its_skin() {
         &params,
         &[Check::Stretch, Check::Squash],
     );
+}
+
+#[test]
+fn regression_a_pair_of_legs_does_not_share_one_point_of_a_coarse_body() {
+    // A body of 3 segments around had a single vertex beside a short spine bone: the rig made
+    // it the socket's left and its right, and the pair's right leg was built on the left at
+    // the very point of the left one (the two legs inside each other at rest). A socket with
+    // one vertex beside its bone takes its sides from the slabs around it.
+    let params = drawn(
+        Kind::Walker,
+        (1, 8, 3, 7, false),
+        [
+            (1.498_884_2, 2.870_209),
+            (0.665_157_85, 1.455_821_8),
+            (0.767_983_6, 1.667_125),
+        ],
+        (4.520_921, 8.719_804),
+        (0.313_174_13, 3.403_623_3),
+        0.123_322_91,
+        (9, 25),
+        134.962_13,
+        (0.962_679_4, 1.301_479_7),
+        (0.153_853_67, 0.380_899_22),
+    );
+    let seed = 13_377_572_734_828_355_716;
+    let c = d3::generate(seed, &params).unwrap();
+    let gait = c.gait.as_ref().unwrap();
+    for (i, a) in gait.legs.iter().enumerate() {
+        for b in &gait.legs[i + 1..] {
+            assert!(
+                a.hip.distance(b.hip) > 0.01 * c.length,
+                "{:?} {:?}",
+                a.hip,
+                b.hip
+            );
+        }
+    }
+    passes(seed, &params, &[Check::LegsIntersect]);
+}
+
+#[test]
+fn regression_crowded_legs_bend_their_knees_apart() {
+    // Two legs on a side close together along the body, all knees forward: the rear knee
+    // reached into the front leg as it swung (seeds 88 and 6318 in `walk`; at params drawn
+    // by the property, knees poked a whole body length forward past the front hip). Such
+    // sides bend their knees apart: the front leg's forward, the rear one's backward.
+    walkers_pass(&[88, 6318], &[Check::LegsIntersect]);
+    let params = drawn(
+        Kind::Walker,
+        (9, 7, 13, 7, true),
+        [
+            (1.644_481_4, 2.560_728_3),
+            (1.591_648_7, 2.237_061_5),
+            (0.414_549_23, 0.579_102_16),
+        ],
+        (6.433_948, 9.544_270_5),
+        (2.748_151_5, 3.769_874_8),
+        0.268_293_23,
+        (10, 11),
+        81.042_71,
+        (1.421_913, 1.813_046_6),
+        (0.495_726_64, 0.605_670_9),
+    );
+    passes(10_405_529_381_658_842_790, &params, &[Check::LegsIntersect]);
 }

@@ -16,7 +16,8 @@ use creature_skin::{Blend, nearest_k, skin_positions};
 
 use super::body::{BASE_RADIUS, base_body, centre_of_volume, pill_triangles};
 use super::limbs::{
-    Bind, LegChain, LimbNames, LimbStyle, MeshBuilder, Mount, add_limb, limb_shape, socket_point,
+    Bind, LegChain, LimbNames, LimbStyle, MeshBuilder, Mount, add_limb, leg_knees, limb_shape,
+    socket_point,
 };
 use super::{GaitSetup, Kind, Params};
 use crate::Error;
@@ -484,8 +485,9 @@ fn add_limbs(
         let membrane_colour = body_colour * 0.5 + Vec3::splat(0.45);
         let mut chains = Vec::new();
         let mut limb_names = LimbNames::default();
-        for (index, limb) in limb_plan.limbs.iter().enumerate() {
-            // The planner places limbs on the sockets it was given, one per body bone.
+        // The planner places limbs on the sockets it was given, one per body bone.
+        let mut mounts = Vec::with_capacity(limb_plan.limbs.len());
+        for limb in &limb_plan.limbs {
             let socket = &body_rig.sockets[limb.bone];
             let point = socket_point(
                 limb.socket,
@@ -503,6 +505,15 @@ fn add_limbs(
             } else {
                 socket.joint
             };
+            mounts.push(Mount {
+                point,
+                joint,
+                width: body_width(body_rig, socket.bone),
+                centre: body_rig.joints[joint].position,
+            });
+        }
+        let knees = leg_knees(&limb_plan, &mounts);
+        for (index, (limb, &mount)) in limb_plan.limbs.iter().zip(&mounts).enumerate() {
             let shape = limb_shape(limb.kind)?;
             let colour = if shape.membrane_colour {
                 membrane_colour
@@ -516,14 +527,9 @@ fn add_limbs(
                 index,
                 limb,
                 shape,
-                Mount {
-                    point,
-                    joint,
-                    width: body_width(body_rig, socket.bone),
-                    centre: body_rig.joints[joint].position,
-                },
+                mount,
                 LimbStyle {
-                    knee: limb_plan.knee,
+                    knee: knees[index],
                     sides: params.limb_sides as usize,
                     colour,
                 },

@@ -200,6 +200,86 @@ fn outward(side: Side) -> f32 {
     }
 }
 
+/// Outward from the body at a mount: for side sockets, the side the socket really lies on
+/// (robust to a rigger that labels sides the other way); otherwise the plan's side.
+fn outward_at(limb: &Limb, mount: &Mount) -> f32 {
+    let dx = mount.point.x - mount.centre.x;
+    let side_socket = matches!(limb.socket, Socket::Left | Socket::Right);
+    match limb.side {
+        Side::Center => 0.0,
+        _ if side_socket && dx.abs() > 1e-6 => dx.signum(),
+        side => outward(side),
+    }
+}
+
+/// A two-bone limb's radius at its root (its tube narrows to the end): 9% of its length, at
+/// most a fifth of the body's width where it attaches.
+fn limb_radius(length: f32, body_width: f32) -> f32 {
+    (0.09 * length).min(0.2 * body_width).max(1e-3)
+}
+
+/// Per limb of `plan`, the way its knee bends (`mounts` are the limbs' mounts, in order): the
+/// plan's, unless on some side two standing legs are so close along the body that the knee
+/// one bends toward the other (a rear leg's forward knee, a front leg's backward one) would
+/// reach within [`CROWDED_SHARE`] of the gap between their hips, their radii included. Then
+/// every side's knees bend apart: the front leg's forward, the rear leg's backward and those
+/// between sideways.
+pub(crate) fn leg_knees(plan: &creature_limbs::Plan, mounts: &[Mount]) -> Vec<Option<Knee>> {
+    let mut knees = alloc::vec![plan.knee; plan.limbs.len()];
+    let toward_front = match plan.knee {
+        Some(Knee::Sideways) => return knees,
+        Some(Knee::Backward) => false,
+        _ => true,
+    };
+    // Standing legs per side: (index, hip along the body, hip to foot, radius).
+    let mut sides: [Vec<(usize, f32, f32, f32)>; 2] = [Vec::new(), Vec::new()];
+    for (index, (limb, mount)) in plan.limbs.iter().zip(mounts).enumerate() {
+        let (LimbKind::Leg, Some(foot)) = (limb.kind, limb.foot) else {
+            continue;
+        };
+        let out = outward_at(limb, mount);
+        if out == 0.0 {
+            continue;
+        }
+        let radius = limb_radius(limb.length.max(1e-4), mount.width);
+        sides[usize::from(out < 0.0)].push((
+            index,
+            mount.point.z,
+            mount.point.distance(foot),
+            radius,
+        ));
+    }
+    // The knee's distance from the hip–foot line, per unit of that line's length.
+    let offset = 0.5 * crate::math::sqrt(KNEE_SLACK * KNEE_SLACK - 1.0);
+    let mut crowded = false;
+    for legs in &mut sides {
+        legs.sort_by(|a, b| b.1.total_cmp(&a.1).then(a.0.cmp(&b.0)));
+        for pair in legs.windows(2) {
+            let [front, rear] = pair else { continue };
+            let bent = if toward_front { rear } else { front };
+            let reach = offset * bent.2 + front.3 + rear.3;
+            crowded |= reach > CROWDED_SHARE * (front.1 - rear.1);
+        }
+    }
+    if crowded {
+        for legs in sides.iter().filter(|legs| legs.len() > 1) {
+            let last = legs.len() - 1;
+            for (rank, leg) in legs.iter().enumerate() {
+                knees[leg.0] = Some(match rank {
+                    0 => Knee::Forward,
+                    r if r == last => Knee::Backward,
+                    _ => Knee::Sideways,
+                });
+            }
+        }
+    }
+    knees
+}
+
+/// The share of the gap between two neighbouring legs' hips that a knee bent toward the other
+/// leg (and the two legs' radii) may take before the knees are bent apart instead.
+const CROWDED_SHARE: f32 = 0.75;
+
 /// A leg's two segments together are this many times its hip-to-foot distance, so the knee
 /// bends at rest and the gait's strides (up to about 0.7 of that distance behind the rest
 /// position, escape steps included) stay within reach.
@@ -407,15 +487,7 @@ pub(crate) fn add_limb(
         sides,
         colour,
     } = style;
-    // Outward from the body: for side sockets, the side the socket really lies on (robust to
-    // a rigger that labels sides the other way); otherwise the plan's side.
-    let dx = mount.point.x - mount.centre.x;
-    let side_socket = matches!(limb.socket, Socket::Left | Socket::Right);
-    let out = match limb.side {
-        Side::Center => 0.0,
-        _ if side_socket && dx.abs() > 1e-6 => dx.signum(),
-        side => outward(side),
-    };
+    let out = outward_at(limb, &mount);
     let length = limb.length.max(1e-4);
     let base = joints.len();
     let side = match out {
@@ -461,7 +533,7 @@ pub(crate) fn add_limb(
             let hip_joint = push_joint(hip, mount.joint, hip_name);
             let knee_joint = push_joint(ik.middle, base, knee_name);
             let foot_joint = push_joint(ik.end, base + 1, foot_name);
-            let r = (0.09 * length).min(0.2 * mount.width).max(1e-3);
+            let r = limb_radius(length, mount.width);
             // Standing legs have level rings (the foot's flat on the ground however the leg
             // slants); others square to the limb.
             let axis = if bone.to_foot && limb.foot.is_some() {

@@ -1,5 +1,6 @@
 //! Jacobians, normal transformation, fold detection and inversion.
 
+use alloc::vec::Vec;
 use glam::{Mat3, Vec3, Vec3A};
 
 use crate::bernstein::Basis;
@@ -237,22 +238,99 @@ impl Lattice {
             samples: count * count * count,
             folded_samples: 0,
         };
+        let mut offer = |det: f32, local: Vec3| {
+            // NaN cannot arise from finite control points; count it as folded anyway.
+            if !(det > 0.0) {
+                report.folded_samples += 1;
+            }
+            if !(det >= report.min_determinant) {
+                report.min_determinant = det;
+                report.min_at = local;
+            }
+            if det > report.max_determinant {
+                report.max_determinant = det;
+            }
+        };
+        if !self.is_deformed() {
+            for a in 0..count {
+                for b in 0..count {
+                    for c in 0..count {
+                        offer(1.0, Vec3::new(a as f32, b as f32, c as f32) * step);
+                    }
+                }
+            }
+            return report;
+        }
+        // The grid is a tensor product, so the Jacobian's partial derivatives are contracted
+        // one axis at a time: over `i` once per `a`, over `j` once per `(a, b)`, over `k` per
+        // sample (the Bernstein values per axis and sample computed once).
+        let [l, m, n] = self.divisions();
+        let (ni, nj, nk) = (l + 1, m + 1, n + 1);
+        let binomials = self.binomials();
+        let tables = |axis: usize, len: usize| {
+            let mut values = Vec::with_capacity(count * len);
+            let mut slopes = Vec::with_capacity(count * len);
+            let (mut b, mut d): (Basis, Basis) = ([0.0; MAX_DIVISIONS + 1], [0.0; MAX_DIVISIONS + 1]);
+            for a in 0..count {
+                let x = a as f32 * step;
+                binomials[axis].eval(x, &mut b);
+                binomials[axis].eval_derivative(x, &mut d);
+                values.extend_from_slice(&b[..len]);
+                slopes.extend_from_slice(&d[..len]);
+            }
+            (values, slopes)
+        };
+        let (b0, d0) = tables(0, ni);
+        let (b1, d1) = tables(1, nj);
+        let (b2, d2) = tables(2, nk);
+        let offsets = self.offsets();
+        let [gs, gt, gu] = *self.dual();
+        let gradients = Mat3::from_cols(gs.into(), gt.into(), gu.into()).transpose();
+        // Per (j, k): the offsets contracted over i with the s-derivative (`p`) and the values
+        // (`q`); per k: those contracted over j (`ps` for ∂/∂s, `qt` for ∂/∂t, `qu` for ∂/∂u).
+        let mut p = alloc::vec![Vec3A::ZERO; nj * nk];
+        let mut q = alloc::vec![Vec3A::ZERO; nj * nk];
+        let (mut ps, mut qt, mut qu) = (
+            alloc::vec![Vec3A::ZERO; nk],
+            alloc::vec![Vec3A::ZERO; nk],
+            alloc::vec![Vec3A::ZERO; nk],
+        );
         for a in 0..count {
+            let (bs, ds) = (&b0[a * ni..][..ni], &d0[a * ni..][..ni]);
+            for ((row, pr), qr) in offsets.chunks_exact(ni).zip(&mut p).zip(&mut q) {
+                let (mut x, mut y) = (Vec3A::ZERO, Vec3A::ZERO);
+                for ((&o, &d), &b) in row.iter().zip(ds).zip(bs) {
+                    x += o * d;
+                    y += o * b;
+                }
+                *pr = x;
+                *qr = y;
+            }
             for b in 0..count {
+                let (bt, dt) = (&b1[b * nj..][..nj], &d1[b * nj..][..nj]);
+                for k in 0..nk {
+                    let (pk, qk) = (&p[k * nj..][..nj], &q[k * nj..][..nj]);
+                    let (mut x, mut y, mut z) = (Vec3A::ZERO, Vec3A::ZERO, Vec3A::ZERO);
+                    for j in 0..nj {
+                        x += pk[j] * bt[j];
+                        y += qk[j] * dt[j];
+                        z += qk[j] * bt[j];
+                    }
+                    ps[k] = x;
+                    qt[k] = y;
+                    qu[k] = z;
+                }
                 for c in 0..count {
-                    let local = Vec3::new(a as f32, b as f32, c as f32) * step;
-                    let det = self.jacobian_local(local).determinant();
-                    // NaN cannot arise from finite control points; count it as folded anyway.
-                    if !(det > 0.0) {
-                        report.folded_samples += 1;
+                    let (bu, du) = (&b2[c * nk..][..nk], &d2[c * nk..][..nk]);
+                    let (mut x, mut y, mut z) = (Vec3A::ZERO, Vec3A::ZERO, Vec3A::ZERO);
+                    for k in 0..nk {
+                        x += ps[k] * bu[k];
+                        y += qt[k] * bu[k];
+                        z += qu[k] * du[k];
                     }
-                    if !(det >= report.min_determinant) {
-                        report.min_determinant = det;
-                        report.min_at = local;
-                    }
-                    if det > report.max_determinant {
-                        report.max_determinant = det;
-                    }
+                    let partials = Mat3::from_cols(x.into(), y.into(), z.into());
+                    let det = (Mat3::IDENTITY + partials * gradients).determinant();
+                    offer(det, Vec3::new(a as f32, b as f32, c as f32) * step);
                 }
             }
         }
@@ -425,6 +503,48 @@ mod tests {
             .set_control_point([2, 2, 3], Vec3::new(1.2, 1.1, 1.0))
             .unwrap();
         lattice
+    }
+
+    #[test]
+    fn fold_report_agrees_with_the_jacobian_at_every_sample() {
+        // The report contracts the grid one axis at a time; `jacobian_local` sums every
+        // control point at each sample. Both on a bent, folded and sheared lattice.
+        let mut folded = bent();
+        folded
+            .set_control_point([1, 1, 2], Vec3::new(0.4, 0.6, 1.4))
+            .unwrap();
+        let mut sheared =
+            Lattice::new(Vec3::ONE, [Vec3::new(2.0, 0.3, 0.0), Vec3::Y, Vec3::Z], [3, 1, 4])
+                .unwrap();
+        sheared
+            .set_control_point([1, 0, 2], Vec3::new(2.0, 0.2, 1.0))
+            .unwrap();
+        for lattice in [bent(), folded, sheared] {
+            for count in [2, 5, 8] {
+                let report = lattice.fold_report(count);
+                let step = 1.0 / (count - 1) as f32;
+                let (mut min, mut max, mut folded) = (f32::INFINITY, f32::NEG_INFINITY, 0);
+                for a in 0..count {
+                    for b in 0..count {
+                        for c in 0..count {
+                            let local = Vec3::new(a as f32, b as f32, c as f32) * step;
+                            let det = lattice.jacobian_local(local).determinant();
+                            min = min.min(det);
+                            max = max.max(det);
+                            folded += usize::from(!(det > 0.0));
+                        }
+                    }
+                }
+                let close = |x: f32, y: f32| (x - y).abs() <= 1e-5 * (1.0 + x.abs());
+                assert!(close(report.min_determinant, min), "{report:?} vs {min}");
+                assert!(close(report.max_determinant, max), "{report:?} vs {max}");
+                assert_eq!(report.folded_samples, folded, "{report:?}");
+                assert!(close(
+                    lattice.jacobian_local(report.min_at).determinant(),
+                    report.min_determinant
+                ));
+            }
+        }
     }
 
     #[test]

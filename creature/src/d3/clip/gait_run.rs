@@ -22,8 +22,8 @@ pub(super) struct GaitRun {
     pub(super) bodies: Vec<Pose>,
     /// Frame-major: `legs` feet per frame.
     pub(super) feet: Vec<Vec3>,
-    /// Per frame, per leg: whether the foot is planted.
-    pub(super) contacts: Vec<Vec<bool>>,
+    /// Frame-major: per frame, per leg, whether the foot is planted.
+    pub(super) contacts: Vec<bool>,
     /// Legs per frame.
     pub(super) legs: usize,
 }
@@ -88,7 +88,7 @@ impl GaitRun {
                 let stance = self.foot(down, leg);
                 for f in down + 1..keep {
                     self.feet[f * self.legs + leg] = stance;
-                    self.contacts[f][leg] = true;
+                    self.contacts[f * self.legs + leg] = true;
                 }
             }
         }
@@ -181,12 +181,17 @@ impl GaitRun {
     /// Keeps the first `frames` frames.
     pub(super) fn truncate(&mut self, frames: usize) {
         self.bodies.truncate(frames);
-        self.contacts.truncate(frames);
+        self.contacts.truncate(frames * self.legs);
         self.feet.truncate(frames * self.legs);
     }
 
+    /// Frame `frame`'s contacts, one per leg.
+    pub(super) fn frame_contacts(&self, frame: usize) -> &[bool] {
+        &self.contacts[frame * self.legs..][..self.legs]
+    }
+
     pub(super) fn planted(&self, frame: usize, leg: usize) -> bool {
-        self.contacts[frame][leg]
+        self.contacts[frame * self.legs + leg]
     }
 
     /// How far (metres) the farthest planted foot is beyond its leg's reach (`legs`, the run's).
@@ -301,7 +306,7 @@ pub(super) fn best_cut(
     let range = range.start.min(last).max(1)..range.end.min(last + 1);
     let score = |f: usize| run.mismatch(f) + penalty(f);
     // Frames of the range are frames of the run (from 1: frame 0 is there too).
-    let same = |f: &usize| run.contacts[*f] == run.contacts[0];
+    let same = |f: &usize| run.frame_contacts(*f) == run.frame_contacts(0);
     let best = |candidates: &mut dyn Iterator<Item = usize>| {
         candidates.fold(None, |best: Option<(f32, usize)>, f| {
             let e = score(f);
@@ -329,7 +334,7 @@ pub(super) fn ranked_cuts(
     let mut scored: Vec<(bool, f32, usize)> = range
         .map(|f| {
             (
-                run.contacts[f] != run.contacts[0],
+                run.frame_contacts(f) != run.frame_contacts(0),
                 run.mismatch(f) + penalty(f),
                 f,
             )
@@ -365,7 +370,7 @@ mod tests {
                     Vec3::new(0.5 + 0.05 * f, y, 0.1 * f)
                 })
                 .collect(),
-            contacts: heights.iter().map(|&y| alloc::vec![y == 0.0]).collect(),
+            contacts: heights.iter().map(|&y| y == 0.0).collect(),
             legs: 1,
         }
     }
@@ -389,7 +394,7 @@ mod tests {
     fn holding_the_seam_keeps_a_foot_down_until_the_cut() {
         // Planted at frame 0 and lifting off two frames before the cut: held down instead.
         let mut run = one_leg_run();
-        run.contacts[0][0] = true;
+        run.contacts[0] = true;
         run.feet[0].y = 0.0;
         let (stance, lifted) = (run.foot(6, 0), run.foot(7, 0));
         run.close_loop(8, &Pose::IDENTITY, true, 0.0);

@@ -151,7 +151,8 @@ pub(crate) fn turn(c: &Creature) -> Result<Clip, Error> {
     // rate), keeping the best of three.
     // A try at `rate`: its score, run, cut and the rate that completes the turn at the cut.
     let attempt = |rate: f32| -> Result<(f32, GaitRun, usize, f32), Error> {
-        let run = c.simulate_gait(seconds + 1.0, 0.0, rate)?;
+        // Up to the window's last frame: no later frame is cut at or looked at.
+        let run = c.simulate_gait(seconds + 0.5 + 1.0 / CLIP_FPS, 0.0, rate)?;
         let shortfall = |f: usize| radius * (f as f32 / CLIP_FPS * rate - full).abs();
         let end = best_cut(&run, window.clone(), shortfall);
         let score = run.mismatch(end) + shortfall(end);
@@ -314,7 +315,7 @@ impl Creature {
         let mut run = GaitRun {
             bodies: Vec::with_capacity(frames),
             feet: Vec::with_capacity(frames * legs),
-            contacts: Vec::with_capacity(frames),
+            contacts: Vec::with_capacity(frames * legs),
             legs,
         };
         // The clip starts at the rest pose's place and heading: the warm-up's travel is
@@ -350,8 +351,7 @@ impl Creature {
                     what: "gait controller's leg states",
                 });
             }
-            run.contacts
-                .push(states.iter().map(|s| s.planted).collect());
+            run.contacts.extend(states.iter().map(|s| s.planted));
             run.feet.extend(states.iter().map(|s| relative(s.foot)));
         }
         Ok(run)
@@ -398,7 +398,9 @@ impl Creature {
             root_translation: Vec::with_capacity(frames),
             root_rotation: Vec::with_capacity(frames),
             tracks: Vec::with_capacity(3 * run.legs + spine_rotations.len()),
-            contacts: run.contacts.clone(),
+            contacts: (0..run.frames())
+                .map(|f| run.frame_contacts(f).to_vec())
+                .collect(),
             loop_error: 0.0,
         };
         // Per leg: the hip's parent (a spine joint, maybe bent) in body space, the rest

@@ -96,7 +96,11 @@ pub fn run(input: &Input) {
     }
     if let Err(e) = triangulate(&rings, &MeshOptions::DEFAULT.with_interior_spacing(spacing)) {
         assert!(
-            matches!(e, creature_march::MarchError::InteriorTooDense { .. }),
+            matches!(
+                e,
+                creature_march::MarchError::InteriorTooDense { .. }
+                    | creature_march::MarchError::ExtentTooLarge { .. }
+            ),
             "triangulate fails on trace's rings: {e:?}"
         );
     }

@@ -428,6 +428,16 @@ pub fn run(input: &Input) {
         format!("{result:?}"),
         "determinism"
     );
+    if let Err(MarchError::ExtentTooLarge { extent: e, max }) = result {
+        // Only for an interior lattice over a box past the bound (the box in `f64`, where
+        // its side cannot overflow).
+        let (lo, hi) = bounds(&rings);
+        assert!(
+            options.interior_spacing > 0.0 && (hi - lo).max_element() > f64::from(max),
+            "ExtentTooLarge ({e}) for a box {lo}..{hi} with spacing {}",
+            options.interior_spacing
+        );
+    }
     if options.validate().is_err() {
         assert!(result.is_err(), "invalid options accepted: {options:?}");
         return;
@@ -447,7 +457,7 @@ pub fn run(input: &Input) {
     let spade = spade_area(&rings);
     let mesh = match result {
         Ok(mesh) => mesh,
-        Err(MarchError::InteriorTooDense { .. }) => return,
+        Err(MarchError::InteriorTooDense { .. } | MarchError::ExtentTooLarge { .. }) => return,
         Err(e) => panic!(
             "validate_rings accepts the rings but triangulate fails: {e:?} (spade: {spade:?})"
         ),

@@ -80,6 +80,15 @@ pub enum MarchError {
         /// The most it may hold.
         max: usize,
     },
+    /// The rings' bounding box is wider or taller than
+    /// [`MAX_INTERIOR_EXTENT`](crate::MAX_INTERIOR_EXTENT) (about 4.6e18), too large for an
+    /// interior lattice ([`interior_spacing`](crate::MeshOptions::interior_spacing) above 0).
+    ExtentTooLarge {
+        /// The box's larger side (infinite when it overflows `f32`).
+        extent: f32,
+        /// The largest accepted.
+        max: f32,
+    },
     /// A ring has fewer than three points.
     TooFewPoints {
         /// Index of the ring.
@@ -142,6 +151,12 @@ impl fmt::Display for MarchError {
                 f,
                 "the interior lattice would hold about {points} points, more than {max}: raise \
                  interior_spacing (or set it to 0 for no interior points)"
+            ),
+            Self::ExtentTooLarge { extent, max } => write!(
+                f,
+                "the rings' bounding box is {extent} across, more than {max} for interior \
+                 points: scale the rings down, or set interior_spacing to 0 for no interior \
+                 points"
             ),
             Self::BudgetExceeded { hint, cells } => {
                 if hint == usize::MAX {
@@ -228,6 +243,12 @@ mod tests {
         }
         .to_string();
         assert!(msg.contains("itself"), "{msg}");
+        let msg = MarchError::ExtentTooLarge {
+            extent: f32::INFINITY,
+            max: 4.611_686e18,
+        }
+        .to_string();
+        assert!(msg.contains("interior_spacing to 0"), "{msg}");
     }
 
     #[test]

@@ -33,7 +33,9 @@ pub use error::MarchError;
 pub use grid::{MAX_GRID_SAMPLES, march_grid, march_grid_with};
 #[cfg(feature = "mesh")]
 #[cfg_attr(docsrs, doc(cfg(feature = "mesh")))]
-pub use mesh::{MAX_INTERIOR_POINTS, Mesh2, MeshOptions, MeshQuality, triangulate};
+pub use mesh::{
+    MAX_INTERIOR_EXTENT, MAX_INTERIOR_POINTS, Mesh2, MeshOptions, MeshQuality, triangulate,
+};
 pub use options::{MAX_CELLS, MAX_GRID_COORDINATE, MarchOptions, Saddle};
 pub use ring::{Ring, contains_each, validate_rings};
 pub use tile::{TILE_NODES, TILE_SIZE, TileField, node_point};

@@ -12,6 +12,15 @@ use crate::{MarchError, Ring};
 /// points); see [`MeshOptions::interior_spacing`].
 pub const MAX_INTERIOR_POINTS: usize = 1 << 22;
 
+/// The widest the rings' bounding box may be, along either axis, for [`triangulate`] to put
+/// interior points in it (2⁶², about 4.6e18); see [`MeshOptions::interior_spacing`].
+///
+/// The lattice is laid out in `f32`: where each row crosses the ring edges, and how far each
+/// point lies from them. Those take products of two lengths in the box, up to twice the
+/// square of its extent, which stays below `f32::MAX` (about 2¹²⁸) up to this bound. Past it
+/// a crossing could overflow to infinity and a row span without end.
+pub const MAX_INTERIOR_EXTENT: f32 = (1u64 << 62) as f32;
+
 /// Options for [`triangulate`].
 ///
 /// Lengths are in the rings' units; the defaults suit the 2D seed's creatures (pixels, outline
@@ -29,7 +38,9 @@ pub struct MeshOptions {
     /// Spacing of the interior points, which lie on a uniform sheared (triangular) lattice:
     /// rows `spacing × √3/2` apart, each shifted by half a spacing from the one below. 0 adds
     /// no interior points. Default 20 (the seed's, in its pixel units). A spacing that would
-    /// put more than [`MAX_INTERIOR_POINTS`] in the rings' bounding box is an error.
+    /// put more than [`MAX_INTERIOR_POINTS`] in the rings' bounding box is an error, and so is
+    /// any spacing above 0 for rings whose bounding box is wider or taller than
+    /// [`MAX_INTERIOR_EXTENT`] (about 4.6e18).
     pub interior_spacing: f32,
     /// Interior points closer than `clearance × interior_spacing` to any ring edge are
     /// dropped, so they cannot make slivers against the outline. From 0 to 2. Default 0.5.
@@ -191,7 +202,11 @@ pub struct MeshQuality {
 ///
 /// Invalid options; [`MarchError::TooFewPoints`], [`MarchError::NonFinite`] or
 /// [`MarchError::BadParent`] for a malformed ring; [`MarchError::RingsCross`] when ring edges
-/// cross, touch or overlap.
+/// cross, touch or overlap. With an [`interior_spacing`](MeshOptions::interior_spacing) above
+/// 0: [`MarchError::InteriorTooDense`] when the lattice would hold more than
+/// [`MAX_INTERIOR_POINTS`], [`MarchError::ExtentTooLarge`] when the rings' bounding box is
+/// wider or taller than [`MAX_INTERIOR_EXTENT`] (scale such rings down, or mesh them without
+/// interior points).
 ///
 /// ```
 /// use creature_march::{glam::Vec2, trace, triangulate, MeshOptions};
@@ -405,8 +420,9 @@ fn morton_key(p: Vec2, lo: Vec2, hi: Vec2) -> u32 {
 /// the bench creature against 993 from this lattice, was slower.)
 ///
 /// # Errors
-/// [`MarchError::InteriorTooDense`] when the lattice over the rings' bounding box would hold
-/// more than [`MAX_INTERIOR_POINTS`].
+/// [`MarchError::ExtentTooLarge`] when the rings' bounding box is wider or taller than
+/// [`MAX_INTERIOR_EXTENT`]; [`MarchError::InteriorTooDense`] when the lattice over it would
+/// hold more than [`MAX_INTERIOR_POINTS`].
 fn interior_points(
     rings: &[&[Vec2]],
     options: &MeshOptions,
@@ -415,6 +431,16 @@ fn interior_points(
     let Some((lo, hi)) = crate::ring::bounds(&rings.concat()) else {
         return Ok(());
     };
+    // Before anything else: past the bound the `f32` arithmetic below overflows (regression:
+    // a ring 1.7e38 tall and 33,200 wide gave row crossings at ±infinity, and a row of points
+    // that never ended). `hi - lo` is infinite when it overflows, and so refused too.
+    let extent = (hi - lo).max_element();
+    if !(extent <= MAX_INTERIOR_EXTENT) {
+        return Err(MarchError::ExtentTooLarge {
+            extent,
+            max: MAX_INTERIOR_EXTENT,
+        });
+    }
     let spacing = options.interior_spacing;
     let row = spacing * 0.866_025_4;
     // Checked before any row is counted: in `f64`, where a tiny spacing cannot overflow.
@@ -873,6 +899,61 @@ mod tests {
         }
         let fine = MeshOptions::DEFAULT.with_interior_spacing(1.0);
         assert!(triangulate(&[square(100.0)], &fine).is_ok());
+    }
+
+    /// Fuzz (`triangulate/new-triangulate-timeout-extent`): a ring 1.7e38 tall and 33,200
+    /// wide with interior spacing 8.7e37 ran for minutes and past 2 GB: the lattice's row
+    /// crossings overflowed `f32` to ±infinity, and a row's points never ended. Rings wider
+    /// or taller than `MAX_INTERIOR_EXTENT` are now an error with interior points, and still
+    /// meshed without them; at the bound the lattice is laid out.
+    #[test]
+    fn regression_an_interior_lattice_over_a_huge_extent_is_an_error() {
+        let ring = |points: &[[f32; 2]]| Ring {
+            points: points.iter().map(|&p| Vec2::from(p)).collect(),
+            hole: false,
+            parent: None,
+        };
+        let found = ring(&[
+            [0.0, 0.0],
+            [100.0, 0.0],
+            [100.0, 100.0],
+            [-1.084_202_2e-19, -1.701_425e38],
+            [33_199.996, 0.503_079_6],
+        ]);
+        let options = MeshOptions::DEFAULT.with_interior_spacing(8.711_229e37);
+        assert_eq!(
+            triangulate(&[found], &options),
+            Err(MarchError::ExtentTooLarge {
+                extent: 1.701_425e38 + 100.0,
+                max: MAX_INTERIOR_EXTENT,
+            })
+        );
+        // A box whose side overflows `f32` is refused too.
+        let wide = ring(&[[-3e38, 0.0], [3e38, 0.0], [0.0, 1.0]]);
+        assert!(matches!(
+            triangulate(core::slice::from_ref(&wide), &options),
+            Err(MarchError::ExtentTooLarge { extent, .. }) if extent == f32::INFINITY
+        ));
+        // Without interior points such rings still mesh.
+        let none = options.with_interior_spacing(0.0);
+        let mesh = triangulate(&[wide], &none).unwrap();
+        assert!(mesh.positions.iter().all(|p| p.is_finite()));
+        // At the bound, a tall triangle gets its lattice: finite points inside the box.
+        let e = MAX_INTERIOR_EXTENT;
+        let tall = ring(&[[0.0, 0.0], [e / 2.0, 0.0], [e / 4.0, e]]);
+        let lattice = options
+            .with_interior_spacing(e / 16.0)
+            .with_max_added_vertices(Some(100));
+        let mesh = triangulate(&[tall], &lattice).unwrap();
+        assert!(
+            mesh.positions.len() > mesh.outline_len,
+            "no interior points"
+        );
+        assert!(
+            mesh.positions.iter().all(|p| p.is_finite()
+                && p.cmpge(Vec2::ZERO).all()
+                && p.cmple(Vec2::splat(e)).all())
+        );
     }
 
     /// Issue 17, finding 12: a vertex at `x = f32::MAX` overflowed the edges' products, and

@@ -2,6 +2,9 @@
 //! reference implementation in `tests/support/reference.rs` (binomials and `powf` per control
 //! point per point).
 //!
+//! Also the lattice's fold check (`fold_report(8)`) against sampling `jacobian_local` at
+//! every point of its grid.
+//!
 //! Run: `cargo bench -p creature-ffd --bench deform`
 
 // Setup outside the timed code may fail loudly: a broken input is a broken bench.
@@ -88,5 +91,31 @@ fn bench(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, bench);
+/// The body lattice's fold check as the generator runs it (8³ samples), against the same
+/// grid sampled by `jacobian_local` point by point.
+fn bench_fold(c: &mut Criterion) {
+    let (lattice, _) = inputs();
+    let mut group = c.benchmark_group("fold_report_8_3x3x11");
+    group.bench_function("creature_ffd_fold_report", |b| {
+        b.iter(|| black_box(black_box(&lattice).fold_report(8)));
+    });
+    group.bench_function("reference_jacobian_per_sample", |b| {
+        b.iter(|| {
+            let step = 1.0 / 7.0;
+            let mut min = f32::INFINITY;
+            for a in 0..8 {
+                for b in 0..8 {
+                    for c in 0..8 {
+                        let local = Vec3::new(a as f32, b as f32, c as f32) * step;
+                        min = min.min(black_box(&lattice).jacobian_local(local).determinant());
+                    }
+                }
+            }
+            black_box(min)
+        });
+    });
+    group.finish();
+}
+
+criterion_group!(benches, bench, bench_fold);
 criterion_main!(benches);

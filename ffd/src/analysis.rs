@@ -270,7 +270,8 @@ impl Lattice {
         let tables = |axis: usize, len: usize| {
             let mut values = Vec::with_capacity(count * len);
             let mut slopes = Vec::with_capacity(count * len);
-            let (mut b, mut d): (Basis, Basis) = ([0.0; MAX_DIVISIONS + 1], [0.0; MAX_DIVISIONS + 1]);
+            let (mut b, mut d): (Basis, Basis) =
+                ([0.0; MAX_DIVISIONS + 1], [0.0; MAX_DIVISIONS + 1]);
             for a in 0..count {
                 let x = a as f32 * step;
                 binomials[axis].eval(x, &mut b);
@@ -513,9 +514,12 @@ mod tests {
         folded
             .set_control_point([1, 1, 2], Vec3::new(0.4, 0.6, 1.4))
             .unwrap();
-        let mut sheared =
-            Lattice::new(Vec3::ONE, [Vec3::new(2.0, 0.3, 0.0), Vec3::Y, Vec3::Z], [3, 1, 4])
-                .unwrap();
+        let mut sheared = Lattice::new(
+            Vec3::ONE,
+            [Vec3::new(2.0, 0.3, 0.0), Vec3::Y, Vec3::Z],
+            [3, 1, 4],
+        )
+        .unwrap();
         sheared
             .set_control_point([1, 0, 2], Vec3::new(2.0, 0.2, 1.0))
             .unwrap();

@@ -308,3 +308,32 @@ fn regression_crowded_legs_bend_their_knees_apart() {
     );
     passes(10_405_529_381_658_842_790, &params, &[Check::LegsIntersect]);
 }
+
+#[test]
+fn regression_skin_whose_joints_jump_along_the_spine_bends_within_its_limit() {
+    // Where the spine rises into the neck, a vertex high on the back is nearest joints three
+    // further along it than its neighbour below: the edge between them was stretched by the
+    // bends of all the joints between (1° each in `turn`) to 1.38 of its rest length. Each
+    // joint of such a span takes its share of the limit.
+    let params = drawn(
+        Kind::Walker,
+        (5, 20, 11, 5, true),
+        [
+            (1.571_468_2, 1.927_732_1),
+            (1.333_315_5, 2.446_952),
+            (0.782_679_3, 1.052_295_4),
+        ],
+        (2.749_542_5, 3.476_217),
+        (1.627_416_4, 1.703_324_6),
+        0.467_015_36,
+        (25, 26),
+        102.378_02,
+        (1.113_410_6, 1.504_087_7),
+        (0.516_531_65, 0.519_780_46),
+    );
+    passes(
+        914_156_467_985_218_874,
+        &params,
+        &[Check::Stretch, Check::Squash],
+    );
+}

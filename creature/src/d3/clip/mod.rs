@@ -170,16 +170,60 @@ impl Creature {
         // A joint no vertex is mostly weighted to (a coarse mesh) still bends the skin its
         // neighbours carry: it takes the nearest spine joint's thickness.
         let along: Vec<f32> = spine.iter().map(|&j| thickness[j]).collect();
+        // An edge whose two ends follow spine joints several apart (the skin's nearest joints
+        // jump where the spine bends up into the neck, or a coarse mesh has fewer rings than
+        // joints) is stretched by all their bends together: each joint of such a span takes
+        // its share of the limit.
+        let spans = self.edge_spans(&place, spine.len());
         for k in 1..points.len() - 1 {
             let shorter = points[k]
                 .distance(points[k - 1])
                 .min(points[k].distance(points[k + 1]));
             let r = nearest_positive(&along, k);
             if r > 0.0 {
-                limits[spine[k]] = BEND_PER_THICKNESS * shorter / r;
+                limits[spine[k]] = BEND_PER_THICKNESS * shorter / (r * spans[k] as f32);
             }
         }
         limits
+    }
+
+    /// Per spine place (`place` maps a skeleton joint to its place on the spine, `usize::MAX`
+    /// off it; `count` places), the most spine joints any mesh edge's bend depends on: over the
+    /// spine joints weighting either end of an edge, from the second to the last (the first
+    /// one's own bend moves both ends alike). At least 1.
+    fn edge_spans(&self, place: &[usize], count: usize) -> Vec<usize> {
+        let mesh = &self.mesh;
+        // Per vertex, the first and last spine places among its weighted joints.
+        let range: Vec<Option<(usize, usize)>> = mesh
+            .joints
+            .iter()
+            .zip(&mesh.weights)
+            .map(|(js, ws)| {
+                js.iter()
+                    .zip(ws)
+                    .filter(|&(_, &w)| w > 0.0)
+                    .map(|(&j, _)| place[usize::from(j)])
+                    .filter(|&k| k != usize::MAX)
+                    .fold(None, |r: Option<(usize, usize)>, k| {
+                        Some(r.map_or((k, k), |(a, b)| (a.min(k), b.max(k))))
+                    })
+            })
+            .collect();
+        let mut spans = alloc::vec![1usize; count];
+        for t in &mesh.indices {
+            for (a, b) in [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])] {
+                let (Some((a0, a1)), Some((b0, b1))) = (range[a as usize], range[b as usize])
+                else {
+                    continue;
+                };
+                let (first, last) = (a0.min(b0), a1.max(b1));
+                let span = last - first;
+                for s in &mut spans[first + 1..=last] {
+                    *s = (*s).max(span);
+                }
+            }
+        }
+        spans
     }
 
     /// Per skeleton joint, the farthest any vertex it moves (with any weight) is from it at

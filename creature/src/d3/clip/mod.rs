@@ -113,8 +113,9 @@ impl Creature {
     /// Per skeleton joint, the most its rotation may bend the spine (radians) before the skin
     /// around it stretches or squashes past what the audit allows: [`BEND_PER_THICKNESS`] times
     /// the shorter of its two bones over the body's thickness there (the farthest from the
-    /// spine of the vertices it moves together with another joint). Joints off the spine (and
-    /// spine tips) have no limit (`f32::INFINITY`).
+    /// spine of the vertices it moves together with another joint), and no more than any mesh
+    /// edge around it allows ([`edge_bend_limits`](Self::edge_bend_limits)). Joints off the
+    /// spine (and spine tips) have no limit (`f32::INFINITY`).
     fn bend_limits(&self) -> Vec<f32> {
         let joints = &self.skeleton.joints;
         let mut limits = alloc::vec![f32::INFINITY; joints.len()];
@@ -172,58 +173,98 @@ impl Creature {
         let along: Vec<f32> = spine.iter().map(|&j| thickness[j]).collect();
         // An edge whose two ends follow spine joints several apart (the skin's nearest joints
         // jump where the spine bends up into the neck, or a coarse mesh has fewer rings than
-        // joints) is stretched by all their bends together: each joint of such a span takes
-        // its share of the limit.
-        let spans = self.edge_spans(&place, spine.len());
+        // joints) is stretched by all their bends together, each as far as it moves one end
+        // more than the other: each joint of such an edge keeps within the edge's share.
+        let by_edges = self.edge_bend_limits(&place, &points);
         for k in 1..points.len() - 1 {
             let shorter = points[k]
                 .distance(points[k - 1])
                 .min(points[k].distance(points[k + 1]));
             let r = nearest_positive(&along, k);
             if r > 0.0 {
-                limits[spine[k]] = BEND_PER_THICKNESS * shorter / (r * spans[k] as f32);
+                limits[spine[k]] = (BEND_PER_THICKNESS * shorter / r).min(by_edges[k]);
             }
         }
         limits
     }
 
     /// Per spine place (`place` maps a skeleton joint to its place on the spine, `usize::MAX`
-    /// off it; `count` places), the most spine joints any mesh edge's bend depends on: over the
-    /// spine joints weighting either end of an edge, from the second to the last (the first
-    /// one's own bend moves both ends alike). At least 1.
-    fn edge_spans(&self, place: &[usize], count: usize) -> Vec<usize> {
+    /// off it; `points` the spine joints' rest positions), the most that joint may bend for
+    /// the mesh edges around it: a joint's bend turns the skin it carries (its own and its
+    /// descendants' weights) about it, so it moves an edge's two ends apart by the angle times
+    /// their distance from it times the difference of those weights at the two ends. Bending
+    /// every such joint of an edge alike, their sum stays within [`BEND_PER_THICKNESS`] of the
+    /// edge's rest length. `f32::INFINITY` where no edge limits a joint.
+    fn edge_bend_limits(&self, place: &[usize], points: &[Vec3]) -> Vec<f32> {
         let mesh = &self.mesh;
-        // Per vertex, the first and last spine places among its weighted joints.
-        let range: Vec<Option<(usize, usize)>> = mesh
+        let count = points.len();
+        let mut limits = alloc::vec![f32::INFINITY; count];
+        let root = self
+            .rig
+            .root()
+            .map_or(usize::MAX, |r| place.get(r).copied().unwrap_or(usize::MAX));
+        // Per vertex, its spine joints' places and weights (the rest are off the spine).
+        let spines: Vec<SpineWeights> = mesh
             .joints
             .iter()
             .zip(&mesh.weights)
             .map(|(js, ws)| {
-                js.iter()
-                    .zip(ws)
-                    .filter(|&(_, &w)| w > 0.0)
-                    .map(|(&j, _)| place[usize::from(j)])
-                    .filter(|&k| k != usize::MAX)
-                    .fold(None, |r: Option<(usize, usize)>, k| {
-                        Some(r.map_or((k, k), |(a, b)| (a.min(k), b.max(k))))
-                    })
+                let mut out = SpineWeights::default();
+                for (&j, &w) in js.iter().zip(ws) {
+                    let k = place[usize::from(j)];
+                    if w > 0.0 && k != usize::MAX {
+                        out.entries[out.len] = (k, w);
+                        out.len += 1;
+                    }
+                }
+                out
             })
             .collect();
-        let mut spans = alloc::vec![1usize; count];
+        // The skin weight a bend at place `k` carries: the tail side's joints from the tip to
+        // `k`, the head side's from `k` on (the root's own rotation moves the whole body).
+        let carried = |v: &SpineWeights, k: usize| -> f32 {
+            v.entries[..v.len]
+                .iter()
+                .filter(|&&(q, _)| (k < root && q <= k) || (k > root && q >= k))
+                .map(|&(_, w)| w)
+                .sum()
+        };
         for t in &mesh.indices {
             for (a, b) in [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])] {
-                let (Some((a0, a1)), Some((b0, b1))) = (range[a as usize], range[b as usize])
-                else {
+                let (a, b) = (a as usize, b as usize);
+                let (sa, sb) = (&spines[a], &spines[b]);
+                if sa.len == 0 || sb.len == 0 || sa == sb {
                     continue;
-                };
-                let (first, last) = (a0.min(b0), a1.max(b1));
-                let span = last - first;
-                for s in &mut spans[first + 1..=last] {
-                    *s = (*s).max(span);
+                }
+                let (pa, pb) = (mesh.positions[a], mesh.positions[b]);
+                let edge = pa.distance(pb);
+                if !(edge > 0.0) {
+                    continue;
+                }
+                // The joints between the two ends' weights (the spine's tips do not bend).
+                let (a0, a1) = sa.range();
+                let (b0, b1) = sb.range();
+                let (first, last) = (a0.min(b0).max(1), a1.max(b1).min(count - 2));
+                let mut moved = 0.0f32;
+                for (k, &at) in points.iter().enumerate().take(last + 1).skip(first) {
+                    let apart = (carried(sa, k) - carried(sb, k)).abs();
+                    if apart > 0.0 {
+                        let lever = pa.distance_squared(at).max(pb.distance_squared(at));
+                        moved += apart * crate::math::sqrt(lever);
+                    }
+                }
+                if !(moved > 0.0) {
+                    continue;
+                }
+                let limit = BEND_PER_THICKNESS * edge / moved;
+                for (k, l) in limits.iter_mut().enumerate().take(last + 1).skip(first) {
+                    if *l > limit && carried(sa, k) != carried(sb, k) {
+                        *l = limit;
+                    }
                 }
             }
         }
-        spans
+        limits
     }
 
     /// Per skeleton joint, the farthest any vertex it moves (with any weight) is from it at
@@ -258,6 +299,22 @@ impl Creature {
             return Vec::new();
         };
         spine.iter().take(c).skip(1).rev().copied().collect()
+    }
+}
+
+/// A vertex's spine joints: their places on the spine and weights (at most four).
+#[derive(Clone, Copy, Default, PartialEq)]
+struct SpineWeights {
+    entries: [(usize, f32); 4],
+    len: usize,
+}
+
+impl SpineWeights {
+    /// The first and last of the places (some entry there).
+    fn range(&self) -> (usize, usize) {
+        self.entries[..self.len]
+            .iter()
+            .fold((usize::MAX, 0), |(a, b), &(k, _)| (a.min(k), b.max(k)))
     }
 }
 

@@ -44,8 +44,9 @@ pub struct MarchOptions {
     /// Trace only: refine every crossing with this many Illinois (false-position) steps on the
     /// field along its cell edge, so the outline sits on the iso-line rather than on the linear
     /// interpolant. A refined crossing may sit exactly on a grid node on the iso-line, except
-    /// where the ring reaches that node twice apart: those crossings stay `1e-3` of a cell off
-    /// the node along their edges, as linear ones always do, so the ring does not touch itself.
+    /// where the ring reaches that node twice apart or another ring reaches it too: those
+    /// crossings stay `1e-3` of a cell off the node along their edges, as linear ones always
+    /// do, so no ring touches itself or another.
     /// Each step costs one field sample per ring point. From 0 (off) to 32. Default 0.
     pub refine_steps: u32,
     /// Trace only: the largest number of cells (walk steps, traced cells and scanned nodes

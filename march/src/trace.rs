@@ -251,6 +251,7 @@ pub fn trace_field<F: TileField + ?Sized>(
             tracer.scan_pending()?;
         }
     }
+    walk::unpinch_across(&mut tracer.rings);
     let raw = tracer.rings.into_iter().map(|r| (r.points, Some(r.area)));
     let weld = options.weld * step;
     Ok(crate::ring::finish_with_areas(raw, weld))

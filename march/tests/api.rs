@@ -392,6 +392,28 @@ fn regression_a_node_a_hair_below_the_iso_level_does_not_pinch_a_traced_ring() {
     }
 }
 
+/// The rings `trace_with` gives for the union of `discs` (positive inside, as the fuzz target
+/// `march_trace` builds it) at step 5 and iso 0.5, hinted at the centres; checked valid.
+fn trace_discs(discs: &[(Vec2, f32)], refine: u32, holes: bool) -> Vec<Ring> {
+    let field = |p: Vec2| {
+        discs
+            .iter()
+            .map(|(c, r)| 1.0 - p.distance(*c) / r)
+            .fold(f32::NEG_INFINITY, f32::max)
+    };
+    let hints: Vec<Vec2> = discs.iter().map(|(c, _)| *c).collect();
+    let options = MarchOptions::DEFAULT
+        .with_refine_steps(refine)
+        .with_holes(holes)
+        .with_max_cells(1 << 16);
+    let rings = trace_with(field, &hints, 5.0, 0.5, &options).unwrap();
+    if let Err(e) = validate_rings(&rings) {
+        panic!("refine_steps {refine}, holes {holes}: {e:?}");
+    }
+    check_rings(&rings);
+    rings
+}
+
 /// Fuzz finding (`fuzz/corpus/march_trace/new-trace-refine-self-crossing-ring`): with
 /// `refine_steps` ≥ 1 the traced ring of two overlapping discs crossed itself near
 /// (47.5, 35.4), while the unrefined ring was valid.
@@ -401,25 +423,31 @@ fn regression_refined_trace_of_two_discs_does_not_self_cross() {
         (Vec2::new(50.0, 50.0), 30.0f32),
         (Vec2::new(50.0, 31.25), 3.565_889_4),
     ];
-    let field = |p: Vec2| {
-        discs
-            .iter()
-            .map(|(c, r)| 1.0 - p.distance(*c) / r)
-            .fold(f32::NEG_INFINITY, f32::max)
-    };
-    let hints: Vec<Vec2> = discs.iter().map(|(c, _)| *c).collect();
     for refine in 0..5 {
         for holes in [false, true] {
-            let options = MarchOptions::DEFAULT
-                .with_refine_steps(refine)
-                .with_holes(holes)
-                .with_max_cells(1 << 16);
-            let rings = trace_with(field, &hints, 5.0, 0.5, &options).unwrap();
-            if let Err(e) = validate_rings(&rings) {
-                panic!("refine_steps {refine}, holes {holes}: {e:?}");
-            }
-            check_rings(&rings);
+            trace_discs(&discs, refine, holes);
         }
+    }
+}
+
+/// Fuzz finding (`fuzz/corpus/march_trace/new-trace-refine-outer-and-hole-share-a-node`): with
+/// `refine_steps` ≥ 1, grid node (50, 35) lies exactly on the iso-level (0.5 of the disc of
+/// radius 30 around (50, 50), 15 away), and an outer ring and its hole both had a refined
+/// crossing on it: the two rings touched there (`RingsCross` of ring 0 with ring 1).
+#[test]
+fn regression_refined_trace_of_an_outer_ring_and_its_hole_sharing_a_node_does_not_touch() {
+    let discs = [
+        (Vec2::new(49.927_284, 50.0), 30.0f32),
+        (Vec2::new(50.0, 23.068_344), 23.752_94),
+        (Vec2::new(50.0, 50.0), 30.0),
+        (Vec2::new(28.823_53, 28.823_53), 29.999_811),
+    ];
+    for refine in 0..5 {
+        let rings = trace_discs(&discs, refine, true);
+        assert!(
+            rings.iter().any(|r| r.hole),
+            "refine_steps {refine}: no hole"
+        );
     }
 }
 

@@ -22,6 +22,9 @@ pub(super) struct Traced {
     pub(super) hi: Vec2,
     /// Found by a hole scan (so its inside has been scanned already).
     pub(super) nested: bool,
+    /// Refined crossings left exactly on a grid node: the index of the point and the same
+    /// crossing kept off the node (see `walk::unpinch_across`). Almost always empty.
+    pub(super) on_node: Vec<(usize, Vec2)>,
 }
 
 impl Traced {
@@ -40,6 +43,7 @@ impl Traced {
             lo,
             hi,
             nested,
+            on_node: Vec::new(),
         }
     }
 
@@ -204,6 +208,7 @@ mod tests {
                 lo: Vec2::ZERO,
                 hi: Vec2::ZERO,
                 nested: false,
+                on_node: Vec::new(),
             };
             for x in -2..7 {
                 for y in -2..14 {

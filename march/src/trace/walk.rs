@@ -148,7 +148,7 @@ impl<F: TileField + ?Sized> Tracer<'_, F> {
             points,
             mut verticals,
             crossed,
-            ..
+            on_node,
         } = path;
         verticals.truncate(crossed);
         if let Some(table) = &mut self.ring_of_edge {
@@ -156,7 +156,9 @@ impl<F: TileField + ?Sized> Tracer<'_, F> {
                 table.insert(edge, id as u32);
             }
         }
-        self.rings.push(Traced::new(points, verticals, nested));
+        let mut ring = Traced::new(points, verticals, nested);
+        ring.on_node = on_node;
+        self.rings.push(ring);
         Ok(id)
     }
 
@@ -229,6 +231,43 @@ impl<F: TileField + ?Sized> Tracer<'_, F> {
             }
         }
         t
+    }
+}
+
+/// [`Path::unpinch`] across rings: where refined crossings of two or more rings sit on the
+/// same grid node (a node on the iso-level that an outer ring and a hole beside it both pass
+/// through), the rings would touch there. Every crossing on such a node moves
+/// [`cell::NODE_GAP`] off it along its own edge, and the moved rings' areas are measured
+/// again. Rings meet nowhere else: every other crossing lies inside its own grid edge.
+pub(super) fn unpinch_across(rings: &mut [Traced]) {
+    let key = |p: Vec2| (p.x.to_bits(), p.y.to_bits());
+    // (node, ring, point, the point off the node), grouped by node.
+    let mut on_nodes: Vec<((u32, u32), usize, usize, Vec2)> = rings
+        .iter()
+        .enumerate()
+        .flat_map(|(r, ring)| {
+            ring.on_node
+                .iter()
+                .map(move |&(i, off)| (key(ring.points[i]), r, i, off))
+        })
+        .collect();
+    if on_nodes.len() < 2 {
+        return;
+    }
+    on_nodes.sort_unstable_by_key(|&(node, r, i, _)| (node, r, i));
+    let mut moved = Vec::new();
+    for group in on_nodes.chunk_by(|a, b| a.0 == b.0) {
+        if group[0].1 != group[group.len() - 1].1 {
+            for &(_, r, i, off) in group {
+                rings[r].points[i] = off;
+                moved.push(r);
+            }
+        }
+    }
+    moved.sort_unstable();
+    moved.dedup();
+    for r in moved {
+        rings[r].area = crate::ring::signed_area(&rings[r].points);
     }
 }
 
@@ -339,7 +378,8 @@ impl Path {
     /// that node more than once apart (not as consecutive points, which the weld merges):
     /// the ring would then touch itself there. Every crossing on such a node moves
     /// [`cell::NODE_GAP`] off it along its own edge, as an unrefined crossing is, so the
-    /// visits no longer meet.
+    /// visits no longer meet. The crossings left on nodes stay in `on_node`, for
+    /// [`unpinch_across`] to compare with the other rings'.
     fn unpinch(&mut self) {
         if self.on_node.len() < 2 {
             return;
@@ -377,6 +417,8 @@ impl Path {
             }
             start = end;
         }
+        let points = &self.points;
+        self.on_node.retain(|&(i, off)| points[i] != off);
     }
 
     /// Records the crossing `p` of the entry edge of the cell at `at`.

@@ -1,9 +1,8 @@
 //! The audit of delivered creatures: each 3D kind's creatures exported to `.glb`, read back and
 //! played as a viewer does (`creature-audit`). Runs `CREATURE_AUDIT_SEEDS` seeds per kind
 //! (default 12 in a debug build; `cargo xtask sweep` runs 10,000 in release) and prints, per
-//! check, how many creatures fail it. Each kind's enforced checks must hold on every seed;
-//! the checks not yet enforced for a kind (the generator does not pass them yet) are counted
-//! and printed only.
+//! check, how many creatures fail it. Every check is enforced for every kind: each must hold
+//! on every seed.
 
 #![allow(clippy::unwrap_used, clippy::std_instead_of_alloc)]
 

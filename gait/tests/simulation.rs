@@ -591,16 +591,40 @@ fn regression_swaying_never_carries_a_foot_across_the_midline() {
         (Vec3::new(0.0730, 0.9174, -0.3794), 0.5963),
     ]);
     let options = GaitOptions::DEFAULT.with_speed_multiplier(1.1);
-    let mut worst = f32::INFINITY;
-    for local in feet_walking_straight(&legs, &options, 0.564) {
-        for (leg, foot) in legs.iter().zip(local) {
-            // As a fraction of its hip's distance from the midline.
-            worst = worst.min(foot.x * leg.rest.x.signum() / leg.rest.x.abs());
-        }
-    }
+    let worst = least_side_kept(&legs, &options, 0.564);
     // The sway keeps at least half of each foot's margin, and the steps keep the feet near
     // their hips' lines: a quarter of the side is well clear of the midline.
     assert!(worst > 0.25, "a foot kept only {worst} of its side");
+}
+
+#[test]
+fn regression_rolling_never_carries_a_lifted_foot_across_the_midline() {
+    // A generated walker's legs (creature property case 334: an 8.85 m body, front hips
+    // 0.88 m off the midline, rear hips 0.34 m) walking at 6.82 m/s: a front foot and the
+    // diagonal rear foot lift together, and the roll fitted to the lifted feet's heights (the
+    // wide pair's lever beating the narrow one's) turned the body 13° about its origin on the
+    // ground, which carried the lifted rear foot across the midline in the body's frame.
+    let legs = mirrored_legs(&[
+        (Vec3::new(0.876, 5.919, 4.566), 3.849),
+        (Vec3::new(0.336, 5.512, -1.770), 3.583),
+    ]);
+    let options = GaitOptions::DEFAULT.with_speed_multiplier(3.34);
+    let worst = least_side_kept(&legs, &options, 6.82);
+    // The roll, like the sway, keeps at least half of each foot's margin.
+    assert!(worst > 0.25, "a foot kept only {worst} of its side");
+}
+
+/// The least any foot keeps of its side of the midline in the body's frame as shown (its `x`
+/// as a fraction of its hip's distance from the midline), walking `legs` straight at `speed`
+/// for 10 s.
+fn least_side_kept(legs: &[Leg], options: &GaitOptions, speed: f32) -> f32 {
+    let mut worst = f32::INFINITY;
+    for local in feet_walking_straight(legs, options, speed) {
+        for (leg, foot) in legs.iter().zip(local) {
+            worst = worst.min(foot.x * leg.rest.x.signum() / leg.rest.x.abs());
+        }
+    }
+    worst
 }
 
 /// Drives a controller of `legs` for 10 s, 30 updates a second, moving forward at `speed` and

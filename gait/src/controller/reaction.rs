@@ -8,7 +8,8 @@ use super::{Controller, LegState};
 use crate::ik::V3;
 use crate::leg::{LimbKind, Pose};
 use crate::math::{
-    atan2, atan2_lanes, clamp_sym, quat_yxz_sin_cos, sin_cos, sin_cos_lanes, sin_turns_arg, sqrt,
+    atan2, atan2_lanes, clamp_sym, quat_yxz, quat_yxz_sin_cos, sin_cos, sin_cos_lanes,
+    sin_turns_arg, sqrt,
 };
 
 /// A leg's hip roll (see `Controller::react`): none without a partner, else its own angle
@@ -104,7 +105,11 @@ impl Controller {
         r.bob = clamp_sym(r.bob + (bob_t - r.bob) * k, o.bob_limit * self.mean_size);
         r.yaw = yaw;
         r.pitch = clamp_sym(r.pitch + (pitch_t - r.pitch) * k, o.sway_limit);
-        r.roll = clamp_sym(r.roll + (roll_t - r.roll) * k, o.sway_limit);
+        let roll = clamp_sym(r.roll + (roll_t - r.roll) * k, o.sway_limit);
+        let (yaw, pitch) = (r.yaw, r.pitch);
+        let roll = self.roll_keeping_sides(pose, rotation, (yaw, pitch), roll);
+        let r = &mut self.reaction;
+        r.roll = roll;
         let w = self.blend;
         // The breathing's sine and the rotation's three half-angle sines and cosines, four
         // lanes at once (`sin_turns` and `quat_yxz` bit for bit).
@@ -152,17 +157,56 @@ impl Controller {
     /// ahead or behind, and a long body with a narrow stance would cross its end feet.
     ///
     /// In the body's frame (`pose` with `rotation`, unreacted), a foot at `(x, z)` seen from
-    /// the sway `ψ` is at `x cos ψ − z sin ψ`; on its side (`a`, `b` the foot's `x` and `z` times
-    /// its side's sign) it keeps `a cos ψ − b sin ψ = R cos(ψ + φ)` with `R = |(a, b)|` and
-    /// `φ = atan2(b, a)`. That is at least `need` for `ψ + φ` within `±acos(need / R)`, an
-    /// interval about `ψ = 0` (where it is `a ≥ need`): a sway past it is held at its end.
+    /// the sway `ψ` is at `x cos ψ − z sin ψ`; see [`keeping_sides`](Self::keeping_sides) for the rest.
     fn sway_keeping_sides(&self, pose: &Pose, rotation: &Mat3A, yaw: f32) -> f32 {
-        let w = self.blend;
-        let mut sway = yaw * w;
-        if sway == 0.0 {
-            return yaw;
+        self.keeping_sides(pose, rotation, yaw, |local| local.z)
+    }
+
+    /// `roll` (before blending) turned back toward none, as little as needed, so that the roll
+    /// carries no walking foot across more than half its margin from the midline, nor a foot
+    /// already across any further: the roll turns the body about its origin on the ground, so
+    /// a lifted foot moves across the body's frame by as much as it is lifted, and a body
+    /// whose narrow rear legs lift with its wide front ones would swing them across.
+    ///
+    /// In the body's frame (`pose` with `rotation` and the reaction's blended `yaw` and
+    /// `pitch`), a foot at `(x, y)` seen from the roll `ρ` is at `x cos ρ + y sin ρ`.
+    fn roll_keeping_sides(
+        &self,
+        pose: &Pose,
+        rotation: &Mat3A,
+        (yaw, pitch): (f32, f32),
+        roll: f32,
+    ) -> f32 {
+        if roll * self.blend == 0.0 {
+            return roll;
         }
-        let (sin, cos) = sin_cos(sway);
+        let w = self.blend;
+        let turned = *rotation * Mat3A::from_quat(quat_yxz(yaw * w, pitch * w, 0.0));
+        self.keeping_sides(pose, &turned, roll, |local| -local.y)
+    }
+
+    /// `angle` (before blending) of a turn of the body's frame (`pose` with `rotation`) that
+    /// moves a foot at `local` across it to `x cos θ − along(local) sin θ`, held back as
+    /// little as needed so that no walking foot crosses more than half its margin from the
+    /// midline, nor a foot already across any further.
+    ///
+    /// On its side (`a`, `b` the foot's `x` and `along` times its side's sign) a foot keeps
+    /// `a cos θ − b sin θ = R cos(θ + φ)` with `R = |(a, b)|` and `φ = atan2(b, a)`. That is at
+    /// least `need` for `θ + φ` within `±acos(need / R)`, an interval about `θ = 0` (where it
+    /// is `a ≥ need`): a turn past it is held at its end.
+    fn keeping_sides(
+        &self,
+        pose: &Pose,
+        rotation: &Mat3A,
+        angle: f32,
+        along: impl Fn(Vec3A) -> f32,
+    ) -> f32 {
+        let w = self.blend;
+        let mut turn = angle * w;
+        if turn == 0.0 {
+            return angle;
+        }
+        let (sin, cos) = sin_cos(turn);
         let inverse = rotation.transpose();
         let mut held = false;
         for (leg, state) in self.legs.iter().zip(&self.states) {
@@ -171,7 +215,7 @@ impl Controller {
             }
             let local = inverse * Vec3A::from(state.foot - pose.translation);
             let side = leg.rest.x.signum();
-            let (a, b) = (side * local.x, side * local.z);
+            let (a, b) = (side * local.x, side * along(local));
             let need = (0.5 * a).min(a);
             if a * cos - b * sin >= need {
                 continue;
@@ -182,14 +226,14 @@ impl Controller {
             }
             let reach = atan2(sqrt((radius * radius - need * need).max(0.0)), need);
             let phi = atan2(b, a);
-            sway = if sway > 0.0 {
-                sway.min(reach - phi).max(0.0)
+            turn = if turn > 0.0 {
+                turn.min(reach - phi).max(0.0)
             } else {
-                sway.max(-reach - phi).min(0.0)
+                turn.max(-reach - phi).min(0.0)
             };
             held = true;
         }
-        if held { sway / w } else { yaw }
+        if held { turn / w } else { angle }
     }
 
     /// Each foot's angle from its leg's rest direction, seen from above about the body's origin

@@ -697,6 +697,41 @@ fn regression_a_rear_foot_does_not_land_on_a_trailing_front_foot() {
     assert!(unspaced < 0.1, "without the spacing: {unspaced} m");
 }
 
+#[test]
+fn regression_a_rear_foot_does_not_land_ahead_of_a_front_foot_lifting_off() {
+    // A generated walker's legs (creature property case 622: a 6.6 m centipede, six legs a
+    // side, hips 0.9 m apart along the body, legs about 1 m tall, knees out) walking at
+    // 2.31 m/s: a rear foot re-aimed its step at the front foot's landing place as soon as the
+    // front foot lifted, and landed ahead of it while it was still lifting off, crossing the
+    // two legs.
+    let length = 6.611;
+    let rows = [
+        (Vec3::new(0.167, 0.233, 0.515), 0.687, 0.188, Vec3::Z),
+        (Vec3::new(0.178, 0.180, 0.399), 0.399, 0.117, Vec3::X),
+        (Vec3::new(0.179, 0.149, 0.260), 0.283, 0.098, Vec3::X),
+        (Vec3::new(0.179, 0.147, 0.107), 0.132, 0.097, Vec3::X),
+        (Vec3::new(0.179, 0.162, -0.048), -0.039, 0.106, Vec3::X),
+        (Vec3::new(0.167, 0.194, -0.196), -0.196, 0.126, Vec3::NEG_Z),
+    ];
+    let mut legs = Vec::new();
+    for (hip, rest_z, segment, pole) in rows {
+        for side in [1.0, -1.0] {
+            let mirror = Vec3::new(side, 1.0, 1.0);
+            let hip = hip * mirror * length;
+            let rest = Vec3::new(hip.x, 0.0, rest_z * length);
+            let segment = segment * length;
+            legs.push(Leg::new(hip, rest, segment, segment).with_pole(pole * mirror));
+        }
+    }
+    let options = GaitOptions::DEFAULT.with_speed_multiplier(1.41);
+    let nearest = nearest_along(&legs, &options, 2.31);
+    assert!(
+        nearest > 0.0,
+        "a front foot {} m behind a rear one",
+        -nearest
+    );
+}
+
 /// The fewest updates any step of `legs` lasts, turning in place at `rate` for 10 s, 30
 /// updates a second.
 fn shortest_swing(legs: &[Leg], options: &GaitOptions, rate: f32) -> usize {

@@ -467,8 +467,8 @@ fn step_target<G: Ground + ?Sized>(
 /// `target` (of walking leg `leg`, index `index` of `legs`) moved along the body, as little as
 /// needed and no further than the reach from `anchor`, so that it stays
 /// [`GaitOptions::foot_spacing`] behind the foot of each leg on the same side whose rest
-/// position is ahead (where that foot lands, if it is stepping), and as far ahead of each one
-/// behind. `frame` is the body's position and rotation.
+/// position is ahead (where it is and where it lands, if it is stepping), and as far ahead of
+/// each one behind. `frame` is the body's position and rotation.
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
 fn spaced_target(
@@ -498,15 +498,14 @@ fn spaced_target(
             continue;
         }
         let spacing = (o.foot_spacing * 0.5 * (leg.size + other.size)).min(0.5 * abs(gap));
-        let foot = if state.stepping {
-            state.step_target
-        } else {
-            state.foot
-        };
-        let other = along(foot);
+        // A stepping foot is kept clear of both where it is and where it lands: a rear foot
+        // that landed ahead of a front foot only lifting off crossed its leg.
+        let (now, lands) = (along(state.foot), along(state.step_target));
         z = if gap > 0.0 {
+            let other = if state.stepping { now.min(lands) } else { now };
             z.min(other - spacing)
         } else {
+            let other = if state.stepping { now.max(lands) } else { now };
             z.max(other + spacing)
         };
     }

@@ -2,9 +2,11 @@
 
 use alloc::vec::Vec;
 
-use creature_gait::{Controller, GaitOptions, Leg};
+use creature_gait::{Controller, GaitOptions, Leg, LimbKind};
+use glam::Vec2;
 
 use crate::Error;
+use crate::math::{asin, sqrt};
 
 /// A walker's legs and arms as `creature-gait` takes them (body space = the creature's model
 /// space at rest, the ground at `y = 0`), with the gait options, ready for a [`Controller`].
@@ -46,5 +48,121 @@ impl GaitSetup {
     /// [`Error::Gait`] if `creature-gait` rejects the legs or options (an edited set-up).
     pub fn controller(&self) -> Result<Controller, Error> {
         Ok(Controller::new(&self.legs, &self.options)?)
+    }
+}
+
+/// The shortest swing (seconds, before the controller's `√size` scaling of small legs, see
+/// [`GaitOptions::min_swing_time`]) in which no joint of `legs` need turn faster than
+/// `max_rate` (radians per second), `options` sizing the steps: a leg's hip and knee turn
+/// from the foot's farthest reach behind (lift-off), through its full lift above the rest
+/// position, to its farthest reach ahead (landing). A fast walker's quick swing would
+/// otherwise flick its knee through a right angle between two frames. The default
+/// `min_swing_time` at least; at most 10 s (the option's range).
+pub(crate) fn swing_time_for_joints(legs: &[Leg], options: &GaitOptions, max_rate: f32) -> f32 {
+    let mut least = options.min_swing_time;
+    for leg in legs.iter().filter(|l| l.kind == LimbKind::Leg) {
+        let size = leg.size;
+        let lift = options.step_height * size * options.speed_multiplier.max(1.0);
+        let hip = Vec2::new(leg.hip.z, leg.hip.y);
+        let rest = Vec2::new(leg.rest.z, leg.rest.y);
+        let feet = [
+            rest - Vec2::X * (options.reach.evaluate(-1.0) * size),
+            rest + Vec2::Y * (lift * options.height_curve.evaluate(0.5)),
+            rest + Vec2::X * (options.reach.evaluate(1.0) * size),
+        ];
+        let angles = feet.map(|foot| leg_angles(foot - hip, leg.upper, leg.lower));
+        let turn = |k: usize| {
+            let [a, b, c] = angles.map(|x| x[k]);
+            (b - a).abs() + (c - b).abs()
+        };
+        // The thigh turns with the foot's direction and with its angle to that direction.
+        let (hip_turn, knee_turn) = (turn(0) + turn(1), turn(2));
+        let time = hip_turn.max(knee_turn) / max_rate;
+        least = least.max(time / sqrt(size.min(1.0)));
+    }
+    if least.is_finite() {
+        least.min(10.0)
+    } else {
+        10.0
+    }
+}
+
+/// A two-bone leg's angles (radians) reaching `to` (from the hip, in the leg's plane: along
+/// the body and up) with segments `upper` and `lower`: the direction to the foot from straight
+/// down, the thigh's angle from that direction, and the knee's bend.
+fn leg_angles(to: Vec2, upper: f32, lower: f32) -> [f32; 3] {
+    let (a, b) = (upper, lower);
+    let d = to
+        .length()
+        .clamp((a - b).abs() + 1e-6 * (a + b), a + b)
+        .max(1e-12);
+    let acos = |x: f32| core::f32::consts::FRAC_PI_2 - asin(x.clamp(-1.0, 1.0));
+    [
+        Vec2::new(-to.y, to.x).to_angle(),
+        acos((a * a + d * d - b * b) / (2.0 * a * d)),
+        core::f32::consts::PI - acos((a * a + b * b - d * d) / (2.0 * a * b)),
+    ]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::Vec3;
+
+    fn leg() -> Leg {
+        // A 1 m tall leg whose knee bends forward at rest.
+        Leg::new(Vec3::Y, Vec3::ZERO, 0.65, 0.65)
+            .with_pole(Vec3::Z)
+            .with_size(1.0)
+    }
+
+    #[test]
+    fn a_slow_walkers_swing_keeps_the_default_shortest_swing() {
+        let options = GaitOptions::DEFAULT;
+        let time = swing_time_for_joints(&[leg()], &options, 18.0);
+        assert_eq!(time, options.min_swing_time);
+    }
+
+    #[test]
+    fn a_fast_walkers_high_steps_take_long_enough_for_its_joints() {
+        // Four times the speed lifts the foot four times as high (0.6 of the leg): the knee
+        // folds and unfolds through about two radians in a swing.
+        let options = GaitOptions::DEFAULT.with_speed_multiplier(4.0);
+        let time = swing_time_for_joints(&[leg()], &options, 18.0);
+        let [low, high, far] = [
+            Vec2::new(-0.45, -1.0),
+            Vec2::new(0.0, -0.4),
+            Vec2::new(0.3, -1.0),
+        ]
+        .map(|to| leg_angles(to, 0.65, 0.65)[2]);
+        let knee = (high - low).abs() + (high - far).abs();
+        assert!(knee > 2.0, "{knee}");
+        assert!(
+            time >= knee / 18.0 && time > options.min_swing_time,
+            "{time}"
+        );
+        // Slower joints, longer swings; a small leg's time is before the controller's √size.
+        assert!(swing_time_for_joints(&[leg()], &options, 9.0) > time);
+        let small = Leg::new(Vec3::Y * 0.25, Vec3::ZERO, 0.1625, 0.1625)
+            .with_pole(Vec3::Z)
+            .with_size(0.25);
+        let small_time = swing_time_for_joints(&[small], &options, 18.0);
+        assert!(
+            (small_time * 0.5 - time).abs() < 0.05 * time,
+            "{small_time} {time}"
+        );
+    }
+
+    #[test]
+    fn arms_and_broken_legs_give_a_finite_time() {
+        let arm = leg().with_kind(LimbKind::Arm);
+        let options = GaitOptions::DEFAULT.with_speed_multiplier(4.0);
+        assert_eq!(
+            swing_time_for_joints(&[arm], &options, 18.0),
+            options.min_swing_time
+        );
+        let zero = Leg::new(Vec3::Y, Vec3::Y, 0.0, 0.0);
+        let time = swing_time_for_joints(&[zero], &options, 18.0);
+        assert!(time.is_finite() && time <= 10.0, "{time}");
     }
 }

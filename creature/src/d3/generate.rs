@@ -15,6 +15,8 @@ use creature_limbs::{Body, CreatureKind, HeadEnd, LimbKind, SpineBone, plan};
 use creature_skin::{Blend, nearest_k, skin_positions};
 
 use super::body::{BASE_RADIUS, base_body, centre_of_volume, pill_triangles};
+use super::clip::MAX_LEG_TURN_RATE;
+use super::gait::swing_time_for_joints;
 use super::limbs::{
     Bind, LegChain, LimbNames, LimbStyle, MeshBuilder, Mount, add_limb, leg_knees, limb_shape,
     socket_point,
@@ -742,7 +744,8 @@ fn stand_on_ground(
 }
 
 /// Stage 10 (walkers): the legs and arms registered for the gait controller, checked by
-/// building one, so a creature never carries a set-up the controller rejects.
+/// building one, so a creature never carries a set-up the controller rejects; its swings long
+/// enough for the joints (see `swing_time_for_joints`).
 fn gait_setup(
     chains: &[(usize, LimbKind, LegChain)],
     shift: Vec3,
@@ -766,11 +769,13 @@ fn gait_setup(
         limbs.push(*index);
         hip_joints.push(c.hip_joint);
     }
+    let mut options = GaitOptions::DEFAULT.with_speed_multiplier(speed_factor);
+    options.min_swing_time = swing_time_for_joints(&legs, &options, MAX_LEG_TURN_RATE);
     let setup = GaitSetup {
         legs,
         limbs,
         hip_joints,
-        options: GaitOptions::DEFAULT.with_speed_multiplier(speed_factor),
+        options,
     };
     setup.controller()?;
     Ok(setup)

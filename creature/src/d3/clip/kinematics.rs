@@ -4,7 +4,7 @@
 
 use alloc::vec::Vec;
 
-use glam::{Affine3A, Quat, Vec3};
+use glam::{Affine3A, Mat3, Quat, Vec3};
 
 use super::Clip;
 use crate::Error;
@@ -114,6 +114,39 @@ pub(super) fn angle_between(p: Quat, q: Quat) -> f32 {
     4.0 * crate::math::asin((0.5 * d).min(1.0))
 }
 
+/// A two-bone limb's rotations with its knee a hinge: the hip's (in the limb's parent's
+/// frame at rest, here body space) and the knee's (in the hip's frame), turning its segments'
+/// rest directions `rest` (upper, lower) to `now`, both unit. The hip turns the upper segment
+/// onto its direction and the rest's bend plane onto the present one, so the knee only bends
+/// about its rest hinge axis: the shortest arc for the hip would twist the thigh as it swings
+/// and turn the knee about a wandering axis (a sideways knee flicked through 70° between two
+/// frames as the foot landed). A bend plane (the segments' cross product) comes from `pole`
+/// across the hip-to-end direction where the limb is nearly straight.
+pub(super) fn hinge_rotations(rest: (Vec3, Vec3), now: (Vec3, Vec3), pole: Vec3) -> (Quat, Quat) {
+    let frame = |(upper, lower): (Vec3, Vec3)| {
+        let bend = upper.cross(lower);
+        let normal = if bend.length_squared() > 1e-6 {
+            bend
+        } else {
+            pole.cross(upper + lower)
+        };
+        let normal = normal.reject_from_normalized(upper);
+        let normal = normal
+            .try_normalize()
+            .unwrap_or_else(|| upper.any_orthonormal_vector());
+        Mat3::from_cols(upper, normal, upper.cross(normal))
+    };
+    let hip = Quat::from_mat3(&(frame(now) * frame(rest).transpose())).normalize();
+    let knee = rotation_arc(rest.1, hip.inverse() * now.1);
+    (hip, knee)
+}
+
+/// The angle (radians) between unit vectors `a` and `b`, accurate for small angles too:
+/// `|a − b| = 2 sin(θ / 2)`.
+pub(super) fn angle_between_vectors(a: Vec3, b: Vec3) -> f32 {
+    2.0 * crate::math::asin((0.5 * (a - b).length()).min(1.0))
+}
+
 /// The shortest rotation from unit vector `from` to unit vector `to`. Unlike
 /// `Quat::from_rotation_arc`, which returns the identity below about 5e-4 rad (1.7 mm at the
 /// foot of a 3.4 m leg), it is exact for small angles: (from × to, 1 + from · to) normalised.
@@ -130,6 +163,32 @@ pub(super) fn rotation_arc(from: Vec3, to: Vec3) -> Quat {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn hinge_rotations_bend_the_knee_about_its_rest_axis() {
+        // A leg at rest with its knee forward (hinge axis +X), then turned as a whole (swung
+        // out and forward) with its knee bent 30° more: the hip carries the turn, the knee
+        // only bends, about +X.
+        let s = core::f32::consts::FRAC_1_SQRT_2;
+        let rest = (Vec3::new(0.0, -s, s), Vec3::new(0.0, -s, -s));
+        let turn = Quat::from_rotation_y(0.7) * Quat::from_rotation_z(0.4);
+        let bend = Quat::from_rotation_x(-0.52);
+        let now = (turn * rest.0, turn * bend * rest.1);
+        for pole in [Vec3::Z, Vec3::X, Vec3::NEG_Y] {
+            let (hip, knee) = hinge_rotations(rest, now, pole);
+            assert!((hip * rest.0).distance(now.0) < 1e-5);
+            assert!((hip * knee * rest.1).distance(now.1) < 1e-5);
+            let (axis, angle) = knee.to_axis_angle();
+            assert!((angle - 0.52).abs() < 1e-4, "{angle}");
+            assert!(axis.abs().distance(Vec3::X) < 1e-4, "{axis}");
+        }
+        // Straight at rest and now: the bend plane comes from the pole, and nothing bends.
+        let straight = (Vec3::NEG_Y, Vec3::NEG_Y);
+        let turned = (turn * Vec3::NEG_Y, turn * Vec3::NEG_Y);
+        let (hip, knee) = hinge_rotations(straight, turned, Vec3::Z);
+        assert!((hip * Vec3::NEG_Y).distance(turned.0) < 1e-5);
+        assert!(knee.angle_between(Quat::IDENTITY) < 1e-4);
+    }
 
     #[test]
     fn rotation_arc_is_exact_for_tiny_angles() {

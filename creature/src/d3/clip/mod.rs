@@ -22,7 +22,10 @@ mod floor;
 mod gait_run;
 mod kinematics;
 mod swim;
+mod swing;
 mod walk;
+
+pub(crate) use walk::MAX_LEG_TURN_RATE;
 
 pub(crate) use flight::flight;
 pub(crate) use kinematics::{pose, skinned};

@@ -11,7 +11,8 @@ use creature_gait::{Leg, LimbKind, Plane, Pose, solve_two_bone};
 
 use super::floor::knee_above;
 use super::gait_run::{GaitRun, best_cut, heading, ranked_cuts};
-use super::kinematics::{forward_kinematics, rotation_arc};
+use super::kinematics::{forward_kinematics, hinge_rotations};
+use super::swing::even_swings;
 use super::{CLIP_FPS, Clip, Track, loop_error};
 use crate::Error;
 use crate::d3::Creature;
@@ -39,6 +40,10 @@ fn limit_turn_rate(rotations: &mut [Quat], max: f32) {
 /// The most a leg's joint turns from one frame to the next while its foot is in the air, in
 /// radians (18 rad/s at [`CLIP_FPS`]; the audit of delivered creatures allows 20).
 const MAX_LEG_TURN_PER_FRAME: f32 = 0.6;
+
+/// [`MAX_LEG_TURN_PER_FRAME`] in radians per second: the gait's swings are made long enough for
+/// it (see `swing_time_for_joints`).
+pub(crate) const MAX_LEG_TURN_RATE: f32 = MAX_LEG_TURN_PER_FRAME * CLIP_FPS;
 
 /// Each rotation whose frame is `free` turned no further than `max` radians from its
 /// neighbours, the others kept: forward, backward and forward again, each frame moved toward
@@ -432,6 +437,8 @@ impl Creature {
         // breathing, on a body that reaches down to the ground) leans less and, if need be,
         // rises, before the legs are solved, so the feet stay planted.
         let bodies = self.above_the_floor(&body_global, run, &setup.legs)?;
+        // Each swing's frames spaced by its joints' turn, so they turn at an even rate.
+        let feet = even_swings(run, &bodies, &setup.legs, GROUND_CONTACT * self.length);
         for (frame, body) in bodies.iter().enumerate() {
             clip.root_translation
                 .push(body.translation + body.rotation * rest_root);
@@ -441,14 +448,14 @@ impl Creature {
             for (i, tracks) in legs.iter_mut().enumerate() {
                 let (leg, parent) = (tracks.leg, tracks.parent);
                 let (rest_upper, rest_lower) = (tracks.rest_upper, tracks.rest_lower);
-                let foot = body.inverse_transform_point(run.foot(frame, i));
+                let foot = body.inverse_transform_point(feet[frame * run.legs + i]);
                 let ik = solve_two_bone(leg.hip, foot, leg.upper, leg.lower, leg.pole);
                 let floor = tracks.knee_radius - body.translation.y;
                 let middle = knee_above(ik.root, ik.middle, ik.end, up, floor);
                 let upper = (middle - ik.root).normalize_or(rest_upper);
-                let hip_rotation = rotation_arc(rest_upper, upper);
                 let lower = (ik.end - middle).normalize_or(rest_lower);
-                let knee_rotation = rotation_arc(rest_lower, hip_rotation.inverse() * lower);
+                let (hip_rotation, knee_rotation) =
+                    hinge_rotations((rest_upper, rest_lower), (upper, lower), leg.pole);
                 let parent_rotation = tracks.parent_rotation;
                 tracks
                     .translations

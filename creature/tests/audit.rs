@@ -69,16 +69,7 @@ fn audit_swimmers() {
 fn walkers_pass(seeds: &[u64], checks: &[Check]) {
     let params = d3::Params::DEFAULT.with_kind(Kind::Walker);
     for &seed in seeds {
-        creature_passes(seed, &params, checks);
-    }
-}
-
-/// Fails if the creature of `seed` and `params` fails any of `checks`.
-fn creature_passes(seed: u64, params: &d3::Params, checks: &[Check]) {
-    let c = d3::generate(seed, params).unwrap();
-    let report = audit_glb(&glb_3d(&c, &c.clips).unwrap(), &Limits::DEFAULT).unwrap();
-    for &check in checks {
-        assert!(!report.fails(check), "seed {seed}: {}", listed(&report));
+        passes(seed, &params, checks);
     }
 }
 
@@ -343,44 +334,30 @@ fn regression_skin_whose_joints_jump_along_the_spine_bends_within_its_limit() {
     );
 }
 
-/// The body of a small, fast walker with sideways knees (the facade's property case 722 over
-/// valid params).
-fn small_fast_walker() -> d3::Params {
-    d3::Params::DEFAULT
-        .with_kind(Kind::Walker)
-        .with_profiles(6)
-        .with_resolution(10, 13)
-        .with_limb_sides(3)
-        .with_flat_normals(false)
-        .with_slices(
-            Span::new(0.891_477_47, 2.021_170_4),
-            Span::new(0.323_322_77, 0.495_552_18),
-            Span::new(0.860_478_9, 1.081_391_8),
-        )
-        .with_swimmer_slices(
-            Span::new(1.149_562_4, 2.182_130_8),
-            Span::new(2.721_236_5, 2.969_736_3),
-            Span::new(0.618_843_26, 0.793_075_2),
-        )
-        .with_body_scale(Span::new(0.114_449_31, 0.160_834_8))
-        .with_speed_factor(Span::new(4.447_129_2, 4.485_049))
-        .with_bone_length(0.364_939_15)
-        .with_spine_bones(IntSpan::new(29, 36))
-        .with_spine_bend(97.44526)
-        .with_head_size(Span::new(1.649_839_4, 1.832_287_4))
-        .with_ground_clearance(Span::new(0.067_177, 0.741_246_5))
-}
-
 #[test]
 fn regression_a_sideways_knee_bends_about_its_hinge() {
     // The hip turned its thigh the shortest way from rest, which twisted it as the leg swung:
     // a sideways knee then turned about a wandering axis, through 47° between two keys of
-    // `walk` (24 rad/s), though the leg's bend hardly changed.
-    creature_passes(
-        17_446_813_456_853_714_282,
-        &small_fast_walker(),
-        &[Check::KeyTurn, Check::AngularSpeed],
+    // `walk` (24 rad/s), though the leg's bend hardly changed (a small, fast walker: the
+    // facade's property case 722 over valid params).
+    let params = drawn(
+        Kind::Walker,
+        (6, 10, 13, 3, false),
+        [
+            (0.891_477_47, 2.021_170_4),
+            (0.323_322_77, 0.495_552_18),
+            (0.860_478_9, 1.081_391_8),
+        ],
+        (0.114_449_31, 0.160_834_8),
+        (4.447_129_2, 4.485_049),
+        0.364_939_15,
+        (29, 36),
+        97.44526,
+        (1.649_839_4, 1.832_287_4),
+        (0.067_177, 0.741_246_5),
     );
+    let checks = [Check::KeyTurn, Check::AngularSpeed];
+    passes(17_446_813_456_853_714_282, &params, &checks);
 }
 
 #[test]
@@ -388,32 +365,47 @@ fn regression_a_fast_walkers_knee_unfolds_evenly_through_its_swing() {
     // A 19 m walker at 17 m/s (the facade's property case 1221 over valid params): its foot
     // dropped from high in the swing onto the ground at the end, and the knee unfolded 63°
     // between two keys of `walk`; the swing's frames are now spaced by the joints' turn.
-    let params = d3::Params::DEFAULT
-        .with_kind(Kind::Random)
-        .with_profiles(4)
-        .with_resolution(21, 11)
-        .with_limb_sides(5)
-        .with_flat_normals(true)
-        .with_slices(
-            Span::new(1.276_099_6, 2.971_592_7),
-            Span::new(0.680_393_34, 1.390_769_7),
-            Span::new(1.115_497_4, 1.980_858_7),
-        )
-        .with_swimmer_slices(
-            Span::new(1.121_867_4, 2.124_379),
-            Span::new(0.937_070_1, 1.261_991_1),
-            Span::new(2.267_763_1, 2.323_241_7),
-        )
-        .with_body_scale(Span::new(5.636_702_5, 6.711_443_4))
-        .with_speed_factor(Span::new(2.775_828_6, 2.826_998_5))
-        .with_bone_length(0.333_442_84)
-        .with_spine_bones(IntSpan::new(34, 35))
-        .with_spine_bend(104.19234)
-        .with_head_size(Span::new(1.953_637_4, 1.999_920_7))
-        .with_ground_clearance(Span::new(0.080_476_07, 0.329_559_86));
-    creature_passes(
-        10_072_698_522_228_869_427,
-        &params,
-        &[Check::KeyTurn, Check::AngularSpeed],
+    let params = drawn(
+        Kind::Random,
+        (4, 21, 11, 5, true),
+        [
+            (1.276_099_6, 2.971_592_7),
+            (0.680_393_34, 1.390_769_7),
+            (1.115_497_4, 1.980_858_7),
+        ],
+        (5.636_702_5, 6.711_443_4),
+        (2.775_828_6, 2.826_998_5),
+        0.333_442_84,
+        (34, 35),
+        104.19234,
+        (1.953_637_4, 1.999_920_7),
+        (0.080_476_07, 0.329_559_86),
     );
+    let checks = [Check::KeyTurn, Check::AngularSpeed];
+    passes(10_072_698_522_228_869_427, &params, &checks);
+}
+
+#[test]
+fn regression_a_long_stride_bends_crowded_knees_apart() {
+    // Legs as long as the body on hips 0.75 of it apart, all knees forward (the facade's
+    // property case 818 over valid params): the hips were far enough apart at rest, but at the
+    // back of its stance the front foot passed behind the rear leg's forward knee, and the
+    // front shin swept through the rear thigh in `walk`.
+    let params = drawn(
+        Kind::Walker,
+        (5, 6, 9, 8, false),
+        [
+            (1.015_512_7, 2.449_571_4),
+            (1.755_314_7, 2.887_926_8),
+            (0.756_334_2, 2.912_366),
+        ],
+        (0.238_220_69, 3.803_444),
+        (2.464_702_8, 4.955_887_3),
+        0.240_171_18,
+        (39, 39),
+        57.680_603,
+        (0.595_136_34, 0.828_786_6),
+        (0.605_272_5, 0.837_489_37),
+    );
+    passes(13_341_310_954_036_717_780, &params, &[Check::LegsIntersect]);
 }

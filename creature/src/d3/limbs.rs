@@ -9,7 +9,7 @@ use core::f32::consts::{PI, TAU};
 
 use glam::Vec3;
 
-use creature_gait::solve_two_bone;
+use creature_gait::{GaitOptions, solve_two_bone};
 use creature_limbs::{Knee, Limb, LimbKind, Side, Socket};
 
 use crate::Error;
@@ -221,9 +221,10 @@ fn limb_radius(length: f32, body_width: f32) -> f32 {
 /// Per limb of `plan`, the way its knee bends (`mounts` are the limbs' mounts, in order): the
 /// plan's, unless on some side two standing legs are so close along the body that the knee
 /// one bends toward the other (a rear leg's forward knee, a front leg's backward one) would
-/// reach within [`CROWDED_SHARE`] of the gap between their hips, their radii included. Then
-/// every side's knees bend apart: the front leg's forward, the rear leg's backward and those
-/// between sideways.
+/// reach within [`CROWDED_SHARE`] of the gap between their hips, their radii included, or
+/// past where the other's foot goes in its stride (the gait's reach behind or ahead of its
+/// rest position). Then every side's knees bend apart: the front leg's forward, the rear
+/// leg's backward and those between sideways.
 pub(crate) fn leg_knees(plan: &creature_limbs::Plan, mounts: &[Mount]) -> Vec<Option<Knee>> {
     let mut knees = alloc::vec![plan.knee; plan.limbs.len()];
     let toward_front = match plan.knee {
@@ -231,8 +232,9 @@ pub(crate) fn leg_knees(plan: &creature_limbs::Plan, mounts: &[Mount]) -> Vec<Op
         Some(Knee::Backward) => false,
         _ => true,
     };
-    // Standing legs per side: (index, hip along the body, hip to foot, radius).
-    let mut sides: [Vec<(usize, f32, f32, f32)>; 2] = [Vec::new(), Vec::new()];
+    // Standing legs per side: (index, hip along the body, hip to foot, radius, foot along the
+    // body).
+    let mut sides: [Vec<(usize, f32, f32, f32, f32)>; 2] = [Vec::new(), Vec::new()];
     for (index, (limb, mount)) in plan.limbs.iter().zip(mounts).enumerate() {
         let (LimbKind::Leg, Some(foot)) = (limb.kind, limb.foot) else {
             continue;
@@ -247,18 +249,30 @@ pub(crate) fn leg_knees(plan: &creature_limbs::Plan, mounts: &[Mount]) -> Vec<Op
             mount.point.z,
             mount.point.distance(foot),
             radius,
+            foot.z,
         ));
     }
     // The knee's distance from the hip–foot line, per unit of that line's length.
     let offset = 0.5 * crate::math::sqrt(KNEE_SLACK * KNEE_SLACK - 1.0);
+    // How far the gait takes a foot behind and ahead of its rest position (× the leg's size).
+    let reach = GaitOptions::DEFAULT.reach;
+    let (behind, ahead) = (reach.evaluate(-1.0), reach.evaluate(1.0));
     let mut crowded = false;
     for legs in &mut sides {
         legs.sort_by(|a, b| b.1.total_cmp(&a.1).then(a.0.cmp(&b.0)));
         for pair in legs.windows(2) {
             let [front, rear] = pair else { continue };
             let bent = if toward_front { rear } else { front };
-            let reach = offset * bent.2 + front.3 + rear.3;
-            crowded |= reach > CROWDED_SHARE * (front.1 - rear.1);
+            let radii = front.3 + rear.3;
+            crowded |= offset * bent.2 + radii > CROWDED_SHARE * (front.1 - rear.1);
+            // In its stride, the front foot at the back of its stance passes behind the rear
+            // leg's forward knee (or the rear foot at the front of its swing ahead of the
+            // front leg's backward knee): the front shin would sweep through the rear thigh.
+            crowded |= if toward_front {
+                front.4 - behind * front.2 < rear.1 + offset * rear.2 + radii
+            } else {
+                rear.4 + ahead * rear.2 > front.1 - offset * front.2 - radii
+            };
         }
     }
     if crowded {

@@ -10,7 +10,6 @@ mod tally;
 
 use creature::d3::{self, Kind};
 use creature::export::glb_3d;
-use creature::{IntSpan, Span};
 use creature_audit::{Check, Limits, audit_glb};
 use tally::{Tally, listed};
 

@@ -232,9 +232,8 @@ pub(crate) fn leg_knees(plan: &creature_limbs::Plan, mounts: &[Mount]) -> Vec<Op
         Some(Knee::Backward) => false,
         _ => true,
     };
-    // Standing legs per side: (index, hip along the body, hip to foot, radius, foot along the
-    // body).
-    let mut sides: [Vec<(usize, f32, f32, f32, f32)>; 2] = [Vec::new(), Vec::new()];
+    // Standing legs per side.
+    let mut sides: [Vec<SideLeg>; 2] = [Vec::new(), Vec::new()];
     for (index, (limb, mount)) in plan.limbs.iter().zip(mounts).enumerate() {
         let (LimbKind::Leg, Some(foot)) = (limb.kind, limb.foot) else {
             continue;
@@ -243,14 +242,13 @@ pub(crate) fn leg_knees(plan: &creature_limbs::Plan, mounts: &[Mount]) -> Vec<Op
         if out == 0.0 {
             continue;
         }
-        let radius = limb_radius(limb.length.max(1e-4), mount.width);
-        sides[usize::from(out < 0.0)].push((
+        sides[usize::from(out < 0.0)].push(SideLeg {
             index,
-            mount.point.z,
-            mount.point.distance(foot),
-            radius,
-            foot.z,
-        ));
+            hip: mount.point.z,
+            foot: foot.z,
+            size: mount.point.distance(foot),
+            radius: limb_radius(limb.length.max(1e-4), mount.width),
+        });
     }
     // The knee's distance from the hip–foot line, per unit of that line's length.
     let offset = 0.5 * crate::math::sqrt(KNEE_SLACK * KNEE_SLACK - 1.0);
@@ -259,19 +257,19 @@ pub(crate) fn leg_knees(plan: &creature_limbs::Plan, mounts: &[Mount]) -> Vec<Op
     let (behind, ahead) = (reach.evaluate(-1.0), reach.evaluate(1.0));
     let mut crowded = false;
     for legs in &mut sides {
-        legs.sort_by(|a, b| b.1.total_cmp(&a.1).then(a.0.cmp(&b.0)));
+        legs.sort_by(|a, b| b.hip.total_cmp(&a.hip).then(a.index.cmp(&b.index)));
         for pair in legs.windows(2) {
             let [front, rear] = pair else { continue };
             let bent = if toward_front { rear } else { front };
-            let radii = front.3 + rear.3;
-            crowded |= offset * bent.2 + radii > CROWDED_SHARE * (front.1 - rear.1);
+            let radii = front.radius + rear.radius;
+            crowded |= offset * bent.size + radii > CROWDED_SHARE * (front.hip - rear.hip);
             // In its stride, the front foot at the back of its stance passes behind the rear
             // leg's forward knee (or the rear foot at the front of its swing ahead of the
             // front leg's backward knee): the front shin would sweep through the rear thigh.
             crowded |= if toward_front {
-                front.4 - behind * front.2 < rear.1 + offset * rear.2 + radii
+                front.foot - behind * front.size < rear.hip + offset * rear.size + radii
             } else {
-                rear.4 + ahead * rear.2 > front.1 - offset * front.2 - radii
+                rear.foot + ahead * rear.size > front.hip - offset * front.size - radii
             };
         }
     }
@@ -279,7 +277,7 @@ pub(crate) fn leg_knees(plan: &creature_limbs::Plan, mounts: &[Mount]) -> Vec<Op
         for legs in sides.iter().filter(|legs| legs.len() > 1) {
             let last = legs.len() - 1;
             for (rank, leg) in legs.iter().enumerate() {
-                knees[leg.0] = Some(match rank {
+                knees[leg.index] = Some(match rank {
                     0 => Knee::Forward,
                     r if r == last => Knee::Backward,
                     _ => Knee::Sideways,
@@ -288,6 +286,18 @@ pub(crate) fn leg_knees(plan: &creature_limbs::Plan, mounts: &[Mount]) -> Vec<Op
         }
     }
     knees
+}
+
+/// A standing leg on one side of the body, as [`leg_knees`] weighs it: along the body (`z`).
+struct SideLeg {
+    /// Its index in the plan.
+    index: usize,
+    /// Its hip's and its rest foot's place along the body.
+    hip: f32,
+    foot: f32,
+    /// Its hip-to-foot distance, and its radius.
+    size: f32,
+    radius: f32,
 }
 
 /// The share of the gap between two neighbouring legs' hips that a knee bent toward the other

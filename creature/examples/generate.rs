@@ -7,6 +7,7 @@
 //! ```sh
 //! cargo run --release --example generate -- --seed 7 --out out/
 //! cargo run --release --example generate -- --kind walker --count 16 --out out/
+//! cargo run --release --example generate -- --kind walker --in-place --seed 7 --out out/
 //! cargo run --release --example generate -- --dim 2d --seed 7 --out out/
 //! cargo run --release --example generate -- --help
 //! ```
@@ -58,6 +59,10 @@ struct Args {
     /// 2D: draw the bones on the preview PNG.
     #[arg(long)]
     bones: bool,
+    /// 3D: bake the clips in place (the root's horizontal travel removed), for viewers that
+    /// loop them as they are; the default keeps root motion, as engines want it.
+    #[arg(long)]
+    in_place: bool,
     /// Worker threads for `--count` (default: every core, or `RAYON_NUM_THREADS`).
     #[arg(long, value_name = "N")]
     threads: Option<NonZeroUsize>,
@@ -156,7 +161,9 @@ fn run(args: &Args, end: u64) -> Result<bool, String> {
     }
     let job = Job {
         dim: args.dim,
-        params: d3::Params::DEFAULT.with_kind(args.kind.into()),
+        params: d3::Params::DEFAULT
+            .with_kind(args.kind.into())
+            .with_in_place(args.in_place),
         params_2d: d2::Params::DEFAULT.with_texture_size(args.texture_size),
         bones: args.bones,
         out: &args.out,

@@ -415,3 +415,21 @@ fn regression_folded_body_weights_stay_within_one() {
     let problems = check(&c);
     assert!(problems.is_empty(), "{problems:?}");
 }
+
+#[test]
+fn a_walk_baked_in_place_stays_where_it_starts_and_steps() {
+    let params = d3::Params::DEFAULT.with_kind(d3::Kind::Walker);
+    let moving = generate(7, &params).unwrap();
+    let here = generate(7, &params.with_in_place(true)).unwrap();
+    let find = |c: &d3::Creature| c.clips.iter().find(|k| k.name == "walk").unwrap().clone();
+    let (moving, here) = (find(&moving), find(&here));
+    let travel = |c: &d3::Clip| c.root_translation[c.frames - 1] - c.root_translation[0];
+    // With root motion the walk travels over a body length; in place it does not move on
+    // the ground, and steps all the same.
+    assert!(travel(&moving).z > 0.5, "{}", travel(&moving));
+    let t = travel(&here);
+    assert_eq!((t.x, t.z), (0.0, 0.0));
+    assert_eq!(here.tracks, moving.tracks);
+    assert_eq!(here.contacts, moving.contacts);
+    assert_eq!(here, moving.clone().in_place());
+}

@@ -182,6 +182,32 @@ proptest! {
     }
 
     #[test]
+    fn clips_baked_in_place_are_the_clips_without_the_roots_travel(
+        seed in strategies::seed(),
+        params in strategies::params(),
+    ) {
+        let moving = generate(seed, &params);
+        let here = generate(seed, &params.with_in_place(true));
+        let (Ok(moving), Ok(here)) = (moving, here) else {
+            return Err(TestCaseError::fail(format!("seed {seed}: not generated")));
+        };
+        prop_assert_eq!(moving.clips.len(), here.clips.len());
+        for (m, h) in moving.clips.iter().zip(&here.clips) {
+            let start = m.root_translation[0];
+            for (a, b) in m.root_translation.iter().zip(&h.root_translation) {
+                // Every frame at the start's place on the ground, at its own height.
+                prop_assert_eq!((b.x, b.y, b.z), (start.x, a.y, start.z), "{}", m.name);
+            }
+            let mut travel_removed = h.clone();
+            travel_removed.root_translation.clone_from(&m.root_translation);
+            prop_assert_eq!(&travel_removed, m);
+        }
+        let mut rest = here;
+        rest.clips.clone_from(&moving.clips);
+        prop_assert_eq!(rest, moving);
+    }
+
+    #[test]
     fn same_seed_and_params_give_the_same_3d_creature(
         seed in strategies::seed(),
         params in strategies::params(),

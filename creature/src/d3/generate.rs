@@ -23,7 +23,7 @@ use super::limbs::{
 };
 use super::{GaitSetup, Kind, Params};
 use crate::Error;
-use crate::d3::{Creature, Joint, Mesh, Part, Quality, Skeleton};
+use crate::d3::{Clip, Creature, Joint, Mesh, Part, Quality, Skeleton};
 use crate::math::{cos, sin};
 use crate::rng::{rng_for, uniform};
 use crate::span::Span;
@@ -210,6 +210,9 @@ fn generate_kind(rng: &mut Pcg64Mcg, params: &Params, spec: &KindSpec) -> Result
     };
     if params.clips {
         creature.clips = creature.bake_clips()?;
+        if params.in_place {
+            creature.clips = creature.clips.into_iter().map(Clip::in_place).collect();
+        }
     }
     Ok(creature)
 }

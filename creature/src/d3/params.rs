@@ -98,6 +98,10 @@ pub struct Params {
     /// (see [`Creature::bake_clips`](crate::d3::Creature::bake_clips)). Default `true`; turn off
     /// to generate faster and bake later, or never.
     pub clips: bool,
+    /// Bake the clips in place ([`Clip::in_place`](crate::d3::Clip::in_place): the root's
+    /// horizontal travel removed) for viewers that loop them as they are. Default `false`:
+    /// root motion, what engines that move a character by its clips want.
+    pub in_place: bool,
 }
 
 impl Params {
@@ -124,6 +128,7 @@ impl Params {
         ground_clearance: Span::new(0.15, 0.6),
         limbs: PlanOptions::DEFAULT,
         clips: true,
+        in_place: false,
     };
 
     /// Sets [`kind`](Self::kind).
@@ -243,6 +248,13 @@ impl Params {
     #[must_use]
     pub const fn with_clips(mut self, clips: bool) -> Self {
         self.clips = clips;
+        self
+    }
+
+    /// Sets [`in_place`](Self::in_place).
+    #[must_use]
+    pub const fn with_in_place(mut self, in_place: bool) -> Self {
+        self.in_place = in_place;
         self
     }
 

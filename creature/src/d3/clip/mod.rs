@@ -99,6 +99,34 @@ impl Clip {
     pub fn duration(&self) -> f32 {
         self.frames.saturating_sub(1) as f32 / self.fps
     }
+
+    /// The clip in place: the root's horizontal travel removed (every frame's root at the
+    /// first frame's `x` and `z`; its height, its rotation and every other track kept), so a
+    /// viewer that plays it on a loop does not snap the creature back to the start. Engines
+    /// that move a character by its root motion want the clip as baked; see
+    /// [`Params::in_place`](crate::d3::Params::in_place) to bake them so.
+    ///
+    /// ```
+    /// use creature::d3::{generate, Kind, Params};
+    ///
+    /// let walker = generate(7, &Params::DEFAULT.with_kind(Kind::Walker))?;
+    /// let walk = walker.clips.iter().find(|c| c.name == "walk").expect("walkers walk");
+    /// let here = walk.clone().in_place();
+    /// let (first, last) = (here.root_translation[0], here.root_translation[here.frames - 1]);
+    /// assert_eq!((first.x, first.z), (last.x, last.z));
+    /// assert!(walk.root_translation[walk.frames - 1].z > first.z);
+    /// # Ok::<(), creature::Error>(())
+    /// ```
+    #[must_use]
+    pub fn in_place(mut self) -> Self {
+        if let Some(&start) = self.root_translation.first() {
+            for t in &mut self.root_translation {
+                t.x = start.x;
+                t.z = start.z;
+            }
+        }
+        self
+    }
 }
 
 impl Creature {

@@ -107,3 +107,51 @@ fn regression_a_preview_is_never_larger_than_its_size() {
         assert_eq!(image.width.max(image.height), size, "size {size}");
     }
 }
+
+#[test]
+fn the_2d_glb_carries_the_looping_idle_wiggle() {
+    let c = generate_2d(7, &d2::Params::DEFAULT.with_texture(false)).unwrap();
+    let model = creature_audit::Model::from_glb(&export::glb_2d(&c).unwrap()).unwrap();
+    let idle = model.clips.iter().find(|k| k.name == "idle").unwrap();
+    let wiggling: Vec<usize> = (0..c.bones.len())
+        .filter(|&i| c.bones[i].animated())
+        .collect();
+    assert!(!wiggling.is_empty());
+    assert_eq!(idle.channels.len(), wiggling.len());
+    for channel in &idle.channels {
+        let bone = model.nodes[channel.node].name.strip_prefix("bone").unwrap();
+        let bone: usize = bone.parse().unwrap();
+        assert!(wiggling.contains(&bone));
+        let creature_audit::Values::Rotation(keys) = &channel.values else {
+            panic!("bone {bone}: not a rotation");
+        };
+        assert_eq!(keys.len(), channel.times.len());
+        assert!((channel.times[channel.times.len() - 1] - d2::IDLE_LOOP_SECONDS).abs() < 1e-3);
+        // Each key is the bone's rest rotation plus its wiggle then, about the z axis.
+        for (&t, key) in channel.times.iter().zip(keys) {
+            let angle = c.bones[bone].rotation + c.idle_loop_rotations(t)[bone];
+            let want = creature::glam::Quat::from_rotation_z(angle);
+            assert!(key.angle_between(want) < 1e-3, "bone {bone} at {t} s");
+        }
+        // It moves, and it loops: the last key is the first.
+        let moved = keys
+            .iter()
+            .map(|k| k.angle_between(keys[0]))
+            .fold(0.0, f32::max);
+        assert!(moved > 0.5, "bone {bone} turns {moved} rad at most");
+        assert!(keys[0].angle_between(keys[keys.len() - 1]) < 1e-3);
+    }
+}
+
+#[test]
+fn the_looping_wiggle_keeps_near_the_seeds() {
+    // Each bone's frequency is the seed's rounded to whole cycles a loop: over a second the
+    // two wiggles stay close (3.1% of the frequency at most, bone 3's).
+    let c = generate_2d(7, &d2::Params::DEFAULT.with_texture(false)).unwrap();
+    for k in 0..=30 {
+        let t = k as f32 / 30.0;
+        for (a, b) in c.idle_loop_rotations(t).iter().zip(c.idle_rotations(t)) {
+            assert!((a - b).abs() < 0.05, "{a} against the seed's {b} at {t} s");
+        }
+    }
+}

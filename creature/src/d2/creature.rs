@@ -170,6 +170,31 @@ impl Creature {
         idle_rotations(&self.bones, t)
     }
 
+    /// The idle wiggle made to loop: as [`idle_rotations`](Self::idle_rotations), with each
+    /// bone's frequency rounded to a whole number of cycles in [`IDLE_LOOP_SECONDS`] (at least
+    /// one), so that the wiggle at `t` and at `t + IDLE_LOOP_SECONDS` are the same: within 3.1%
+    /// of the seed's frequencies (bone 3's; the higher bones' less). The 2D `.glb` bakes it as
+    /// its `idle` animation.
+    ///
+    /// ```
+    /// # fn main() -> Result<(), creature::Error> {
+    /// use creature::d2::IDLE_LOOP_SECONDS;
+    ///
+    /// let creature = creature::generate_2d(7, &creature::d2::Params::DEFAULT.with_texture(false))?;
+    /// let (start, end) = (creature.idle_loop_rotations(0.5), creature.idle_loop_rotations(0.5 + IDLE_LOOP_SECONDS));
+    /// for (a, b) in start.iter().zip(&end) {
+    ///     assert!((a - b).abs() < 1e-3);
+    /// }
+    /// # Ok(()) }
+    /// ```
+    #[must_use]
+    pub fn idle_loop_rotations(&self, t: f32) -> Vec<f32> {
+        wiggle(&self.bones, t, |frequency| {
+            let cycle = core::f32::consts::TAU / IDLE_LOOP_SECONDS;
+            crate::math::round_non_negative(frequency / cycle).max(1) as f32 * cycle
+        })
+    }
+
     /// World transforms of the bones posed with `rotations` (radians, added to each bone's
     /// rest rotation), as `(position, angle)`; missing rotations count as 0.
     #[must_use]
@@ -191,15 +216,26 @@ impl Creature {
     }
 }
 
+/// How long the 2D creature's looping idle wiggle takes to repeat (seconds; see
+/// [`Creature::idle_loop_rotations`]).
+pub const IDLE_LOOP_SECONDS: f32 = 60.0;
+
 /// The seed's idle wiggle for any bone list (see [`Creature::idle_rotations`]).
 #[must_use]
 pub(crate) fn idle_rotations(bones: &[Bone], t: f32) -> Vec<f32> {
+    wiggle(bones, t, |frequency| frequency)
+}
+
+/// The wiggle `sin(t ω)` of every animated bone `i` of `bones`, its angular frequency `ω` the
+/// seed's `(i / 0.23 + 1) / 10` (radians per second) through `frequency`; 0 for the others and
+/// for a time that is not finite.
+fn wiggle(bones: &[Bone], t: f32, frequency: impl Fn(f32) -> f32) -> Vec<f32> {
     bones
         .iter()
         .enumerate()
         .map(|(i, b)| {
             if b.animated() && t.is_finite() {
-                crate::math::sin(t * (i as f32 / 0.23 + 1.0) / 10.0)
+                crate::math::sin(t * frequency((i as f32 / 0.23 + 1.0) / 10.0))
             } else {
                 0.0
             }

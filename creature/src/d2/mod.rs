@@ -26,7 +26,9 @@ mod params;
 mod skeleton;
 mod texture;
 
-pub use creature::{Ball, Bone, BoneKind, Creature, Eye, Mesh, Quality, Skeleton};
+pub use creature::{
+    Ball, Bone, BoneKind, Creature, Eye, IDLE_LOOP_SECONDS, Mesh, Quality, Skeleton,
+};
 pub use generate::{MAX_BONES, build, generate};
 pub use params::Params;
 pub use skeleton::{skeleton, skeleton_from_seed};

@@ -8,7 +8,9 @@ use glam::Mat4;
 use gltf_json as json;
 use json::validation::Checked;
 
-use super::gltf::{Bin, accessor, check_skinned_mesh, f32_bytes, new_root, push_mesh};
+use super::gltf::{
+    AnimationBuilder, Bin, accessor, check_skinned_mesh, f32_bytes, new_root, push_mesh,
+};
 use super::image_png;
 use crate::Error;
 use crate::image::Image;
@@ -182,8 +184,50 @@ pub fn glb_2d(creature: &crate::d2::Creature) -> Result<Vec<u8>, Error> {
         extras: Default::default(),
     });
     root.scene = Some(scene);
+    if creature.bones.iter().any(crate::d2::Bone::animated) {
+        let idle = idle_animation(&mut root, &mut bin, creature, first_joint)?;
+        root.animations.push(idle);
+    }
 
     bin.into_glb(root)
+}
+
+/// Keys per second of the 2D creature's `idle` animation.
+const IDLE_FPS: f32 = 15.0;
+
+/// The creature's looping idle wiggle ([`Creature::idle_loop_rotations`]) as the `idle`
+/// animation: one rotation channel per wiggling bone (at least one), [`IDLE_LOOP_SECONDS`] long at
+/// [`IDLE_FPS`], its last key the first again.
+///
+/// [`Creature::idle_loop_rotations`]: crate::d2::Creature::idle_loop_rotations
+/// [`IDLE_LOOP_SECONDS`]: crate::d2::IDLE_LOOP_SECONDS
+fn idle_animation(
+    root: &mut json::Root,
+    bin: &mut Bin,
+    creature: &crate::d2::Creature,
+    first_joint: u32,
+) -> Result<json::Animation, Error> {
+    let frames =
+        crate::math::round_non_negative(crate::d2::IDLE_LOOP_SECONDS * IDLE_FPS) as usize + 1;
+    let poses: Vec<Vec<f32>> = (0..frames)
+        .map(|f| creature.idle_loop_rotations(f as f32 / IDLE_FPS))
+        .collect();
+    let mut animation = AnimationBuilder::new(root, bin, frames, IDLE_FPS)?;
+    for (i, bone) in creature.bones.iter().enumerate() {
+        if !bone.animated() {
+            continue;
+        }
+        let values = poses
+            .iter()
+            .flat_map(|pose| {
+                let angle = bone.rotation + pose.get(i).copied().unwrap_or(0.0);
+                glam::Quat::from_rotation_z(angle).to_array()
+            })
+            .collect();
+        let node = first_joint + i as u32;
+        animation.channel(root, bin, node, json::animation::Property::Rotation, values)?;
+    }
+    Ok(animation.finish("idle"))
 }
 
 /// A bone's rest world transform (translation and z rotation down the chain).

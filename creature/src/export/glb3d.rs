@@ -4,10 +4,11 @@ use alloc::vec;
 use alloc::vec::Vec;
 
 use gltf_json as json;
-use json::validation::Checked;
 
 use super::export_error;
-use super::gltf::{Bin, accessor, check_skinned_mesh, f32_bytes, new_root, push_mesh};
+use super::gltf::{
+    AnimationBuilder, Bin, accessor, check_skinned_mesh, f32_bytes, new_root, push_mesh,
+};
 use crate::Error;
 use crate::d3::Clip;
 use crate::d3::Creature;
@@ -166,8 +167,8 @@ pub fn glb_3d(creature: &Creature, clips: &[Clip]) -> Result<Vec<u8>, Error> {
     bin.into_glb(root)
 }
 
-/// One clip as a glTF animation: a time accessor shared by its samplers, one sampler and one
-/// channel per animated property.
+/// One clip as a glTF animation (see [`AnimationBuilder`]): the root's translation and
+/// rotation, and each track's.
 fn animation(
     root: &mut json::Root,
     bin: &mut Bin,
@@ -175,106 +176,36 @@ fn animation(
     first_joint: u32,
     root_joint: usize,
 ) -> Result<json::Animation, Error> {
-    use json::accessor::{ComponentType as C, Type as T};
-    use json::animation::{Interpolation, Property};
-    let frames = clip.frames;
-    let bad = || export_error("glb", "a clip's tracks do not have one value per frame");
-    if frames < 2 || !(clip.fps > 0.0) || !clip.fps.is_finite() {
-        return Err(bad());
-    }
-    let times: Vec<f32> = (0..frames).map(|f| f as f32 / clip.fps).collect();
-    let view = bin.push(&f32_bytes(times.iter().copied()), None);
-    let last = times.last().copied().unwrap_or(0.0);
-    let input = root.push(accessor(
-        view,
-        frames,
-        C::F32,
-        T::Scalar,
-        false,
-        Some((vec![0.0], vec![last])),
-    ));
-    let mut samplers = Vec::new();
-    let mut channels = Vec::new();
-    let mut add = |root: &mut json::Root,
-                   bin: &mut Bin,
-                   joint: usize,
-                   property: Property,
-                   values: Vec<f32>,
-                   type_: T|
-     -> Result<(), Error> {
-        let width = if type_ == T::Vec4 { 4 } else { 3 };
-        if values.len() != frames * width || !values.iter().all(|v| v.is_finite()) {
-            return Err(bad());
-        }
-        let view = bin.push(&f32_bytes(values), None);
-        let output = root.push(accessor(view, frames, C::F32, type_, false, None));
-        samplers.push(json::animation::Sampler {
-            input,
-            interpolation: Checked::Valid(Interpolation::Linear),
-            output,
-            extensions: None,
-            extras: Default::default(),
-        });
-        channels.push(json::animation::Channel {
-            sampler: json::Index::new(samplers.len() as u32 - 1),
-            target: json::animation::Target {
-                node: json::Index::new(first_joint + joint as u32),
-                path: Checked::Valid(property),
-                extensions: None,
-                extras: Default::default(),
-            },
-            extensions: None,
-            extras: Default::default(),
-        });
-        Ok(())
-    };
+    use json::animation::Property;
+    let mut animation = AnimationBuilder::new(root, bin, clip.frames, clip.fps)?;
+    let node = |joint: usize| first_joint + joint as u32;
     let vec3s = |v: &[glam::Vec3]| v.iter().flat_map(|p| p.to_array()).collect::<Vec<f32>>();
     let quats = |q: &[glam::Quat]| {
         q.iter()
             .flat_map(|q| q.normalize().to_array())
             .collect::<Vec<f32>>()
     };
-    add(
+    let at = node(root_joint);
+    animation.channel(
         root,
         bin,
-        root_joint,
+        at,
         Property::Translation,
         vec3s(&clip.root_translation),
-        T::Vec3,
     )?;
-    add(
+    animation.channel(
         root,
         bin,
-        root_joint,
+        at,
         Property::Rotation,
         quats(&clip.root_rotation),
-        T::Vec4,
     )?;
     for track in &clip.tracks {
+        let at = node(track.joint);
         if let Some(t) = &track.translations {
-            add(
-                root,
-                bin,
-                track.joint,
-                Property::Translation,
-                vec3s(t),
-                T::Vec3,
-            )?;
+            animation.channel(root, bin, at, Property::Translation, vec3s(t))?;
         }
-        add(
-            root,
-            bin,
-            track.joint,
-            Property::Rotation,
-            quats(&track.rotations),
-            T::Vec4,
-        )?;
+        animation.channel(root, bin, at, Property::Rotation, quats(&track.rotations))?;
     }
-    Ok(json::Animation {
-        name: Some(clip.name.into()),
-        channels,
-        samplers,
-        extensions: None,
-        extras: Default::default(),
-    })
+    Ok(animation.finish(clip.name))
 }

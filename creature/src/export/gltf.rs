@@ -269,3 +269,102 @@ pub(crate) fn accessor(
 pub(crate) fn f32_bytes(values: impl IntoIterator<Item = f32>) -> Vec<u8> {
     values.into_iter().flat_map(f32::to_le_bytes).collect()
 }
+
+/// One glTF animation being built: a time accessor (one key per frame at `fps`) shared by its
+/// samplers, one linear sampler and one channel per animated node property.
+pub(crate) struct AnimationBuilder {
+    input: json::Index<json::Accessor>,
+    frames: usize,
+    samplers: Vec<json::animation::Sampler>,
+    channels: Vec<json::animation::Channel>,
+}
+
+impl AnimationBuilder {
+    /// An animation of `frames` keys (at least 2) at `fps` (finite, > 0), its time accessor
+    /// pushed into `root` and `bin`.
+    pub(crate) fn new(
+        root: &mut json::Root,
+        bin: &mut Bin,
+        frames: usize,
+        fps: f32,
+    ) -> Result<Self, Error> {
+        if frames < 2 || !(fps > 0.0) || !fps.is_finite() {
+            return Err(bad_track());
+        }
+        let times: Vec<f32> = (0..frames).map(|f| f as f32 / fps).collect();
+        let view = bin.push(&f32_bytes(times.iter().copied()), None);
+        let last = times.last().copied().unwrap_or(0.0);
+        let input = root.push(accessor(
+            view,
+            frames,
+            C::F32,
+            T::Scalar,
+            false,
+            Some((alloc::vec![0.0], alloc::vec![last])),
+        ));
+        Ok(Self {
+            input,
+            frames,
+            samplers: Vec::new(),
+            channels: Vec::new(),
+        })
+    }
+
+    /// Animates `property` of node `node` with `values`: one finite value per frame (`Vec3`
+    /// translations or `Vec4` rotations, flattened).
+    pub(crate) fn channel(
+        &mut self,
+        root: &mut json::Root,
+        bin: &mut Bin,
+        node: u32,
+        property: json::animation::Property,
+        values: Vec<f32>,
+    ) -> Result<(), Error> {
+        let type_ = if property == json::animation::Property::Rotation {
+            T::Vec4
+        } else {
+            T::Vec3
+        };
+        let width = if type_ == T::Vec4 { 4 } else { 3 };
+        if values.len() != self.frames * width || !values.iter().all(|v| v.is_finite()) {
+            return Err(bad_track());
+        }
+        let view = bin.push(&f32_bytes(values), None);
+        let output = root.push(accessor(view, self.frames, C::F32, type_, false, None));
+        self.samplers.push(json::animation::Sampler {
+            input: self.input,
+            interpolation: Checked::Valid(json::animation::Interpolation::Linear),
+            output,
+            extensions: None,
+            extras: Default::default(),
+        });
+        self.channels.push(json::animation::Channel {
+            sampler: json::Index::new(self.samplers.len() as u32 - 1),
+            target: json::animation::Target {
+                node: json::Index::new(node),
+                path: Checked::Valid(property),
+                extensions: None,
+                extras: Default::default(),
+            },
+            extensions: None,
+            extras: Default::default(),
+        });
+        Ok(())
+    }
+
+    /// The animation, named `name`.
+    pub(crate) fn finish(self, name: &str) -> json::Animation {
+        json::Animation {
+            name: Some(name.into()),
+            channels: self.channels,
+            samplers: self.samplers,
+            extensions: None,
+            extras: Default::default(),
+        }
+    }
+}
+
+/// The error for a clip whose tracks do not fit its frames.
+fn bad_track() -> Error {
+    export_error("glb", "a clip's tracks do not have one value per frame")
+}

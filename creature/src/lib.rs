@@ -21,6 +21,7 @@ mod span;
 #[cfg(feature = "proptest")]
 #[cfg_attr(docsrs, doc(cfg(feature = "proptest")))]
 pub mod strategies;
+pub mod terrain;
 
 pub use d2::generate as generate_2d;
 pub use d3::generate;

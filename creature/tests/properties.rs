@@ -755,3 +755,38 @@ fn regression_a_slowed_swing_keeps_the_sole_above_the_floor() {
     let c = generate(5_674_394_465_910_248_868, &params).unwrap();
     assert_eq!(support::check_3d(&c), Vec::<String>::new());
 }
+
+proptest! {
+    #![proptest_config(config(64))]
+
+    #[test]
+    fn valid_terrain_params_give_a_finite_bounded_terrain(
+        seed in strategies::seed(),
+        size in 0.1f32..200.0,
+        samples in 2u32..64,
+        hills in (0.0f32..20.0, 0.01f32..100.0),
+        slope in 0.0f32..=45.0,
+        steps in (0.0f32..2.0, 0.01f32..50.0),
+    ) {
+        use creature::terrain::{TerrainParams, terrain};
+        let params = TerrainParams::DEFAULT
+            .with_extent(size, samples)
+            .with_hills(hills.0, hills.1)
+            .with_slope(slope)
+            .with_steps(steps.0, steps.1);
+        let field = terrain(seed, &params);
+        prop_assert!(field.is_ok(), "{params:?}: {:?}", field.err());
+        let Ok(field) = field else { return Ok(()) };
+        prop_assert_eq!(field.heights().len(), (samples * samples) as usize);
+        // No higher or lower than the slope across half the diagonal, half the hills and the
+        // steps across it allow.
+        let reach = size * core::f32::consts::FRAC_1_SQRT_2;
+        let bound = slope.to_radians().tan() * reach
+            + 0.5 * hills.0
+            + steps.0 * (reach / steps.1 + 1.0)
+            + 1e-3;
+        for &h in field.heights() {
+            prop_assert!(h.is_finite() && h.abs() <= bound, "{h} beyond {bound} with {params:?}");
+        }
+    }
+}

@@ -1,0 +1,283 @@
+//! Procedural terrain: rolling hills on an overall slope, cut into steps, as a
+//! [`HeightField`](crate::gait::HeightField) any gait controller walks on (it is a
+//! [`Ground`](crate::gait::Ground)).
+//!
+//! ```
+//! use creature::terrain::{terrain, TerrainParams};
+//! use creature::gait::Ground;
+//! use creature::glam::Vec3;
+//!
+//! let ground = terrain(7, &TerrainParams::DEFAULT)?;
+//! let hit = ground.cast_ray(Vec3::new(1.0, 50.0, 2.0), Vec3::NEG_Y, 100.0).expect("on the terrain");
+//! assert!(hit.point.y.is_finite());
+//! // Same seed and parameters, same terrain.
+//! assert_eq!(ground, terrain(7, &TerrainParams::DEFAULT)?);
+//! # Ok::<(), creature::Error>(())
+//! ```
+
+use alloc::vec::Vec;
+use core::f32::consts::TAU;
+
+use glam::Vec2;
+
+use crate::Error;
+use crate::gait::HeightField;
+use crate::math::{cos, sin, sqrt};
+use crate::rng::{rng_for, uniform};
+use crate::span::{count, scalar};
+
+/// What [`terrain`] makes: the ground's extent and resolution, its hills, its slope and its
+/// steps. Every field has a default and a documented range ([`validate`](Self::validate)).
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
+pub struct TerrainParams {
+    /// The side of the square of ground, metres, centred on the origin. `(0, 10000]`.
+    /// Default 40.
+    pub size: f32,
+    /// Samples per side of the height field. `[2, 2049]`. Default 161 (a sample every 0.25 m
+    /// at the default size).
+    pub samples: u32,
+    /// The hills' height from trough to crest, metres. `[0, 1000]`. Default 1.5.
+    pub hill_height: f32,
+    /// The typical distance between neighbouring hilltops, metres. `[0.01, 10000]`. Default 10.
+    pub hill_spacing: f32,
+    /// The incline of the overall slope, degrees, toward a direction drawn from the seed.
+    /// `[0, 45]`. Default 8.
+    pub slope_degrees: f32,
+    /// The height of each step, metres (0: no steps). `[0, 100]`. Default 0.2.
+    pub step_height: f32,
+    /// The distance between neighbouring step edges, metres, across lines drawn from the seed.
+    /// `[0.01, 10000]`. Default 4.
+    pub step_spacing: f32,
+}
+
+impl TerrainParams {
+    /// The defaults listed on each field.
+    pub const DEFAULT: Self = Self {
+        size: 40.0,
+        samples: 161,
+        hill_height: 1.5,
+        hill_spacing: 10.0,
+        slope_degrees: 8.0,
+        step_height: 0.2,
+        step_spacing: 4.0,
+    };
+
+    /// Sets [`size`](Self::size) and [`samples`](Self::samples).
+    #[must_use]
+    pub const fn with_extent(mut self, size: f32, samples: u32) -> Self {
+        self.size = size;
+        self.samples = samples;
+        self
+    }
+
+    /// Sets [`hill_height`](Self::hill_height) and [`hill_spacing`](Self::hill_spacing).
+    #[must_use]
+    pub const fn with_hills(mut self, height: f32, spacing: f32) -> Self {
+        self.hill_height = height;
+        self.hill_spacing = spacing;
+        self
+    }
+
+    /// Sets [`slope_degrees`](Self::slope_degrees).
+    #[must_use]
+    pub const fn with_slope(mut self, degrees: f32) -> Self {
+        self.slope_degrees = degrees;
+        self
+    }
+
+    /// Sets [`step_height`](Self::step_height) and [`step_spacing`](Self::step_spacing).
+    #[must_use]
+    pub const fn with_steps(mut self, height: f32, spacing: f32) -> Self {
+        self.step_height = height;
+        self.step_spacing = spacing;
+        self
+    }
+
+    /// Checks every field against its documented range; [`terrain`] calls this first.
+    ///
+    /// # Errors
+    /// [`Error::NonFinite`] or [`Error::OutOfRange`] naming the field.
+    pub fn validate(&self) -> Result<(), Error> {
+        scalar("terrain size", self.size, 1e-3, 10_000.0)?;
+        count("terrain samples", self.samples, 2, 2049)?;
+        scalar("hill height", self.hill_height, 0.0, 1000.0)?;
+        scalar("hill spacing", self.hill_spacing, 0.01, 10_000.0)?;
+        scalar("slope degrees", self.slope_degrees, 0.0, 45.0)?;
+        scalar("step height", self.step_height, 0.0, 100.0)?;
+        scalar("step spacing", self.step_spacing, 0.01, 10_000.0)?;
+        Ok(())
+    }
+}
+
+impl Default for TerrainParams {
+    fn default() -> Self {
+        Self::DEFAULT
+    }
+}
+
+/// Waves summed into the hills.
+const HILL_WAVES: usize = 6;
+
+/// The terrain of `seed` and `params`: a height field over the square of side
+/// [`size`](TerrainParams::size) centred on the origin, its height at `(x, z)`
+///
+/// `hills(x, z) + tan(slope) · (x, z)·u + step_height · ⌊(x, z)·v / step_spacing⌋`
+///
+/// with `u` and `v` unit directions drawn from the seed, and the hills a sum of
+/// [`HILL_WAVES`] sine waves of random directions and phases, wavelengths about twice the hill
+/// spacing (the longest first, the amplitudes falling with the wavelength), scaled so that
+/// their crest-to-trough height over the terrain is about `hill_height` (at most). A step is a
+/// one-sample ramp in the height field (heights are bilinear between samples). Deterministic:
+/// the same seed and parameters give the same heights, bit for bit.
+///
+/// # Errors
+/// [`TerrainParams::validate`]'s; [`Error::Gait`] if the height field cannot hold the grid.
+pub fn terrain(seed: u64, params: &TerrainParams) -> Result<HeightField, Error> {
+    params.validate()?;
+    let mut rng = rng_for(seed);
+    let mut direction = || {
+        let a = TAU * uniform(&mut rng);
+        Vec2::new(cos(a), sin(a))
+    };
+    let slope_direction = direction();
+    let step_direction = direction();
+    // The waves: direction × wave number, phase and amplitude (the amplitudes sum to half the
+    // hill height, so the sum spans at most the hill height).
+    let mut waves = [(Vec2::ZERO, 0.0f32, 0.0f32); HILL_WAVES];
+    let mut total = 0.0;
+    for (k, wave) in waves.iter_mut().enumerate() {
+        let wavelength = 2.0 * params.hill_spacing / (1.0 + 0.6 * k as f32);
+        let number = TAU / wavelength;
+        let amplitude = 1.0 / (1.0 + k as f32);
+        *wave = (direction() * number, 0.0, amplitude);
+        total += amplitude;
+    }
+    for wave in &mut waves {
+        wave.1 = TAU * uniform(&mut rng);
+        wave.2 *= 0.5 * params.hill_height / total;
+    }
+    let slope = params.slope_degrees.to_radians();
+    let rise = sin(slope) / cos(slope);
+    let samples = params.samples as usize;
+    let cell = params.size / (samples - 1) as f32;
+    let half = 0.5 * params.size;
+    let height = |x: f32, z: f32| {
+        let p = Vec2::new(x, z);
+        let mut h = rise * p.dot(slope_direction);
+        for &(wave, phase, amplitude) in &waves {
+            h += amplitude * sin(p.dot(wave) + phase);
+        }
+        if params.step_height > 0.0 {
+            let along = p.dot(step_direction) / params.step_spacing;
+            h += params.step_height * floor(along);
+        }
+        h
+    };
+    Ok(HeightField::from_fn(
+        Vec2::splat(-half),
+        cell,
+        samples,
+        samples,
+        height,
+    )?)
+}
+
+/// `⌊x⌋` without `std` (exact for |x| below 2²³, `x` itself beyond, where every float is a
+/// whole number).
+fn floor(x: f32) -> f32 {
+    if !(x.abs() < 8_388_608.0) {
+        return x;
+    }
+    let whole = x as i32 as f32;
+    if whole > x { whole - 1.0 } else { whole }
+}
+
+/// The terrain as a triangle mesh (for a viewer or an exporter): one vertex per sample at its
+/// height, smooth normals from the neighbouring samples, two triangles per cell, wound
+/// counter-clockwise seen from above.
+#[must_use]
+pub fn terrain_mesh(field: &HeightField) -> TerrainMesh {
+    let (columns, rows) = (field.columns(), field.rows());
+    let (origin, cell) = (field.origin(), field.cell());
+    let heights = field.heights();
+    let at = |i: usize, j: usize| heights[j * columns + i];
+    let mut positions = Vec::with_capacity(columns * rows);
+    let mut normals = Vec::with_capacity(columns * rows);
+    for j in 0..rows {
+        for i in 0..columns {
+            let x = origin.x + i as f32 * cell;
+            let z = origin.y + j as f32 * cell;
+            positions.push(glam::Vec3::new(x, at(i, j), z));
+            // Central differences inside, one-sided at the edges.
+            let (i0, i1) = (i.saturating_sub(1), (i + 1).min(columns - 1));
+            let (j0, j1) = (j.saturating_sub(1), (j + 1).min(rows - 1));
+            let dx = (at(i1, j) - at(i0, j)) / ((i1 - i0) as f32 * cell);
+            let dz = (at(i, j1) - at(i, j0)) / ((j1 - j0) as f32 * cell);
+            let n = glam::Vec3::new(-dx, 1.0, -dz);
+            normals.push(n / sqrt(n.length_squared()));
+        }
+    }
+    let mut triangles = Vec::with_capacity(2 * (columns - 1) * (rows - 1));
+    for j in 0..rows - 1 {
+        for i in 0..columns - 1 {
+            let v = |i: usize, j: usize| (j * columns + i) as u32;
+            let (a, b, c, d) = (v(i, j), v(i + 1, j), v(i, j + 1), v(i + 1, j + 1));
+            triangles.push([a, c, b]);
+            triangles.push([b, c, d]);
+        }
+    }
+    TerrainMesh {
+        positions,
+        normals,
+        triangles,
+    }
+}
+
+/// A terrain's triangle mesh (see [`terrain_mesh`]).
+#[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
+pub struct TerrainMesh {
+    /// One vertex per height sample, X fastest.
+    pub positions: Vec<glam::Vec3>,
+    /// Unit normals, one per vertex.
+    pub normals: Vec<glam::Vec3>,
+    /// Triangles, counter-clockwise seen from above (their normals point up).
+    pub triangles: Vec<[u32; 3]>,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn floor_rounds_down_on_both_sides_of_zero() {
+        for (x, f) in [
+            (0.0, 0.0),
+            (0.5, 0.0),
+            (1.0, 1.0),
+            (-0.5, -1.0),
+            (-1.0, -1.0),
+            (-2.5, -3.0),
+        ] {
+            assert_eq!(floor(x), f, "{x}");
+        }
+        assert_eq!(floor(1e9), 1e9);
+        assert!(floor(f32::NAN).is_nan());
+    }
+
+    #[test]
+    fn the_mesh_faces_up_with_a_vertex_per_sample() {
+        let field = terrain(3, &TerrainParams::DEFAULT.with_extent(10.0, 11)).unwrap();
+        let mesh = terrain_mesh(&field);
+        assert_eq!(mesh.positions.len(), 121);
+        assert_eq!(mesh.triangles.len(), 200);
+        for t in &mesh.triangles {
+            let [a, b, c] = t.map(|v| mesh.positions[v as usize]);
+            assert!((b - a).cross(c - a).y > 0.0, "{t:?}");
+        }
+        for n in &mesh.normals {
+            assert!(n.y > 0.0 && (n.length() - 1.0).abs() < 1e-5, "{n}");
+        }
+    }
+}

@@ -65,7 +65,10 @@ fn steps_are_whole_steps_high() {
         assert!((steps - steps.round()).abs() < 1e-3, "{h}");
     }
     // Neighbours along X (within a row).
-    for pair in heights.chunks(field.columns()).flat_map(|row| row.windows(2)) {
+    for pair in heights
+        .chunks(field.columns())
+        .flat_map(|row| row.windows(2))
+    {
         let d = (pair[1] - pair[0]).abs();
         assert!(d < 1e-4 || (d - 0.25).abs() < 1e-3, "{d}");
         edges += usize::from(d > 1e-4);

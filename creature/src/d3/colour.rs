@@ -228,28 +228,18 @@ pub(crate) fn body_surface(positions: &[Vec3], rings: usize, segments: usize) ->
     if rings == 0 || segments == 0 || positions.len() != 2 + rings * segments {
         return alloc::vec![flank; positions.len()];
     }
-    let ring = |i: usize| &positions[1 + i * segments..1 + (i + 1) * segments];
-    let centres: Vec<Vec3> = (0..rings)
-        .map(|i| ring(i).iter().copied().sum::<Vec3>() / segments as f32)
-        .collect();
-    let radii: Vec<f32> = (0..rings)
-        .map(|i| {
-            let c = centres[i];
-            ring(i).iter().map(|p| p.distance(c)).sum::<f32>() / segments as f32
-        })
-        .collect();
-    let mut arc = Vec::with_capacity(rings + 2);
-    let mut previous = positions[0];
-    let mut total = 0.0f32;
-    arc.push(0.0);
-    for &c in centres
-        .iter()
-        .chain(core::iter::once(&positions[positions.len() - 1]))
-    {
-        total += previous.distance(c);
-        arc.push(total);
-        previous = c;
+    // Per ring: the arc length of its centre from the tail tip, and its mean radius.
+    let per = 1.0 / segments as f32;
+    let mut rings_at = Vec::with_capacity(rings);
+    let (mut previous, mut total) = (positions[0], 0.0f32);
+    for ring in positions[1..1 + rings * segments].chunks_exact(segments) {
+        let centre = ring.iter().copied().sum::<Vec3>() * per;
+        total += previous.distance(centre);
+        previous = centre;
+        let radius = ring.iter().map(|p| p.distance(centre)).sum::<f32>() * per;
+        rings_at.push((total, radius));
     }
+    total += previous.distance(positions[positions.len() - 1]);
     let length = total.max(1e-6);
     // Per segment: the angle from the back's midline and the sine. The pill's vertex `j`
     // sits at angle `a` around the axis (x = cos, y = sin): the back's midline is at π/2,
@@ -273,8 +263,8 @@ pub(crate) fn body_surface(positions: &[Vec3], rings: usize, segments: usize) ->
         across: 0.5,
         up: 0.0,
     });
-    for (i, &radius) in radii.iter().enumerate() {
-        let along = arc[i + 1] / length;
+    for &(arc, radius) in &rings_at {
+        let along = arc / length;
         let around = radius / length;
         out.extend(columns.iter().map(|&(angle, up)| SurfacePoint {
             along,
@@ -309,6 +299,10 @@ pub(crate) struct BodyPaint {
     pub(crate) vertices: Vec<Vec3>,
     /// One per body triangle, for a faceted mesh (not for spots).
     pub(crate) faces: Option<Vec<Vec3>>,
+    /// The colours' back–belly contrast, as shown: the faces' (by the mean of their corners'
+    /// facing) when there are faces, else the vertices' (see [`Quality::belly_contrast`](
+    /// crate::d3::Quality::belly_contrast)).
+    pub(crate) contrast: f32,
 }
 
 /// Everything that colours one creature, drawn once from its seed.
@@ -578,27 +572,27 @@ impl Colouring {
         segments: usize,
         faceted: bool,
     ) -> BodyPaint {
-        let faces = if faceted && self.palette.pattern != Pattern::Spots {
-            Some(self.body_faces(surface, triangles, segments))
-        } else {
-            None
-        };
-        let vertices = match &faces {
-            Some(faces) => {
-                // Backwards, so each vertex ends with its first face's colour.
-                let mut vertices = alloc::vec![self.palette.base; surface.len()];
-                for (t, &colour) in triangles.iter().zip(faces).rev() {
-                    for &i in t {
-                        if let Some(v) = vertices.get_mut(i as usize) {
-                            *v = colour;
-                        }
-                    }
-                }
-                vertices
+        let up = |i: u32| surface.get(i as usize).map_or(0.0, |s| s.up);
+        if faceted && self.palette.pattern != Pattern::Spots {
+            let (faces, vertices) = self.body_faces(surface, triangles, segments);
+            let facing = triangles
+                .iter()
+                .map(|t| (up(t[0]) + up(t[1]) + up(t[2])) / 3.0);
+            BodyPaint {
+                contrast: belly_contrast(faces.iter().copied().zip(facing)),
+                vertices,
+                faces: Some(faces),
             }
-            None => self.body_vertices(surface, segments),
-        };
-        BodyPaint { vertices, faces }
+        } else {
+            let vertices = self.body_vertices(surface, segments);
+            BodyPaint {
+                contrast: belly_contrast(
+                    vertices.iter().copied().zip(surface.iter().map(|s| s.up)),
+                ),
+                vertices,
+                faces: None,
+            }
+        }
     }
 
     /// The skin at each vertex of the pill: `surface` as [`body_surface`] gives it, its rings'
@@ -630,32 +624,53 @@ impl Colouring {
     /// pattern's edges follow the rings and segments rather than zigzag across the quads'
     /// diagonals. Not for spots: on the default body a spot is a quad or two across, so it
     /// stays in vertex colours, round and soft where one colour per quad would square it.
+    /// Also one colour per vertex: that of a face it belongs to.
     fn body_faces(
         &self,
         surface: &[SurfacePoint],
         triangles: &[[u32; 3]],
         segments: usize,
-    ) -> Vec<Vec3> {
+    ) -> (Vec<Vec3>, Vec<Vec3>) {
         let at = |i: u32| surface.get(i as usize).copied().unwrap_or_default();
         let by_triangle = |t: &[u32; 3]| self.skin(SurfacePoint::mean(t.iter().map(|&i| at(i))));
         let rings = surface.len().saturating_sub(2) / segments.max(1);
         if segments == 0 || rings == 0 || triangles.len() != 2 * rings * segments {
-            // Not the pill's layout: a colour per triangle.
-            return triangles.iter().map(by_triangle).collect();
+            // Not the pill's layout: a colour per triangle, each vertex its first face's
+            // (backwards, so the first face is written last).
+            let faces: Vec<Vec3> = triangles.iter().map(by_triangle).collect();
+            let mut vertices = alloc::vec![self.palette.base; surface.len()];
+            for (t, &colour) in triangles.iter().zip(&faces).rev() {
+                for &i in t {
+                    if let Some(v) = vertices.get_mut(i as usize) {
+                        *v = colour;
+                    }
+                }
+            }
+            return (faces, vertices);
         }
         // The quads between columns `j` and `j + 1` all face the same way: their plain and
         // accent colours once per column.
-        let v = |i: usize, j: usize| 1 + i * segments + j % segments;
+        // Column `j`'s neighbour around the ring.
+        let next = |j: usize| if j + 1 == segments { 0 } else { j + 1 };
+        let v = |i: usize, j: usize| 1 + i * segments + j;
         let shades: Vec<(Vec3, Vec3)> = (0..segments)
-            .map(|j| self.shaded(0.5 * (at(v(0, j) as u32).up + at(v(0, j + 1) as u32).up)))
+            .map(|j| self.shaded(0.5 * (at(v(0, j) as u32).up + at(v(0, next(j)) as u32).up)))
             .collect();
         let mut out = Vec::with_capacity(triangles.len());
         // The tail's fan, the quads ring by ring (two triangles each), the head's fan.
         out.extend(triangles[..segments].iter().map(by_triangle));
         for i in 0..rings - 1 {
             for (j, &shade) in shades.iter().enumerate() {
-                let corners = [v(i, j), v(i, j + 1), v(i + 1, j + 1), v(i + 1, j)];
-                let middle = SurfacePoint::mean(corners.iter().map(|&k| at(k as u32)));
+                // The quad's middle: halfway along between its rings, halfway around between
+                // its columns (as the mean of its corners).
+                let (a, b) = (surface[v(i, j)], surface[v(i, next(j))]);
+                let (c, d) = (surface[v(i + 1, j)], surface[v(i + 1, next(j))]);
+                let middle = SurfacePoint {
+                    along: 0.5 * (a.along + c.along),
+                    around: 0.25 * (a.around + b.around + c.around + d.around),
+                    across: 0.5 * (a.across + b.across),
+                    up: 0.5 * (a.up + b.up),
+                };
                 out.extend([self.skin_in(middle, shade); 2]);
             }
         }
@@ -664,23 +679,35 @@ impl Colouring {
                 .iter()
                 .map(by_triangle),
         );
-        out
+        // Vertex (i, j): the quad it is the first corner of (of the ring before, on the last
+        // ring; with one ring, the tail's fan); the tips, their fans' first.
+        let quad = |i: usize, j: usize| out[segments + 2 * (i * segments + j)];
+        let mut vertices = Vec::with_capacity(surface.len());
+        vertices.push(out[0]);
+        for i in 0..rings {
+            vertices.extend((0..segments).map(|j| match i {
+                _ if rings == 1 => out[j],
+                i if i + 1 < rings => quad(i, j),
+                i => quad(i - 1, j),
+            }));
+        }
+        vertices.push(out[out.len() - segments]);
+        (out, vertices)
     }
 
     /// The head's colour facing `up`: countershaded, in the body's colour at its head end
     /// (a gradient's end colour; stripes, spots and bands stay on the body).
     pub(crate) fn head(&self, up: f32) -> Vec3 {
+        if self.palette.pattern != Pattern::Gradient {
+            return clamp01(self.plain(up));
+        }
         let (shaded, accent) = self.shaded(up);
-        let amount = if self.palette.pattern == Pattern::Gradient {
-            self.pattern(SurfacePoint {
-                along: 1.0,
-                around: 0.0,
-                across: 0.5,
-                up,
-            })
-        } else {
-            0.0
-        };
+        let amount = self.pattern(SurfacePoint {
+            along: 1.0,
+            around: 0.0,
+            across: 0.5,
+            up,
+        });
         clamp01(shaded.lerp(accent, amount))
     }
 
@@ -718,15 +745,15 @@ pub(crate) fn luminance(c: Vec3) -> f32 {
     c.dot(Vec3::new(0.2126, 0.7152, 0.0722))
 }
 
-/// The mean luminance of the body vertices facing down (`up < −0.5`) minus that of those
-/// facing up (`up > 0.5`); 0 when either set is empty.
-pub(crate) fn belly_contrast(colours: &[Vec3], surface: &[SurfacePoint]) -> f32 {
+/// The mean luminance of the colours facing down (`up < −0.5`) minus that of those facing up
+/// (`up > 0.5`), of `(colour, up)` pairs; 0 when either set is empty.
+fn belly_contrast(colours: impl Iterator<Item = (Vec3, f32)>) -> f32 {
     let (mut back, mut belly) = ((0.0f32, 0u32), (0.0f32, 0u32));
-    for (c, s) in colours.iter().zip(surface) {
-        if s.up > 0.5 {
-            back = (back.0 + luminance(*c), back.1 + 1);
-        } else if s.up < -0.5 {
-            belly = (belly.0 + luminance(*c), belly.1 + 1);
+    for (c, up) in colours {
+        if up > 0.5 {
+            back = (back.0 + luminance(c), back.1 + 1);
+        } else if up < -0.5 {
+            belly = (belly.0 + luminance(c), belly.1 + 1);
         }
     }
     if back.1 == 0 || belly.1 == 0 {

@@ -119,9 +119,10 @@ pub struct Quality {
     pub min_triangle_area: f32,
     /// Total bend of the neck and of the tail, in degrees (0 for swimmers).
     pub bend_degrees: [f32; 2],
-    /// Countershading as delivered: the mean relative luminance of the body's vertices facing
-    /// down minus that of those facing up (on the rest-pose body, pattern included), in
-    /// `[-1, 1]`; above 0 when the belly is lighter than the back.
+    /// Countershading as delivered: the mean relative luminance of the body's faces (with
+    /// flat normals, where each face has one colour) or vertices facing down minus that of
+    /// those facing up (more than 60° from the sideways, in the rest pose; pattern included),
+    /// in `[-1, 1]`; above 0 when the belly is lighter than the back.
     pub belly_contrast: f32,
 }
 

@@ -15,7 +15,7 @@ use creature_limbs::{Body, CreatureKind, HeadEnd, LimbKind, SpineBone, plan};
 use creature_skin::{Blend, nearest_k, skin_positions};
 
 use super::body::{BASE_RADIUS, base_body, centre_of_volume, pill_triangles};
-use super::colour::{Colouring, belly_contrast, body_surface};
+use super::colour::{Colouring, body_surface};
 use super::limbs::{
     Bind, LegChain, LimbNames, LimbStyle, MeshBuilder, Mount, add_limb, leg_knees, limb_shape,
     socket_point,
@@ -165,7 +165,6 @@ fn generate_kind(rng: &mut Pcg64Mcg, params: &Params, spec: &KindSpec) -> Result
         params.segments as usize,
         params.flat_normals,
     );
-    let belly_contrast = belly_contrast(&paint.vertices, &surface);
     let mut mesh = skin_body(&rigged, &paint.vertices);
     let head_size = params.head_size.at(uniform(rng));
     if spec.neck_and_head {
@@ -207,7 +206,7 @@ fn generate_kind(rng: &mut Pcg64Mcg, params: &Params, spec: &KindSpec) -> Result
         rigged.length,
         rigged.bend_degrees,
     );
-    quality.belly_contrast = belly_contrast;
+    quality.belly_contrast = paint.contrast;
     let mut creature = Creature {
         kind: spec.limbs,
         mesh,
@@ -1020,8 +1019,8 @@ fn limb_body(body: &creature_autorig::Rig, positions: &[Vec3], ground: f32) -> V
 }
 
 /// Normals (flat: every triangle its own vertices; with `face_colours`, in one colour:
-/// `face_colours[i]` for the first triangles, the mean of its corners' for the rest), into
-/// the public mesh.
+/// `face_colours[i]` for the first triangles, its first corner's for the rest), into the
+/// public mesh.
 fn finish_mesh(b: MeshBuilder, flat: bool, face_colours: Option<&[Vec3]>) -> Mesh {
     let face_normal = |t: &[u32; 3]| {
         let [a, c, d] = t.map(|i| b.positions[i as usize]);
@@ -1032,12 +1031,8 @@ fn finish_mesh(b: MeshBuilder, flat: bool, face_colours: Option<&[Vec3]>) -> Mes
         for (k, t) in b.indices.iter().enumerate() {
             let n = face_normal(t).normalize_or(Vec3::Y);
             let base = m.positions.len() as u32;
-            let colour = face_colours.map(|faces| {
-                faces
-                    .get(k)
-                    .copied()
-                    .unwrap_or_else(|| t.iter().map(|&i| b.colours[i as usize]).sum::<Vec3>() / 3.0)
-            });
+            let colour =
+                face_colours.map(|faces| faces.get(k).copied().unwrap_or(b.colours[t[0] as usize]));
             for &i in t {
                 let i = i as usize;
                 m.positions.push(b.positions[i]);

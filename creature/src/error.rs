@@ -45,6 +45,11 @@ pub enum Error {
         /// The maximum given.
         max: f32,
     },
+    /// A set of weights has every weight 0, so nothing can be drawn from it.
+    AllZero {
+        /// The field, e.g. `"patterns"`.
+        what: &'static str,
+    },
     /// A skeleton bone's parent is missing, itself, or a later bone (parents come first), or the
     /// first bone has a parent.
     BadParent {
@@ -128,6 +133,10 @@ impl fmt::Display for Error {
             Self::EmptyRange { what, min, max } => write!(
                 f,
                 "{what} runs from {min} to {max}: its minimum must not exceed its maximum"
+            ),
+            Self::AllZero { what } => write!(
+                f,
+                "every weight of {what} is 0: give at least one a weight above 0"
             ),
             Self::BadParent { bone, parent } => match parent {
                 Some(p) => write!(

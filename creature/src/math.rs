@@ -22,6 +22,10 @@ mod backend {
     pub(crate) fn asin(x: f32) -> f32 {
         x.asin()
     }
+    #[inline]
+    pub(crate) fn powf(x: f32, y: f32) -> f32 {
+        x.powf(y)
+    }
 }
 
 #[cfg(not(feature = "std"))]
@@ -46,9 +50,13 @@ mod backend {
     pub(crate) fn asin(x: f32) -> f32 {
         libm::asinf(x)
     }
+    #[inline]
+    pub(crate) fn powf(x: f32, y: f32) -> f32 {
+        libm::powf(x, y)
+    }
 }
 
-pub(crate) use backend::{asin, cos, exp, sin, sqrt};
+pub(crate) use backend::{asin, cos, exp, powf, sin, sqrt};
 
 /// Rounds half away from zero, for non-negative finite input of moderate size.
 #[inline]
@@ -134,6 +142,7 @@ mod tests {
         assert!((exp(1.0) - core::f32::consts::E).abs() < 1e-6);
         assert!(sin(0.0).abs() < 1e-7);
         assert!((sin(core::f32::consts::FRAC_PI_2) - 1.0).abs() < 1e-6);
+        assert!((powf(2.0, 10.0) - 1024.0).abs() < 1e-3);
         assert_eq!(round_non_negative(2.5), 3);
         assert_eq!(round_non_negative(2.49), 2);
         assert_eq!(ceil_non_negative(2.0), 2);

@@ -21,7 +21,7 @@
 
 use proptest::prelude::*;
 
-use crate::d3::{Kind, Params};
+use crate::d3::{Kind, Params, Pattern, PatternWeights};
 use crate::{IntSpan, Span, d2};
 
 /// Any seed.
@@ -114,10 +114,30 @@ pub fn kind() -> impl Strategy<Value = Kind> {
     ]
 }
 
+/// Valid pattern weights: each from 0 to 1000 (often 0), at least one above 0.
+pub fn pattern_weights() -> impl Strategy<Value = PatternWeights> {
+    let weight = prop_oneof![Just(0.0f32), 0.0f32..=1000.0];
+    (
+        proptest::array::uniform5(weight),
+        proptest::sample::select(Pattern::ALL.to_vec()),
+        0.001f32..=1000.0,
+    )
+        .prop_map(|(weights, kept, floor)| {
+            let mut w = PatternWeights::only(kept).with(kept, floor);
+            for (p, weight) in Pattern::ALL.into_iter().zip(weights) {
+                if p != kept {
+                    w = w.with(p, weight);
+                }
+            }
+            w
+        })
+}
+
 /// Valid 3D parameters of the given kind: every field drawn inside its documented range (see
 /// [`Params`]), kept to a moderate box so generation stays fast — up to 24 rings and 16
 /// segments, slice scales 0.3 to 3, body scale 0.1 to 10, bones 0.1 to 0.5 long, at most 40
-/// spine bones. The limb planner keeps its defaults. Always passes [`Params::validate`].
+/// spine bones; colours over their whole ranges. The limb planner keeps its defaults. Always
+/// passes [`Params::validate`].
 pub fn params_of_kind(kind: Kind) -> impl Strategy<Value = Params> {
     let mesh = (1u32..=9, 4u32..=24, 3u32..=16, 3u32..=8, any::<bool>());
     let slices = (
@@ -138,11 +158,13 @@ pub fn params_of_kind(kind: Kind) -> impl Strategy<Value = Params> {
         span(0.0, 1.0),
         any::<bool>(),
     );
-    (mesh, slices, body).prop_map(
+    let colours = (span(0.0, 1.0), span(0.0, 1.0), pattern_weights());
+    (mesh, slices, body, colours).prop_map(
         move |(
             (profiles, rings, segments, limb_sides, flat),
             (width, height, step, swim_width, swim_height, swim_step),
             (scale, speed, bone_length, spine_bones, bend, head, clearance, clips),
+            (saturation, countershading, patterns),
         )| {
             Params::DEFAULT
                 .with_kind(kind)
@@ -159,6 +181,9 @@ pub fn params_of_kind(kind: Kind) -> impl Strategy<Value = Params> {
                 .with_spine_bend(bend)
                 .with_head_size(head)
                 .with_ground_clearance(clearance)
+                .with_saturation(saturation)
+                .with_countershading(countershading)
+                .with_patterns(patterns)
                 .with_clips(clips)
         },
     )
@@ -203,11 +228,11 @@ pub fn bad_params_2d() -> impl Strategy<Value = d2::Params> {
 }
 
 /// Valid [`params`] with exactly one field broken: a range with `min > max`, a NaN or
-/// infinite value, a zero count (profiles, rings, segments, limb sides, spine bones) or a
-/// value out of range. [`Params::validate`] — and so [`generate`](crate::generate) — rejects
-/// every one.
+/// infinite value, a zero count (profiles, rings, segments, limb sides, spine bones), a value
+/// out of range (a colour range outside 0 to 1, a negative pattern weight) or every pattern
+/// weight 0. [`Params::validate`] — and so [`generate`](crate::generate) — rejects every one.
 pub fn bad_params() -> impl Strategy<Value = Params> {
-    (params(), non_finite_f32(), 0usize..10).prop_map(|(p, bad, which)| {
+    (params(), non_finite_f32(), 0usize..14).prop_map(|(p, bad, which)| {
         let swap = |s: Span| {
             if s.min < s.max {
                 Span::new(s.max, s.min)
@@ -225,6 +250,10 @@ pub fn bad_params() -> impl Strategy<Value = Params> {
             6 => p.with_resolution(0, p.segments),
             7 => p.with_resolution(p.rings, 0),
             8 => p.with_limb_sides(0),
+            9 => p.with_saturation(Span::new(p.saturation.min, 1.5)),
+            10 => p.with_countershading(swap(p.countershading)),
+            11 => p.with_patterns(p.patterns.with(Pattern::Spots, bad)),
+            12 => p.with_patterns(PatternWeights::only(Pattern::Bands).with(Pattern::Bands, -1.0)),
             _ => p.with_spine_bones(IntSpan::new(0, 0)),
         }
     })

@@ -46,3 +46,30 @@ fn every_view_shows_the_creature() {
     }
     assert!(export::preview_3d(&generate(0, &d3::Params::DEFAULT).unwrap(), 8).is_err());
 }
+
+/// The preview shows the mesh's vertex colours: painted red, the creature comes out red;
+/// painted blue, blue.
+#[test]
+fn the_preview_shows_the_vertex_colours() {
+    let c = generate(3, &d3::Params::DEFAULT.with_kind(d3::Kind::Walker)).unwrap();
+    for (paint, channel) in [(creature::glam::Vec3::X, 0), (creature::glam::Vec3::Z, 2)] {
+        let mut painted = c.clone();
+        painted.mesh.colours.iter_mut().for_each(|v| *v = paint);
+        let image = export::preview_3d(&painted, 96).unwrap();
+        let drawn: Vec<&[u8]> = image
+            .rgba
+            .chunks(4)
+            // Not the background, nor the ground line.
+            .filter(|p| *p != export::PREVIEW_BACKGROUND && *p != [120, 110, 100, 255])
+            .collect();
+        assert!(drawn.len() > 500, "{} pixels", drawn.len());
+        for p in drawn {
+            let others = (0..3)
+                .filter(|&k| k != channel)
+                .map(|k| p[k])
+                .max()
+                .unwrap();
+            assert!(p[channel] > 60 && others == 0, "{p:?} painted {paint}");
+        }
+    }
+}

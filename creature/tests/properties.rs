@@ -112,6 +112,7 @@ fn mesh_bits(c: &d3::Creature) -> Vec<u32> {
         .chain(&m.normals)
         .flat_map(|v| v.to_array())
         .chain(m.weights.iter().flatten().copied())
+        .chain(m.colours.iter().flat_map(|v| v.to_array()))
         .map(f32::to_bits)
         .collect()
 }
@@ -205,6 +206,33 @@ proptest! {
         let mut rest = here;
         rest.clips.clone_from(&moving.clips);
         prop_assert_eq!(rest, moving);
+    }
+
+    #[test]
+    fn colours_are_linear_rgb_in_range(
+        seed in strategies::seed(),
+        params in strategies::params(),
+    ) {
+        // Colour is drawn after the shape: no clips needed to check it.
+        let c = generate(seed, &params.with_clips(false));
+        prop_assert!(c.is_ok(), "seed {seed}: {:?}", c.err());
+        let Ok(c) = c else { return Ok(()) };
+        let p = c.palette;
+        for (what, colour) in c
+            .mesh
+            .colours
+            .iter()
+            .map(|&v| ("vertex", v))
+            .chain([("base", p.base), ("belly", p.belly), ("accent", p.accent)])
+        {
+            prop_assert!(
+                colour.is_finite() && colour.min_element() >= 0.0 && colour.max_element() <= 1.0,
+                "seed {seed}: {what} colour {colour} with {params:?}"
+            );
+        }
+        prop_assert!(params.patterns.weight(p.pattern) > 0.0, "{:?} has weight 0", p.pattern);
+        let contrast = c.quality.belly_contrast;
+        prop_assert!(contrast.is_finite() && contrast.abs() <= 1.0, "contrast {contrast}");
     }
 
     #[test]

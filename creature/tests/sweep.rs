@@ -67,7 +67,14 @@ fn sweep_3d(kind: d3::Kind) {
                 pairs += c.plan.leg_pairs();
                 // The data only: how it stands and moves is the audit's (`tests/audit.rs`,
                 // which `cargo xtask sweep` runs on the same seeds).
-                let problems = support::check_3d_data(&c);
+                let mut problems = support::check_3d_data(&c);
+                // The proxy for countershading (the belly lighter than the back).
+                if c.quality.belly_contrast < 0.1 {
+                    problems.push(format!(
+                        "back–belly luminance contrast {} below 0.1",
+                        c.quality.belly_contrast
+                    ));
+                }
                 if !problems.is_empty() {
                     failures.push(format!("seed {seed}: {}", problems.join("; ")));
                 }

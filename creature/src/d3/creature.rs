@@ -119,6 +119,11 @@ pub struct Quality {
     pub min_triangle_area: f32,
     /// Total bend of the neck and of the tail, in degrees (0 for swimmers).
     pub bend_degrees: [f32; 2],
+    /// Countershading as delivered: the mean relative luminance of the body's faces (with
+    /// flat normals, where each face has one colour) or vertices facing down minus that of
+    /// those facing up (more than 60° from the sideways, in the rest pose; pattern included),
+    /// in `[-1, 1]`; above 0 when the belly is lighter than the back.
+    pub belly_contrast: f32,
 }
 
 /// A generated 3D creature: plain data.
@@ -150,6 +155,9 @@ pub struct Creature {
     pub clips: Vec<crate::d3::Clip>,
     /// Body length (the spine's length), in metres.
     pub length: f32,
+    /// The colours drawn: base, belly, accent and the body's pattern (the mesh's vertex
+    /// colours are made from them).
+    pub palette: crate::d3::Palette,
     /// Quality figures.
     pub quality: Quality,
 }

@@ -16,6 +16,7 @@ use creature_skin::{Blend, nearest_k, skin_positions};
 
 use super::body::{BASE_RADIUS, base_body, centre_of_volume, pill_triangles};
 use super::clip::MAX_LEG_TURN_RATE;
+use super::colour::{Colouring, body_surface};
 use super::gait::swing_time_for_joints;
 use super::limbs::{
     Bind, LegChain, LimbNames, LimbStyle, MeshBuilder, Mount, add_limb, leg_knees, limb_shape,
@@ -146,22 +147,36 @@ impl KindSpec {
 /// the order is part of the output (the goldens pin it).
 fn generate_kind(rng: &mut Pcg64Mcg, params: &Params, spec: &KindSpec) -> Result<Creature, Error> {
     let body = shape_body(rng, params, spec)?;
-    let mut rigged = rig_and_bend(rng, params, spec, body)?;
-    let body_colour = Vec3::new(
-        0.25 + 0.6 * uniform(rng),
-        0.25 + 0.6 * uniform(rng),
-        0.25 + 0.6 * uniform(rng),
+    // Where each body vertex lies on the rest-pose surface, before the spine bends.
+    let surface = body_surface(
+        &body.positions,
+        params.rings as usize,
+        params.segments as usize,
     );
-    let mut mesh = skin_body(&rigged, body_colour);
+    let mut rigged = rig_and_bend(rng, params, spec, body)?;
+    // Salted by kind, so a seed's walker and flier (alike up to here) differ in colour.
+    let salt = match spec.limbs {
+        CreatureKind::Walker => 1,
+        CreatureKind::Flier => 2,
+        _ => 3,
+    };
+    let colouring = Colouring::draw(rng, &params.colours(), salt);
+    let paint = colouring.paint_body(
+        &surface,
+        &rigged.triangles,
+        params.segments as usize,
+        params.flat_normals,
+    );
+    let mut mesh = skin_body(&rigged, &paint.vertices);
     let head_size = params.head_size.at(uniform(rng));
     if spec.neck_and_head {
-        add_head(&mut mesh, &rigged.rig, head_size, body_colour)?;
+        add_head(&mut mesh, &rigged.rig, head_size, &colouring)?;
     }
     let ground = ground_under(
         &mesh,
         params.ground_clearance.at(uniform(rng)) * rigged.length,
     );
-    let mut limbs = add_limbs(rng, params, spec, &rigged, &mut mesh, ground, body_colour)?;
+    let mut limbs = add_limbs(rng, params, spec, &rigged, &mut mesh, ground, &colouring)?;
     let offset = stand_on_ground(
         &mut mesh,
         &mut rigged.rig,
@@ -185,14 +200,15 @@ fn generate_kind(rng: &mut Pcg64Mcg, params: &Params, spec: &KindSpec) -> Result
             max: usize::from(u16::MAX),
         });
     }
-    let mesh = finish_mesh(mesh, params.flat_normals);
-    let quality = measure(
+    let mesh = finish_mesh(mesh, params.flat_normals, paint.faces.as_deref());
+    let mut quality = measure(
         &mesh,
         &limbs.plan,
         rigged.fold_min_determinant,
         rigged.length,
         rigged.bend_degrees,
     );
+    quality.belly_contrast = paint.contrast;
     let mut creature = Creature {
         kind: spec.limbs,
         mesh,
@@ -206,6 +222,7 @@ fn generate_kind(rng: &mut Pcg64Mcg, params: &Params, spec: &KindSpec) -> Result
         gait,
         clips: Vec::new(),
         length: rigged.length,
+        palette: colouring.palette,
         quality,
     };
     if params.clips {
@@ -424,9 +441,9 @@ fn spine_influences(
 }
 
 /// Stage 6: the body's vertices, coloured and bound by their skin weights, into the mesh.
-fn skin_body(body: &RiggedBody, colour: Vec3) -> MeshBuilder {
+fn skin_body(body: &RiggedBody, colours: &[Vec3]) -> MeshBuilder {
     let mut mesh = MeshBuilder::default();
-    for (p, inf) in body.positions.iter().zip(&body.influences) {
+    for ((p, inf), &colour) in body.positions.iter().zip(&body.influences).zip(colours) {
         mesh.vertex(*p, colour, Bind::from_arrays(inf.joints, inf.weights));
     }
     mesh.indices.extend_from_slice(&body.triangles);
@@ -460,7 +477,7 @@ fn add_limbs(
     body: &RiggedBody,
     mesh: &mut MeshBuilder,
     ground: f32,
-    body_colour: Vec3,
+    colouring: &Colouring,
 ) -> Result<BuiltLimbs, Error> {
     let body_rig = &body.rig;
     let positions = &body.positions;
@@ -486,8 +503,6 @@ fn add_limbs(
             })
             .collect();
         let tail = &body_rig.joints[body_rig.tail];
-        let limb_colour = body_colour * 0.8;
-        let membrane_colour = body_colour * 0.5 + Vec3::splat(0.45);
         let mut chains = Vec::new();
         let mut limb_names = LimbNames::default();
         // The planner places limbs on the sockets it was given, one per body bone.
@@ -518,13 +533,10 @@ fn add_limbs(
             });
         }
         let knees = leg_knees(&limb_plan, &mounts);
+        let mut painted = Vec::with_capacity(limb_plan.limbs.len());
         for (index, (limb, &mount)) in limb_plan.limbs.iter().zip(&mounts).enumerate() {
             let shape = limb_shape(limb.kind)?;
-            let colour = if shape.membrane_colour {
-                membrane_colour
-            } else {
-                limb_colour
-            };
+            let first = mesh.positions.len();
             let chain = add_limb(
                 mesh,
                 &mut joints,
@@ -536,9 +548,22 @@ fn add_limbs(
                 LimbStyle {
                     knee: knees[index],
                     sides: params.limb_sides as usize,
-                    colour,
+                    colour: colouring.palette.base,
                 },
             );
+            let socket = &body_rig.sockets[limb.bone];
+            let near = [
+                socket.left_vertex,
+                socket.right_vertex,
+                socket.top_vertex,
+                0,
+            ];
+            painted.push(LimbPaint {
+                vertices: first..mesh.positions.len(),
+                join: mount.point,
+                near,
+                membrane: shape.membrane_colour,
+            });
             if let Some(chain) = chain {
                 chains.push((index, limb.kind, chain));
             }
@@ -549,6 +574,11 @@ fn add_limbs(
             || !spec.walks
             || !feet_under_mass(mesh, &mut limb_plan, body.length, pass)
         {
+            for limb in &painted {
+                colour_limb(mesh, limb, |root, reach| {
+                    colouring.limb(root, limb.membrane, reach)
+                });
+            }
             break Ok(BuiltLimbs {
                 plan: limb_plan,
                 joints,
@@ -556,6 +586,47 @@ fn add_limbs(
             });
         }
         mesh.truncate(body_vertices, body_triangles);
+    }
+}
+
+/// A limb to colour once the limbs are final: its vertices, where it joins the body, and the
+/// body vertices near the join (its socket's left, right and top vertices, and the tail tip).
+struct LimbPaint {
+    vertices: core::ops::Range<usize>,
+    join: Vec3,
+    near: [u32; 4],
+    membrane: bool,
+}
+
+/// Colours `limb`'s vertices by `colour(root, reach)`: `root` the colour of the body vertex
+/// of `limb.near` nearest the join, `reach` the vertex's distance from the join × the limb's
+/// farthest.
+fn colour_limb(mesh: &mut MeshBuilder, limb: &LimbPaint, colour: impl Fn(Vec3, f32) -> Vec3) {
+    let root = limb
+        .near
+        .iter()
+        .filter_map(|&v| {
+            let v = v as usize;
+            Some((
+                mesh.positions.get(v)?.distance_squared(limb.join),
+                *mesh.colours.get(v)?,
+            ))
+        })
+        .fold((f32::INFINITY, None), |best, (d, c)| {
+            if d < best.0 { (d, Some(c)) } else { best }
+        })
+        .1;
+    let (Some(root), Some(positions)) = (root, mesh.positions.get(limb.vertices.clone())) else {
+        return;
+    };
+    let extent = positions
+        .iter()
+        .map(|p| p.distance(limb.join))
+        .fold(0.0f32, f32::max)
+        .max(1e-6);
+    for i in limb.vertices.clone() {
+        let reach = mesh.positions[i].distance(limb.join) / extent;
+        mesh.colours[i] = colour(root, reach);
     }
 }
 
@@ -889,12 +960,12 @@ fn body_width(body: &creature_autorig::Rig, bone: usize) -> f32 {
         .unwrap_or(2.0 * BASE_RADIUS)
 }
 
-/// A low-poly sphere on the neck tip, bound to the last neck bone's joint.
+/// A low-poly sphere on the neck tip, bound to the last neck bone's joint, countershaded.
 fn add_head(
     mesh: &mut MeshBuilder,
     body: &creature_autorig::Rig,
     size: f32,
-    colour: Vec3,
+    colouring: &Colouring,
 ) -> Result<(), Error> {
     let spine = &body.spine;
     let n = spine.len();
@@ -913,16 +984,18 @@ fn add_head(
     let (rings, segments) = HEAD_RES;
     let first = mesh.positions.len() as u32;
     let bind = Bind::one(carrier as u16);
-    mesh.vertex(centre - Vec3::Z * radius, colour, bind);
+    let side = colouring.head(0.0);
+    mesh.vertex(centre - Vec3::Z * radius, side, bind);
     for i in 0..rings {
         let phi = core::f32::consts::PI * (i + 1) as f32 / (rings + 1) as f32;
         let (z, r) = (-cos(phi) * radius, sin(phi) * radius);
         for k in 0..segments {
             let a = core::f32::consts::TAU * k as f32 / segments as f32;
+            let colour = colouring.head(sin(a) * sin(phi));
             mesh.vertex(centre + Vec3::new(r * cos(a), r * sin(a), z), colour, bind);
         }
     }
-    mesh.vertex(centre + Vec3::Z * radius, colour, bind);
+    mesh.vertex(centre + Vec3::Z * radius, side, bind);
     for t in pill_triangles(rings, segments) {
         mesh.indices.push(t.map(|i| i + first));
     }
@@ -953,21 +1026,25 @@ fn limb_body(body: &creature_autorig::Rig, positions: &[Vec3], ground: f32) -> V
         .collect()
 }
 
-/// Normals (flat: every triangle its own vertices), into the public mesh.
-fn finish_mesh(b: MeshBuilder, flat: bool) -> Mesh {
+/// Normals (flat: every triangle its own vertices; with `face_colours`, in one colour:
+/// `face_colours[i]` for the first triangles, its first corner's for the rest), into the
+/// public mesh.
+fn finish_mesh(b: MeshBuilder, flat: bool, face_colours: Option<&[Vec3]>) -> Mesh {
     let face_normal = |t: &[u32; 3]| {
         let [a, c, d] = t.map(|i| b.positions[i as usize]);
         (c - a).cross(d - a)
     };
     if flat {
         let mut m = Mesh::default();
-        for t in &b.indices {
+        for (k, t) in b.indices.iter().enumerate() {
             let n = face_normal(t).normalize_or(Vec3::Y);
             let base = m.positions.len() as u32;
+            let colour =
+                face_colours.map(|faces| faces.get(k).copied().unwrap_or(b.colours[t[0] as usize]));
             for &i in t {
                 let i = i as usize;
                 m.positions.push(b.positions[i]);
-                m.colours.push(b.colours[i]);
+                m.colours.push(colour.unwrap_or(b.colours[i]));
                 m.joints.push(b.joints[i]);
                 m.weights.push(b.weights[i]);
                 m.normals.push(n);
@@ -1033,6 +1110,7 @@ fn measure(
         min_height,
         min_triangle_area,
         bend_degrees,
+        belly_contrast: 0.0,
     }
 }
 
@@ -1070,6 +1148,85 @@ mod tests {
             bent |= headed.quality.bend_degrees[0] > 0.0;
         }
         assert!(bent, "the entry's neck_and_head bends the neck");
+    }
+
+    #[test]
+    fn colours_follow_the_palette_on_body_and_limbs() {
+        use crate::Span;
+        use crate::d3::{Pattern, PatternWeights};
+        let params = Params::DEFAULT
+            .with_kind(Kind::Walker)
+            .with_clips(false)
+            .with_flat_normals(false);
+        // The body's vertices come first: tail tip, 16 rings of 10, head tip.
+        let body = 2 + 16 * 10;
+        let flank =
+            |c: &Creature| -> Vec<Vec3> { (0..16).map(|i| c.mesh.colours[1 + 10 * i]).collect() };
+        let luminance = |c: Vec3| c.dot(Vec3::new(0.2126, 0.7152, 0.0722));
+        for seed in 0..8 {
+            let c = generate(seed, &params).expect("walkers generate");
+            assert!(
+                c.quality.belly_contrast >= 0.1,
+                "seed {seed}: {:?}",
+                c.quality
+            );
+
+            // Plain and no countershading: the base colour all over the body.
+            let plain = generate(
+                seed,
+                &params
+                    .with_patterns(PatternWeights::only(Pattern::Plain))
+                    .with_countershading(Span::new(0.0, 0.0)),
+            )
+            .expect("walkers generate");
+            assert!(plain.quality.belly_contrast.abs() < 1e-6);
+            for colour in &plain.mesh.colours[..body] {
+                assert!(
+                    (*colour - plain.palette.base).length() < 1e-6,
+                    "seed {seed}"
+                );
+            }
+
+            // Stripes: the flank changes colour along the body.
+            let striped = generate(
+                seed,
+                &params.with_patterns(PatternWeights::only(Pattern::Stripes)),
+            )
+            .expect("walkers generate");
+            assert_eq!(striped.palette.pattern, Pattern::Stripes);
+            let l: Vec<f32> = flank(&striped).into_iter().map(luminance).collect();
+            let (lo, hi) = l
+                .iter()
+                .fold((f32::MAX, f32::MIN), |(a, b), &x| (a.min(x), b.max(x)));
+            assert!(hi - lo > 0.05, "seed {seed}: flank {l:?}");
+
+            // Each limb starts in the colour of the body where it joins it: its vertex nearest
+            // the body's nearest vertex is within a hair of that colour.
+            for limb in 0..c.plan.limbs.len() {
+                let joints: Vec<u16> = c
+                    .skeleton
+                    .joints
+                    .iter()
+                    .enumerate()
+                    .filter(|(_, j)| j.part == Part::Limb(limb))
+                    .map(|(i, _)| i as u16)
+                    .collect();
+                let limb_vertices: Vec<usize> = (body..c.mesh.positions.len())
+                    .filter(|&v| joints.contains(&c.mesh.joints[v][0]))
+                    .collect();
+                let (mut best, mut pair) = (f32::INFINITY, (0, 0));
+                for &v in &limb_vertices {
+                    for b in 0..body {
+                        let d = c.mesh.positions[v].distance(c.mesh.positions[b]);
+                        if d < best {
+                            (best, pair) = (d, (v, b));
+                        }
+                    }
+                }
+                let seam = (c.mesh.colours[pair.0] - c.mesh.colours[pair.1]).length();
+                assert!(seam < 0.15, "seed {seed} limb {limb}: seam {seam}");
+            }
+        }
     }
 
     #[test]

@@ -3,7 +3,8 @@
 //!
 //! [`generate`] runs the pipeline from a seed as a short sequence of stages (see
 //! `ARCHITECTURE.md` for the crates each uses): body (blended pill profiles, FFD), rig and
-//! skin, spine bend, head, limbs, ground, gait set-up, and the [`Clip`]s a [`Creature`] bakes.
+//! skin, spine bend, head, limbs, ground, gait set-up, and the [`Clip`]s a [`Creature`] bakes;
+//! the colours (a [`Palette`], countershading and a [`Pattern`]) are vertex colours.
 //!
 //! ```
 //! use creature::d3;
@@ -15,6 +16,7 @@
 
 mod body;
 mod clip;
+pub(crate) mod colour;
 mod creature;
 mod gait;
 mod generate;
@@ -22,6 +24,7 @@ mod limbs;
 mod params;
 
 pub use clip::{CLIP_FPS, Clip, Track};
+pub use colour::{Palette, Pattern, PatternWeights};
 pub use creature::{Creature, Joint, Mesh, Part, Quality, Skeleton};
 pub use gait::GaitSetup;
 pub use generate::generate;

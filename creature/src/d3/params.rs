@@ -2,6 +2,7 @@
 
 use creature_limbs::PlanOptions;
 
+use super::colour::{ColourParams, PatternWeights};
 use crate::Error;
 use crate::span::{IntSpan, Span, count, scalar};
 
@@ -94,6 +95,16 @@ pub struct Params {
     /// Options of the limb planner (`creature_limbs::plan`). Default
     /// [`PlanOptions::DEFAULT`].
     pub limbs: PlanOptions,
+    /// Saturation of the base colour (HSV, sRGB-encoded; the belly gets about a third of it),
+    /// from 0 (greys) to 1. Default 0.3..0.75.
+    pub saturation: Span,
+    /// Countershading: how far the belly goes from the base colour to the light belly colour,
+    /// and how much darker the back is (0: one colour all round; 1: belly in the belly colour,
+    /// back 30% darker). From 0 to 1. Default 0.6..1.
+    pub countershading: Span,
+    /// How likely each body pattern is (stripes, spots, bands, a gradient, plain). Default
+    /// [`PatternWeights::DEFAULT`].
+    pub patterns: PatternWeights,
     /// Bake the kind's animation clips into [`Creature::clips`](crate::d3::Creature::clips)
     /// (see [`Creature::bake_clips`](crate::d3::Creature::bake_clips)). Default `true`; turn off
     /// to generate faster and bake later, or never.
@@ -127,6 +138,9 @@ impl Params {
         head_size: Span::new(0.9, 1.3),
         ground_clearance: Span::new(0.15, 0.6),
         limbs: PlanOptions::DEFAULT,
+        saturation: Span::new(0.3, 0.75),
+        countershading: Span::new(0.6, 1.0),
+        patterns: PatternWeights::DEFAULT,
         clips: true,
         in_place: false,
     };
@@ -244,6 +258,37 @@ impl Params {
         self
     }
 
+    /// Sets [`saturation`](Self::saturation).
+    #[must_use]
+    pub const fn with_saturation(mut self, saturation: Span) -> Self {
+        self.saturation = saturation;
+        self
+    }
+
+    /// Sets [`countershading`](Self::countershading).
+    #[must_use]
+    pub const fn with_countershading(mut self, countershading: Span) -> Self {
+        self.countershading = countershading;
+        self
+    }
+
+    /// Sets [`patterns`](Self::patterns).
+    #[must_use]
+    pub const fn with_patterns(mut self, patterns: PatternWeights) -> Self {
+        self.patterns = patterns;
+        self
+    }
+
+    /// The colour fields, for the colouring stage.
+    pub(crate) fn colours(&self) -> ColourParams {
+        ColourParams {
+            saturation: self.saturation,
+            countershading: self.countershading,
+            patterns: self.patterns,
+            rings: self.rings as usize,
+        }
+    }
+
     /// Sets [`clips`](Self::clips).
     #[must_use]
     pub const fn with_clips(mut self, clips: bool) -> Self {
@@ -263,7 +308,8 @@ impl Params {
     ///
     /// # Errors
     /// [`Error::NonFinite`], [`Error::OutOfRange`] or [`Error::EmptyRange`] naming the field,
-    /// and [`Error::Limbs`] for bad [`limbs`](Self::limbs) options.
+    /// [`Error::AllZero`] for [`patterns`](Self::patterns) with no weight above 0, and
+    /// [`Error::Limbs`] for bad [`limbs`](Self::limbs) options.
     pub fn validate(&self) -> Result<(), Error> {
         count("profiles", self.profiles, 1, 9)?;
         count("rings", self.rings, 4, 64)?;
@@ -286,6 +332,9 @@ impl Params {
         self.head_size.check("head_size", 0.1, 10.0)?;
         self.ground_clearance.check("ground_clearance", 0.0, 10.0)?;
         self.limbs.validate()?;
+        self.saturation.check("saturation", 0.0, 1.0)?;
+        self.countershading.check("countershading", 0.0, 1.0)?;
+        self.patterns.check("patterns")?;
         Ok(())
     }
 }
@@ -299,6 +348,7 @@ impl Default for Params {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::d3::Pattern;
 
     #[test]
     fn defaults_are_valid() {
@@ -336,5 +386,32 @@ mod tests {
             .with_limbs(PlanOptions::DEFAULT.with_sweep(-1.0))
             .validate();
         assert!(matches!(e, Err(Error::Limbs(_))));
+        let e = Params::DEFAULT
+            .with_saturation(Span::new(0.5, 1.5))
+            .validate();
+        assert!(matches!(
+            e,
+            Err(Error::OutOfRange {
+                what: "saturation",
+                ..
+            })
+        ));
+        let e = Params::DEFAULT
+            .with_countershading(Span::new(0.9, 0.1))
+            .validate();
+        assert!(matches!(
+            e,
+            Err(Error::EmptyRange {
+                what: "countershading",
+                ..
+            })
+        ));
+        let none = PatternWeights::only(Pattern::Spots).with(Pattern::Spots, 0.0);
+        let e = Params::DEFAULT.with_patterns(none).validate();
+        assert_eq!(e, Err(Error::AllZero { what: "patterns" }));
+        let e = Params::DEFAULT
+            .with_patterns(PatternWeights::DEFAULT.with(Pattern::Bands, f32::NAN))
+            .validate();
+        assert_eq!(e, Err(Error::NonFinite { what: "patterns" }));
     }
 }

@@ -7,6 +7,7 @@ use glam::{Vec2, Vec3};
 
 use crate::Error;
 use crate::d3::Creature;
+use crate::d3::colour::linear_to_srgb;
 use crate::image::Image;
 
 /// Background colour of [`preview_3d`] images.
@@ -15,7 +16,8 @@ const GROUND: [u8; 4] = [120, 110, 100, 255];
 
 /// Renders `creature` from three orthographic views side by side, each `size` pixels square:
 /// from its right side (the head to the right), from the front, and from above (the head up).
-/// Faces are flat-shaded with their vertex colours and a fixed light; the ground (`y = 0`) is a
+/// Faces are flat-shaded with a fixed light, their vertex colours (linear, as glTF's
+/// `COLOR_0`) sRGB-encoded and interpolated across each face as a viewer shows them; the ground (`y = 0`) is a
 /// line in the first two views. Encode with [`export::image_png`](crate::export) (feature
 /// `export`).
 ///
@@ -107,16 +109,23 @@ pub fn preview_3d(creature: &Creature, size: u32) -> Result<Image, Error> {
                 continue;
             };
             let normal = (p[1] - p[0]).cross(p[2] - p[0]).normalize_or_zero();
-            let colour = mesh
-                .colours
-                .get(t[0] as usize)
-                .copied()
-                .unwrap_or(Vec3::splat(0.7));
             let shade = 0.35 + 0.65 * normal.dot(light).abs();
-            let c = (colour * shade).clamp(Vec3::ZERO, Vec3::ONE) * 255.0;
-            let pixel = [c.x as u8, c.y as u8, c.z as u8, 255];
+            // Linear vertex colours, sRGB-encoded as a viewer shows them, shaded, and
+            // interpolated across the face.
+            let colours = t.map(|i| {
+                let c = mesh
+                    .colours
+                    .get(i as usize)
+                    .copied()
+                    .unwrap_or(Vec3::splat(0.5));
+                Vec3::new(
+                    linear_to_srgb(c.x),
+                    linear_to_srgb(c.y),
+                    linear_to_srgb(c.z),
+                ) * (shade * 255.0)
+            });
             let s = [to_screen(p[0]), to_screen(p[1]), to_screen(p[2])];
-            raster(&s, x_range, (w, h), &mut depth, &mut rgba, pixel);
+            raster(&s, x_range, (w, h), &mut depth, &mut rgba, colours);
         }
     }
     Ok(Image {
@@ -136,7 +145,7 @@ fn raster(
     (w, h): (usize, usize),
     depth: &mut [f32],
     rgba: &mut [u8],
-    pixel: [u8; 4],
+    colours: [Vec3; 3],
 ) {
     let area = edge(s[0], s[1], s[2].x, s[2].y);
     if !(area.abs() > 1e-12) {
@@ -172,8 +181,10 @@ fn raster(
                 && z > *d
             {
                 *d = z;
+                let c = (colours[0] * w0 + colours[1] * w1 + colours[2] * w2)
+                    .clamp(Vec3::ZERO, Vec3::splat(255.0));
                 if let Some(px) = rgba.get_mut(i * 4..i * 4 + 4) {
-                    px.copy_from_slice(&pixel);
+                    px.copy_from_slice(&[c.x as u8, c.y as u8, c.z as u8, 255]);
                 }
             }
         }

@@ -192,6 +192,12 @@ pub fn check_3d_data(c: &d3::Creature) -> Vec<String> {
     {
         p.push("non-finite vertex data".into());
     }
+    if m.colours
+        .iter()
+        .any(|c| c.min_element() < 0.0 || c.max_element() > 1.0)
+    {
+        p.push("vertex colour outside [0, 1]".into());
+    }
     if m.indices.iter().flatten().any(|&i| i as usize >= n) {
         p.push("index out of range".into());
     }

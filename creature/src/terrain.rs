@@ -1,5 +1,5 @@
 //! Procedural terrain: rolling hills on an overall slope, cut into steps, as a
-//! [`HeightField`](crate::gait::HeightField) any gait controller walks on (it is a
+//! [`HeightField`] any gait controller walks on (it is a
 //! [`Ground`](crate::gait::Ground)).
 //!
 //! ```
@@ -125,7 +125,7 @@ const HILL_WAVES: usize = 6;
 /// `hills(x, z) + tan(slope) · (x, z)·u + step_height · ⌊(x, z)·v / step_spacing⌋`
 ///
 /// with `u` and `v` unit directions drawn from the seed, and the hills a sum of
-/// [`HILL_WAVES`] sine waves of random directions and phases, wavelengths about twice the hill
+/// six sine waves of random directions and phases, wavelengths about twice the hill
 /// spacing (the longest first, the amplitudes falling with the wavelength), scaled so that
 /// their crest-to-trough height over the terrain is about `hill_height` (at most). A step is a
 /// one-sample ramp in the height field (heights are bilinear between samples). Deterministic:

@@ -114,31 +114,57 @@ pub(super) fn angle_between(p: Quat, q: Quat) -> f32 {
     4.0 * crate::math::asin((0.5 * d).min(1.0))
 }
 
-/// A two-bone limb's rotations with its knee a hinge: the hip's (in the limb's parent's
-/// frame at rest, here body space) and the knee's (in the hip's frame), turning its segments'
-/// rest directions `rest` (upper, lower) to `now`, both unit. The hip turns the upper segment
+/// A two-bone limb's knee as a hinge, its rest frame set up once for every frame: the hip's
+/// rotation (in the limb's parent's frame at rest, here body space) and the knee's (in the
+/// hip's frame) turning its segments' rest directions `rest` (upper, lower) to `now`, unit. The hip turns the upper segment
 /// onto its direction and the rest's bend plane onto the present one, so the knee only bends
 /// about its rest hinge axis: the shortest arc for the hip would twist the thigh as it swings
 /// and turn the knee about a wandering axis (a sideways knee flicked through 70° between two
 /// frames as the foot landed). A bend plane (the segments' cross product) comes from `pole`
 /// across the hip-to-end direction where the limb is nearly straight.
-pub(super) fn hinge_rotations(rest: (Vec3, Vec3), now: (Vec3, Vec3), pole: Vec3) -> (Quat, Quat) {
-    let frame = |(upper, lower): (Vec3, Vec3)| {
-        let bend = upper.cross(lower);
-        let normal = if bend.length_squared() > 1e-6 {
-            bend
-        } else {
-            pole.cross(upper + lower)
-        };
-        let normal = normal.reject_from_normalized(upper);
-        let normal = normal
-            .try_normalize()
-            .unwrap_or_else(|| upper.any_orthonormal_vector());
-        Mat3::from_cols(upper, normal, upper.cross(normal))
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Hinge {
+    /// The lower segment's rest direction.
+    rest_lower: Vec3,
+    /// The rest frame (upper segment, bend normal, their cross product), inverted.
+    unframe: Mat3,
+    /// The knee's pole (the bend plane of a nearly straight limb).
+    pole: Vec3,
+}
+
+impl Hinge {
+    /// The hinge of a limb whose segments point along `rest` (upper, lower) at rest.
+    pub(super) fn new(rest: (Vec3, Vec3), pole: Vec3) -> Self {
+        Self {
+            rest_lower: rest.1,
+            unframe: bend_frame(rest, pole).transpose(),
+            pole,
+        }
+    }
+
+    /// The hip's and knee's rotations turning the limb's segments to `now`.
+    pub(super) fn rotations(&self, now: (Vec3, Vec3)) -> (Quat, Quat) {
+        let hip = Quat::from_mat3(&(bend_frame(now, self.pole) * self.unframe)).normalize();
+        let knee = rotation_arc(self.rest_lower, hip.inverse() * now.1);
+        (hip, knee)
+    }
+}
+
+/// The frame of a two-bone limb's segments `(upper, lower)`: the upper segment, the bend
+/// plane's normal (from `pole` across the limb where it is nearly straight), and their cross
+/// product.
+fn bend_frame((upper, lower): (Vec3, Vec3), pole: Vec3) -> Mat3 {
+    let bend = upper.cross(lower);
+    let normal = if bend.length_squared() > 1e-6 {
+        bend
+    } else {
+        pole.cross(upper + lower)
     };
-    let hip = Quat::from_mat3(&(frame(now) * frame(rest).transpose())).normalize();
-    let knee = rotation_arc(rest.1, hip.inverse() * now.1);
-    (hip, knee)
+    let normal = normal.reject_from_normalized(upper);
+    let normal = normal
+        .try_normalize()
+        .unwrap_or_else(|| upper.any_orthonormal_vector());
+    Mat3::from_cols(upper, normal, upper.cross(normal))
 }
 
 /// The angle (radians) between unit vectors `a` and `b`, accurate for small angles too:
@@ -165,7 +191,7 @@ mod tests {
     use super::*;
 
     #[test]
-    fn hinge_rotations_bend_the_knee_about_its_rest_axis() {
+    fn a_hinge_bends_the_knee_about_its_rest_axis() {
         // A leg at rest with its knee forward (hinge axis +X), then turned as a whole (swung
         // out and forward) with its knee bent 30° more: the hip carries the turn, the knee
         // only bends, about +X.
@@ -175,7 +201,7 @@ mod tests {
         let bend = Quat::from_rotation_x(-0.52);
         let now = (turn * rest.0, turn * bend * rest.1);
         for pole in [Vec3::Z, Vec3::X, Vec3::NEG_Y] {
-            let (hip, knee) = hinge_rotations(rest, now, pole);
+            let (hip, knee) = Hinge::new(rest, pole).rotations(now);
             assert!((hip * rest.0).distance(now.0) < 1e-5);
             assert!((hip * knee * rest.1).distance(now.1) < 1e-5);
             let (axis, angle) = knee.to_axis_angle();
@@ -185,7 +211,7 @@ mod tests {
         // Straight at rest and now: the bend plane comes from the pole, and nothing bends.
         let straight = (Vec3::NEG_Y, Vec3::NEG_Y);
         let turned = (turn * Vec3::NEG_Y, turn * Vec3::NEG_Y);
-        let (hip, knee) = hinge_rotations(straight, turned, Vec3::Z);
+        let (hip, knee) = Hinge::new(straight, Vec3::Z).rotations(turned);
         assert!((hip * Vec3::NEG_Y).distance(turned.0) < 1e-5);
         assert!(knee.angle_between(Quat::IDENTITY) < 1e-4);
     }

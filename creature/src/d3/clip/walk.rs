@@ -11,7 +11,7 @@ use creature_gait::{Leg, LimbKind, Plane, Pose, solve_two_bone};
 
 use super::floor::knee_above;
 use super::gait_run::{GaitRun, best_cut, heading, ranked_cuts};
-use super::kinematics::{forward_kinematics, hinge_rotations};
+use super::kinematics::{Hinge, forward_kinematics};
 use super::swing::even_swings;
 use super::{CLIP_FPS, Clip, Track, loop_error};
 use crate::Error;
@@ -420,13 +420,16 @@ impl Creature {
                     .and_then(|j| j.parent)
                     .and_then(|p| body_global.get(p).copied())
                     .unwrap_or(Affine3A::IDENTITY);
+                let rest_upper = (rest(hip + 1) - rest(hip)).normalize_or(Vec3::NEG_Y);
+                let rest_lower = (rest(hip + 2) - rest(hip + 1)).normalize_or(Vec3::NEG_Y);
                 LegTracks {
                     leg,
                     hip,
                     parent,
                     parent_rotation: Quat::from_mat3a(&parent.matrix3).normalize(),
-                    rest_upper: (rest(hip + 1) - rest(hip)).normalize_or(Vec3::NEG_Y),
-                    rest_lower: (rest(hip + 2) - rest(hip + 1)).normalize_or(Vec3::NEG_Y),
+                    rest_upper,
+                    rest_lower,
+                    hinge: Hinge::new((rest_upper, rest_lower), leg.pole),
                     knee_radius: self.ring_radius(hip + 1),
                     translations: Vec::with_capacity(frames),
                     rotations: core::array::from_fn(|_| Vec::with_capacity(frames)),
@@ -454,8 +457,7 @@ impl Creature {
                 let middle = knee_above(ik.root, ik.middle, ik.end, up, floor);
                 let upper = (middle - ik.root).normalize_or(rest_upper);
                 let lower = (ik.end - middle).normalize_or(rest_lower);
-                let (hip_rotation, knee_rotation) =
-                    hinge_rotations((rest_upper, rest_lower), (upper, lower), leg.pole);
+                let (hip_rotation, knee_rotation) = tracks.hinge.rotations((upper, lower));
                 let parent_rotation = tracks.parent_rotation;
                 tracks
                     .translations
@@ -599,6 +601,8 @@ struct LegTracks<'a> {
     /// The rest directions of the leg's upper and lower segments.
     rest_upper: Vec3,
     rest_lower: Vec3,
+    /// The knee's hinge, from those and the leg's pole.
+    hinge: Hinge,
     /// How far the knee's ring of vertices reaches (it stays this far above the floor).
     knee_radius: f32,
     /// The hip's translation per frame.

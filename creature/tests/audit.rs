@@ -241,6 +241,77 @@ fn regression_a_coarse_fliers_tail_bends_within_its_skin() {
 }
 
 #[test]
+fn regression_a_walker_asked_to_walk_faster_than_its_legs_can_walks_at_their_limit() {
+    // A big walker drawn a speed factor of up to 4 was asked to walk at 28 m/s on 18.6 m legs
+    // (a Froude number v² / (g · leg) of 4.3, where animals run): its swings were so quick that
+    // a knee unfolded 58° between two keys of `walk`. A walk now goes at most at Froude 1.
+    let params = drawn(
+        Kind::Walker,
+        (3, 4, 3, 3, false),
+        [
+            (1.710_644_4, 1.858_802_3),
+            (1.435_134_3, 2.042_423),
+            (1.312_088_7, 1.798_883_1),
+        ],
+        (7.252_962_6, 7.837_54),
+        (1.405_083_1, 4.135_769_4),
+        0.285_187_57,
+        (24, 26),
+        23.989_475,
+        (0.823_052_3, 1.612_167_8),
+        (0.346_899_8, 0.720_121_86),
+    );
+    let seed = 9_095_166_373_788_020_810;
+    passes(seed, &params, &[Check::KeyTurn, Check::AngularSpeed]);
+    let walker = d3::generate(seed, &params).unwrap();
+    let gait = walker.gait.as_ref().unwrap();
+    let legs: Vec<f32> = gait
+        .legs
+        .iter()
+        .filter(|l| l.kind == creature::gait::LimbKind::Leg)
+        .map(|l| l.size)
+        .collect();
+    let leg = legs.iter().sum::<f32>() / legs.len() as f32;
+    let froude = walker.speed * walker.speed / (9.81 * leg);
+    assert!(froude <= 1.0 + 1e-4, "walks at Froude {froude}");
+}
+
+#[test]
+fn regression_a_swimmers_fluttering_fin_stays_above_the_ground() {
+    // A swimmer at rest on the ground with a pectoral fin hanging down to it: the fin's
+    // flutter in `idle` dipped its tip 1.9% of the body length below the ground. Its clips are
+    // now raised by the most any vertex dips in any frame.
+    use creature::d3::{Pattern, PatternWeights};
+    use creature::{IntSpan, Span};
+    let params = d3::Params::DEFAULT
+        .with_kind(Kind::Swimmer)
+        .with_profiles(8)
+        .with_resolution(13, 3)
+        .with_limb_sides(5)
+        .with_flat_normals(true)
+        .with_swimmer_slices(
+            Span::new(0.349_509_92, 1.847_776_4),
+            Span::new(1.030_298_6, 1.665_015_9),
+            Span::new(0.415_306_93, 1.444_092_6),
+        )
+        .with_body_scale(Span::new(0.717_793_2, 3.079_842_8))
+        .with_speed_factor(Span::new(0.482_403_67, 0.933_012_25))
+        .with_bone_length(0.442_698_7)
+        .with_spine_bones(IntSpan::new(9, 26))
+        .with_spine_bend(54.071_384)
+        .with_head_size(Span::new(0.567_758_9, 1.459_022_9))
+        .with_ground_clearance(Span::new(0.003_512_616_7, 0.295_456_05))
+        .with_saturation(Span::new(0.383_618_68, 0.928_629_16))
+        .with_countershading(Span::new(0.265_450_84, 0.701_300_74))
+        .with_patterns(
+            PatternWeights::only(Pattern::Stripes)
+                .with(Pattern::Stripes, 531.121_34)
+                .with(Pattern::Plain, 327.247_68),
+        );
+    passes(4_640_276_320_221_147_182, &params, &[Check::BelowGround]);
+}
+
+#[test]
 fn regression_a_pair_of_legs_does_not_share_one_point_of_a_coarse_body() {
     // A body of 3 segments around had a single vertex beside a short spine bone: the rig made
     // it the socket's left and its right, and the pair's right leg was built on the left at

@@ -146,7 +146,8 @@ pub struct Creature {
     pub profiles: Vec<(usize, f32)>,
     /// The uniform body scale drawn.
     pub body_scale: f32,
-    /// Movement speed in m/s (the body scale times a random factor).
+    /// Movement speed in m/s: the body scale times a random factor, for a walker at most what
+    /// its legs walk (see [`Params::speed_factor`](super::Params::speed_factor)).
     pub speed: f32,
     /// Walkers' legs and arms registered for `creature-gait`; `None` for fliers and swimmers.
     pub gait: Option<crate::d3::GaitSetup>,

@@ -51,6 +51,31 @@ impl GaitSetup {
     }
 }
 
+/// The fastest a walking gait goes on legs of mean size `leg` (m, hip to foot): a Froude number
+/// `v² / (g · leg)` of [`MAX_WALK_FROUDE`]. Faster, the body vaulting over a stance leg would
+/// need more than gravity to stay on it: animals run there, and a walk's swings would flick
+/// their joints through a right angle between two frames.
+pub(crate) fn walk_speed_limit(leg: f32) -> f32 {
+    sqrt(MAX_WALK_FROUDE * GRAVITY * leg.max(0.0))
+}
+
+/// The mean size of the legs (not arms) of `legs`, or `None` without legs.
+pub(crate) fn mean_leg_size(legs: &[Leg]) -> Option<f32> {
+    let sizes = legs
+        .iter()
+        .filter(|l| l.kind == LimbKind::Leg)
+        .map(|l| l.size);
+    let (sum, count) = sizes.fold((0.0f32, 0u32), |(s, n), size| (s + size, n + 1));
+    (count > 0).then(|| sum / count as f32)
+}
+
+/// The largest Froude number (`v² / (g · leg length)`) a walker walks at: the inverted
+/// pendulum's limit.
+pub(crate) const MAX_WALK_FROUDE: f32 = 1.0;
+
+/// Standard gravity, m/s².
+const GRAVITY: f32 = 9.81;
+
 /// The shortest swing (seconds, before the controller's `√size` scaling of small legs, see
 /// [`GaitOptions::min_swing_time`]) in which no joint of `legs` need turn faster than
 /// `max_rate` (radians per second), `options` sizing the steps: a leg's hip and knee turn
@@ -151,6 +176,18 @@ mod tests {
             (small_time * 0.5 - time).abs() < 0.05 * time,
             "{small_time} {time}"
         );
+    }
+
+    #[test]
+    fn a_walk_is_no_faster_than_froude_one() {
+        // A 1 m leg walks at most √g m/s; legs alone set it, an arm does not.
+        let limit = walk_speed_limit(1.0);
+        assert!((limit - GRAVITY.sqrt()).abs() < 1e-5, "{limit}");
+        assert!((walk_speed_limit(4.0) - 2.0 * limit).abs() < 1e-5);
+        assert_eq!(walk_speed_limit(-1.0), 0.0);
+        let arm = leg().with_size(3.0).with_kind(LimbKind::Arm);
+        assert_eq!(mean_leg_size(&[leg(), arm]), Some(1.0));
+        assert_eq!(mean_leg_size(&[arm]), None);
     }
 
     #[test]

@@ -17,7 +17,7 @@ use creature_skin::{Blend, nearest_k, skin_positions};
 use super::body::{BASE_RADIUS, base_body, centre_of_volume, pill_triangles};
 use super::clip::MAX_LEG_TURN_RATE;
 use super::colour::{Colouring, body_surface};
-use super::gait::swing_time_for_joints;
+use super::gait::{mean_leg_size, swing_time_for_joints, walk_speed_limit};
 use super::limbs::{
     Bind, LegChain, LimbNames, LimbStyle, MeshBuilder, Mount, add_limb, leg_knees, limb_shape,
     socket_point,
@@ -184,12 +184,16 @@ fn generate_kind(rng: &mut Pcg64Mcg, params: &Params, spec: &KindSpec) -> Result
         ground,
         &limbs.plan,
     );
+    let mut speed_factor = rigged.speed_factor;
     let gait = if spec.walks {
-        Some(gait_setup(
+        let setup;
+        (setup, speed_factor) = gait_setup(
             &limbs.chains,
             Vec3::Y * offset,
-            rigged.speed_factor,
-        )?)
+            rigged.body_scale,
+            speed_factor,
+        )?;
+        Some(setup)
     } else {
         None
     };
@@ -218,7 +222,7 @@ fn generate_kind(rng: &mut Pcg64Mcg, params: &Params, spec: &KindSpec) -> Result
         ground_offset: offset,
         profiles: rigged.profiles,
         body_scale: rigged.body_scale,
-        speed: rigged.body_scale * rigged.speed_factor,
+        speed: rigged.body_scale * speed_factor,
         gait,
         clips: Vec::new(),
         length: rigged.length,
@@ -819,12 +823,14 @@ fn stand_on_ground(
 
 /// Stage 10 (walkers): the legs and arms registered for the gait controller, checked by
 /// building one, so a creature never carries a set-up the controller rejects; its swings long
-/// enough for the joints (see `swing_time_for_joints`).
+/// enough for the joints (see `swing_time_for_joints`). With the speed factor it walks at:
+/// `speed_factor`, the drawn one, at most what its legs walk (see `walk_speed_limit`).
 fn gait_setup(
     chains: &[(usize, LimbKind, LegChain)],
     shift: Vec3,
+    body_scale: f32,
     speed_factor: f32,
-) -> Result<GaitSetup, Error> {
+) -> Result<(GaitSetup, f32), Error> {
     let mut legs = Vec::with_capacity(chains.len());
     let mut limbs = Vec::with_capacity(chains.len());
     let mut hip_joints = Vec::with_capacity(chains.len());
@@ -843,6 +849,9 @@ fn gait_setup(
         limbs.push(*index);
         hip_joints.push(c.hip_joint);
     }
+    let speed_factor = mean_leg_size(&legs).map_or(speed_factor, |leg| {
+        speed_factor.min(walk_speed_limit(leg) / body_scale)
+    });
     let mut options = GaitOptions::DEFAULT.with_speed_multiplier(speed_factor);
     options.min_swing_time = swing_time_for_joints(&legs, &options, MAX_LEG_TURN_RATE);
     let setup = GaitSetup {
@@ -852,7 +861,7 @@ fn gait_setup(
         options,
     };
     setup.controller()?;
-    Ok(setup)
+    Ok((setup, speed_factor))
 }
 
 /// Bends the neck and the tail of a centre-rooted rig: each bone by the same random angle, at

@@ -75,7 +75,9 @@ pub struct Params {
     /// Uniform scale of the body. From 0.01 to 100. Default 0.5..2 (the seed's).
     pub body_scale: Span,
     /// Speed factor: the speed is the body scale times this (m/s); it is also the gait's speed
-    /// multiplier (above 1: longer, higher steps). From 0.01 to 10. Default 0.8..1.25.
+    /// multiplier (above 1: longer, higher steps). A walker walks no faster than its legs can:
+    /// at most a Froude number `v² / (g · leg length)` of 1, where animals break into a run; a
+    /// larger factor is lowered to that. From 0.01 to 10. Default 0.8..1.25.
     pub speed_factor: Span,
     /// Target spine bone length for the auto-rigger, in metres: longer bodies get more bones.
     /// From 0.01 to 10. Default 0.25.

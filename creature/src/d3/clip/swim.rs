@@ -11,7 +11,8 @@ use creature_limbs::LimbKind;
 use super::{Clip, empty_clip, frames_for, loop_error, side_sign, sin_turns};
 use crate::d3::Creature;
 
-/// A swimmer's `idle` (speed 0) or `swim` clip.
+/// A swimmer's `idle` (speed 0) or `swim` clip, raised where a fluttering fin would dip below
+/// the ground its rest pose lies on.
 pub(crate) fn swim(c: &Creature, name: &'static str, speed: f32) -> Clip {
     let swim_params = SwimParams::DEFAULT;
     // Swimming waves at full weight (any speed moves the body); idle is the sway alone.
@@ -92,14 +93,82 @@ pub(crate) fn swim(c: &Creature, name: &'static str, speed: f32) -> Clip {
                     0.3 * swim_params.amplitude
                         * sin_turns(rate * t - swim_params.wavelength - 0.2 * k as f32),
                 ),
-                _ => Quat::from_rotation_z(sign * 0.15 * sin_turns(rate * t - 0.3 * k as f32)),
+                _ => {
+                    Quat::from_rotation_z(sign * FIN_FLUTTER * sin_turns(rate * t - 0.3 * k as f32))
+                }
             };
             track.rotations.push(rotation.normalize());
         }
     }
+    // Above the ground in every frame: a fin resting on it dips when it flutters. The whole
+    // clip is raised by the deepest dip of any vertex, so it still loops.
+    let lowest = lowest_fin_vertex(c, &clip);
+    for t in &mut clip.root_translation {
+        t.y -= lowest;
+    }
     clip.loop_error = loop_error(&clip);
     clip
 }
+
+/// The lowest height over the clip of any vertex a fluttering fin moves (0 if none goes below
+/// the ground), skinned as a viewer does. Only fins roll: the spine and the tail fin turn about
+/// the vertical, which keeps every other vertex at its rest height, on or above the ground.
+fn lowest_fin_vertex(c: &Creature, clip: &Clip) -> f32 {
+    // Per joint of a fin: its fin's root joint and the most its rolls can turn it (each of its
+    // chain's joints rolls at most `FIN_FLUTTER`). A vertex at `p` turned by at most `angle`
+    // about the root `r` drops by at most |p − r| · angle: only those that may reach the
+    // ground are posed.
+    let mut fin: Vec<Option<(Vec3, f32)>> = alloc::vec![None; c.skeleton.joints.len()];
+    for (index, limb) in c.plan.limbs.iter().enumerate() {
+        if limb.kind == LimbKind::Tail {
+            continue;
+        }
+        let joints = c.limb_joints(index);
+        let Some(&root) = joints.first() else {
+            continue;
+        };
+        let angle = FIN_FLUTTER * joints.len() as f32;
+        for j in joints {
+            fin[j] = Some((c.skeleton.joints[root].position, angle));
+        }
+    }
+    let mesh = &c.mesh;
+    let moved: Vec<usize> = (0..mesh.positions.len())
+        .filter(|&v| {
+            let p = mesh.positions[v];
+            mesh.joints[v]
+                .iter()
+                .zip(&mesh.weights[v])
+                .filter(|&(_, &w)| w > 0.0)
+                .filter_map(|(&j, _)| fin[usize::from(j)])
+                .any(|(root, angle)| p.y < p.distance(root) * angle)
+        })
+        .collect();
+    let mut lowest = 0.0f32;
+    if moved.is_empty() {
+        return lowest;
+    }
+    let rest: Vec<Vec3> = c.skeleton.joints.iter().map(|j| j.position).collect();
+    for f in 0..clip.frames {
+        let pose = super::pose(c, clip, f);
+        for &v in &moved {
+            let p = mesh.positions[v];
+            let y: f32 = mesh.joints[v]
+                .iter()
+                .zip(&mesh.weights[v])
+                .map(|(&j, &w)| {
+                    let j = usize::from(j);
+                    w * pose[j].transform_point3(p - rest[j]).y
+                })
+                .sum();
+            lowest = lowest.min(y);
+        }
+    }
+    lowest
+}
+
+/// The most a fin's joint rolls about its parent in a swimmer's clips, in radians.
+const FIN_FLUTTER: f32 = 0.15;
 
 /// What drives an animated joint of a swimmer clip.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -277,6 +277,35 @@ fn regression_a_walker_asked_to_walk_faster_than_its_legs_can_walks_at_their_lim
 }
 
 #[test]
+fn regression_a_turning_walkers_foot_lifting_off_near_the_midline_stays_on_its_side() {
+    // A 14.3 m walker on 11 m legs whose hips are 0.6 m off the midline, turning in place: a
+    // front foot near the midline lifted off as the body's lean swung back and was carried
+    // 0.66 m across the midline in the body's frame (`turn` frame 73). A lifted foot now moves
+    // out as it rises.
+    let params = drawn(
+        Kind::Walker,
+        (5, 16, 6, 3, true),
+        [
+            (0.840_060_35, 1.352_365_1),
+            (2.267_752_2, 2.470_356),
+            (2.668_757_4, 2.962_468_6),
+        ],
+        (1.314_283_5, 6.148_751_3),
+        (1.285_855, 2.323_904_8),
+        0.176_331_7,
+        (32, 35),
+        160.727_87,
+        (1.434_576_2, 1.927_977),
+        (0.360_950_1, 0.914_356_95),
+    );
+    passes(
+        3_991_390_260_638_037_947,
+        &params,
+        &[Check::FeetCross, Check::FootSlides],
+    );
+}
+
+#[test]
 fn regression_a_swimmers_fluttering_fin_stays_above_the_ground() {
     // A swimmer at rest on the ground with a pectoral fin hanging down to it: the fin's
     // flutter in `idle` dipped its tip 1.9% of the body length below the ground. Its clips are

@@ -614,6 +614,38 @@ fn regression_rolling_never_carries_a_lifted_foot_across_the_midline() {
     assert!(worst > 0.25, "a foot kept only {worst} of its side");
 }
 
+#[test]
+fn regression_a_foot_lifting_off_near_the_midline_is_not_carried_across_it() {
+    // A generated walker's legs (creature property case 871: a 14.3 m body on 11 m legs whose
+    // hips are 0.6 m and 0.5 m off the midline) turning in place: a foot near the midline
+    // lifted off, and the turn and the body's lean carried it across the midline in the
+    // body's frame while it rose (here twice its hip's distance from the midline). A lifted
+    // foot now moves out as it rises.
+    let legs = mirrored_legs(&[
+        (Vec3::new(0.599, 10.946, 10.875), 7.122),
+        (Vec3::new(0.514, 12.573, -0.157), 8.178),
+    ]);
+    let options = GaitOptions::DEFAULT.with_speed_multiplier(1.37);
+    // The least a lifted foot keeps of its side, as a fraction of its hip's distance from the
+    // midline, in the body's frame as shown.
+    let mut worst = f32::INFINITY;
+    drive(&legs, &options, (0.0, 0.3), |controller| {
+        let shown = controller.reacted_pose();
+        for (leg, state) in legs.iter().zip(controller.leg_states()) {
+            if !state.stepping || state.foot.y < 0.01 * leg.upper {
+                continue;
+            }
+            let local = shown.rotation.inverse() * (state.foot - shown.translation);
+            worst = worst.min(local.x * leg.rest.x.signum() / leg.rest.x.abs());
+        }
+    });
+    assert!(
+        worst > 0.0,
+        "a lifted foot went {:.2} of its side across",
+        -worst
+    );
+}
+
 /// The least any foot keeps of its side of the midline in the body's frame as shown (its `x`
 /// as a fraction of its hip's distance from the midline), walking `legs` straight at `speed`
 /// for 10 s.

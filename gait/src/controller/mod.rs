@@ -366,6 +366,9 @@ impl Controller {
         self.gather_feet();
         self.react(&pose, &rotation);
         self.keep_within_reach(&pose);
+        if self.keep_swings_on_their_sides(&pose) {
+            self.gather_feet();
+        }
         self.intend(&pose, angular_velocity);
         for i in 0..self.chains.len() {
             self.follow(i, dt, &pose, angular_velocity);

@@ -320,4 +320,43 @@ impl Controller {
         self.reaction.offset = reaction.offset * low;
         self.reaction.rotation = Quat::IDENTITY.slerp(reaction.rotation, low).normalize();
     }
+
+    /// Each swinging foot moved out across the reacted body (level, along its left axis) to at
+    /// least half its margin from the midline on its own side (see
+    /// [`GaitOptions::midline_margin`](crate::GaitOptions::midline_margin)): a foot lifting
+    /// off near the midline of a turning body is otherwise carried across it while it rises,
+    /// and more so when the body's lean swings back. A foot moves out no further than it is
+    /// lifted (off the ground first, then out: it neither slides on lift-off nor on
+    /// touchdown), and no planted foot moves (one near the midline steps, see `action`).
+    /// Returns whether any foot moved.
+    pub(super) fn keep_swings_on_their_sides(&mut self, pose: &Pose) -> bool {
+        // The reacted body's rotation, as `keep_within_reach` left it when it kept the reaction.
+        let rotation = self.reacted_rotation.unwrap_or_else(|| {
+            Mat3A::from_quat((pose.rotation * self.reaction.rotation).normalize())
+        });
+        let origin = pose.translation + self.reaction.offset;
+        let left = Vec3::from(rotation.x_axis);
+        let level = Vec3::new(left.x, 0.0, left.z);
+        // How far the foot moves across the body per unit moved along `level`.
+        let across = level.dot(left);
+        if !(across > 0.5) {
+            // The body lies on its side: no level direction moves a foot across it.
+            return false;
+        }
+        let margin = 0.5 * self.options.midline_margin;
+        let mut moved = false;
+        for (leg, state) in self.legs.iter().zip(&mut self.states) {
+            let side = leg.rest.x;
+            if leg.kind != LimbKind::Leg || side == 0.0 || !state.stepping {
+                continue;
+            }
+            let short = margin * side.abs() - side.signum() * left.dot(state.foot - origin);
+            if short > 0.0 {
+                let lift = self.options.height_curve.evaluate(state.progress) * state.lift;
+                state.foot += level * (side.signum() * (short / across).min(lift));
+                moved = true;
+            }
+        }
+        moved
+    }
 }

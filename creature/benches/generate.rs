@@ -133,5 +133,64 @@ fn bench_3d(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, bench, bench_3d);
+/// One live update of walker 7 (`d3::Animator`: gait, pose and skinning matrices) on flat
+/// ground and on the default procedural terrain, walking in a circle; and, as the reference in
+/// the same run, sampling a baked `walk` clip of the same walker (`Creature::pose` at a frame,
+/// then each joint's skinning matrix).
+fn bench_animator(c: &mut Criterion) {
+    use creature::d3::{Animator, Intent};
+    use creature::gait::Plane;
+    use creature::glam::{Mat4, Vec3};
+    use creature::terrain::{TerrainParams, terrain};
+
+    let mut group = c.benchmark_group("animate_3d");
+    let walker = generate(7, &d3::Params::DEFAULT.with_kind(d3::Kind::Walker)).expect("valid");
+    let intent = Intent::Move {
+        velocity: Vec3::Z * walker.speed,
+        turn_rate: 0.5,
+    };
+    let hills = terrain(7, &TerrainParams::DEFAULT).expect("valid");
+    for (name, ground) in [
+        (
+            "animator_update_walker_flat",
+            &Plane::GROUND as &dyn creature::gait::Ground,
+        ),
+        ("animator_update_walker_terrain", &hills),
+    ] {
+        let mut animator = Animator::new(&walker).expect("a walker");
+        for _ in 0..120 {
+            animator.update(1.0 / 60.0, intent, ground).expect("walks");
+        }
+        group.bench_function(name, |b| {
+            b.iter(|| {
+                animator
+                    .update(black_box(1.0 / 60.0), black_box(intent), ground)
+                    .expect("walks");
+                black_box(animator.skinning_matrices().len())
+            });
+        });
+    }
+    let walk = walker
+        .clips
+        .iter()
+        .find(|clip| clip.name == "walk")
+        .expect("a walk clip");
+    let inverse = walker.skeleton.inverse_bind_matrices();
+    group.bench_function("reference_sample_baked_walk", |b| {
+        let mut frame = 0;
+        b.iter(|| {
+            frame = (frame + 1) % walk.frames;
+            let pose = walker.pose(walk, black_box(frame));
+            let skinning: Vec<Mat4> = pose
+                .iter()
+                .zip(&inverse)
+                .map(|(p, inverse)| Mat4::from(*p) * *inverse)
+                .collect();
+            black_box(skinning)
+        });
+    });
+    group.finish();
+}
+
+criterion_group!(benches, bench, bench_3d, bench_animator);
 criterion_main!(benches);

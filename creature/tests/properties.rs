@@ -822,3 +822,70 @@ proptest! {
         }
     }
 }
+
+/// Any float, the awkward ones (NaN, infinities, zero, huge) often.
+fn any_float() -> impl Strategy<Value = f32> {
+    prop_oneof![
+        -100.0f32..100.0,
+        Just(0.0),
+        Just(f32::NAN),
+        Just(f32::INFINITY),
+        Just(f32::NEG_INFINITY),
+        Just(1e30),
+        Just(-1e30),
+        any::<f32>(),
+    ]
+}
+
+fn any_vec3() -> impl Strategy<Value = creature::glam::Vec3> {
+    (any_float(), any_float(), any_float()).prop_map(|(x, y, z)| creature::glam::Vec3::new(x, y, z))
+}
+
+fn any_intent() -> impl Strategy<Value = d3::Intent> {
+    prop_oneof![
+        Just(d3::Intent::Stand),
+        (any_vec3(), any_float()).prop_map(|(velocity, turn_rate)| d3::Intent::Move {
+            velocity,
+            turn_rate
+        }),
+        any_vec3().prop_map(d3::Intent::GoTo),
+    ]
+}
+
+proptest! {
+    #![proptest_config(config(32))]
+
+    #[test]
+    fn an_animator_takes_any_time_step_and_intent(
+        seed in 0u64..1000,
+        updates in proptest::collection::vec((any_float(), any_intent()), 1..40),
+        hilly in any::<bool>(),
+    ) {
+        // Every update is done or a typed error that leaves the pose; the pose is never NaN.
+        let c = d3::generate(
+            seed,
+            &d3::Params::DEFAULT.with_kind(d3::Kind::Walker).with_clips(false),
+        )
+        .unwrap();
+        let plane = creature::gait::Plane::GROUND;
+        let hills = creature::terrain::terrain(seed, &creature::terrain::TerrainParams::DEFAULT)
+            .unwrap();
+        let mut animator = d3::Animator::new(&c).unwrap();
+        for (dt, intent) in updates {
+            let before = animator.skinning_matrices().to_vec();
+            let done = if hilly {
+                animator.update(dt, intent, &hills)
+            } else {
+                animator.update(dt, intent, &plane)
+            };
+            match done {
+                Ok(()) => prop_assert!(
+                    animator.skinning_matrices().iter().all(|m| m.is_finite())
+                        && animator.position().is_finite(),
+                    "dt {dt}, {intent:?}"
+                ),
+                Err(_) => prop_assert_eq!(animator.skinning_matrices(), &before[..]),
+            }
+        }
+    }
+}

@@ -23,7 +23,7 @@ mod generate;
 mod limbs;
 mod params;
 
-pub use clip::{CLIP_FPS, Clip, Track};
+pub use clip::{ARRIVAL_RADIUS, Animator, CLIP_FPS, Clip, Intent, MAX_STEP, Track};
 pub use colour::{Palette, Pattern, PatternWeights};
 pub use creature::{Creature, Joint, Mesh, Part, Quality, Skeleton};
 pub use gait::GaitSetup;

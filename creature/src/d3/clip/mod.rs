@@ -21,10 +21,12 @@ mod flight;
 mod floor;
 mod gait_run;
 mod kinematics;
+mod live;
 mod swim;
 mod swing;
 mod walk;
 
+pub use live::{ARRIVAL_RADIUS, Animator, Intent, MAX_STEP};
 pub(crate) use walk::MAX_LEG_TURN_RATE;
 
 pub(crate) use flight::flight;

@@ -128,19 +128,7 @@ pub(crate) fn walk_loop(c: &Creature) -> Result<Clip, Error> {
 pub(crate) fn turn(c: &Creature) -> Result<Clip, Error> {
     let setup = c.gait.as_ref().ok_or(Error::NoGait)?;
     let full = core::f32::consts::TAU;
-    // A quarter turn a second, or slower: no foot's rest position sweeps round faster than
-    // the creature walks (a long body's end feet would be carried past the midline between two
-    // frames), but a full turn in at most `MAX_TURN_SECONDS`.
-    let farthest = setup
-        .legs
-        .iter()
-        .filter(|l| l.kind == LimbKind::Leg)
-        .map(|l| glam::Vec2::new(l.rest.x, l.rest.z).length())
-        .fold(0.0, f32::max);
-    let mut rate = core::f32::consts::FRAC_PI_2;
-    if farthest * rate > c.speed {
-        rate = (c.speed / farthest).max(full / MAX_TURN_SECONDS);
-    }
+    let mut rate = c.turn_rate(&setup.legs);
     // The cut: half a second either side of the full turn at that rate.
     let seconds = full / rate;
     let window = ((seconds - 0.5) * CLIP_FPS) as usize..((seconds + 0.5) * CLIP_FPS) as usize + 1;
@@ -561,7 +549,22 @@ impl Creature {
         if yaw_rate == 0.0 {
             return Vec::new();
         }
-        let total = 0.35 * yaw_rate.signum() * (yaw_rate.abs() / 1.5).min(1.0);
+        let total = turn_bend_total(yaw_rate);
+        self.turn_bend_shares()
+            .into_iter()
+            .map(|(j, divisor, limit)| {
+                (
+                    j,
+                    Quat::from_rotation_y((total / divisor).clamp(-limit, limit)),
+                )
+            })
+            .collect()
+    }
+
+    /// The neck's and tail's joints that bend toward a turn: each with the divisor of the
+    /// turn's total bend ([`turn_bend_total`]) that is its share (the neck's joint count, the
+    /// tail's negated: it bends the other way) and the most its skin lets it bend.
+    pub(super) fn turn_bend_shares(&self) -> Vec<(usize, f32, f32)> {
         let spine = &self.rig.spine;
         let root = self.rig.root();
         let Some(c) = spine.iter().position(|&j| Some(j) == root) else {
@@ -572,22 +575,34 @@ impl Creature {
         let tail = self.tail_chain();
         // Each joint its share, no more than its skin allows.
         let limits = self.bend_limits();
-        let share = |j: usize, angle: f32| angle.clamp(-limits[j], limits[j]);
         let mut out = Vec::with_capacity(neck.len() + tail.len());
-        for &j in &neck {
-            out.push((
-                j,
-                Quat::from_rotation_y(share(j, total / neck.len() as f32)),
-            ));
-        }
-        for &j in &tail {
-            out.push((
-                j,
-                Quat::from_rotation_y(share(j, -total / tail.len() as f32)),
-            ));
-        }
+        out.extend(neck.iter().map(|&j| (j, neck.len() as f32, limits[j])));
+        out.extend(tail.iter().map(|&j| (j, -(tail.len() as f32), limits[j])));
         out
     }
+
+    /// The fastest a walker turns in place (rad/s): a quarter turn a second, or slower, no
+    /// foot's rest position sweeping round faster than the creature walks (a long body's end
+    /// feet would be carried past the midline between two frames), but a full turn in at most
+    /// `MAX_TURN_SECONDS`.
+    pub(super) fn turn_rate(&self, legs: &[Leg]) -> f32 {
+        let farthest = legs
+            .iter()
+            .filter(|l| l.kind == LimbKind::Leg)
+            .map(|l| glam::Vec2::new(l.rest.x, l.rest.z).length())
+            .fold(0.0, f32::max);
+        let mut rate = core::f32::consts::FRAC_PI_2;
+        if farthest * rate > self.speed {
+            rate = (self.speed / farthest).max(core::f32::consts::TAU / MAX_TURN_SECONDS);
+        }
+        rate
+    }
+}
+
+/// The total bend (radians) of the neck and of the tail toward a turn at `yaw_rate` (rad/s):
+/// 0.35 at 1.5 rad/s and faster.
+pub(super) fn turn_bend_total(yaw_rate: f32) -> f32 {
+    0.35 * yaw_rate.signum() * (yaw_rate.abs() / 1.5).min(1.0)
 }
 
 /// One leg of a walking clip being baked: what solving it needs, and its tracks' values.

@@ -1,0 +1,640 @@
+//! The live animator: a walker driven every frame by the gait controller on any ground, its
+//! joints posed as the baked clips pose them (two-bone legs turning about their knee hinges,
+//! feet flat on the ground, neck and tail bent toward the turn), ready for a GPU.
+
+use alloc::vec::Vec;
+
+use glam::{Affine3A, Mat4, Quat, Vec2, Vec3, Vec3A};
+
+use creature_gait::{Controller, Ground, LimbKind, Pose};
+
+use super::floor::knee_above;
+use super::kinematics::{Hinge, rotation_arc};
+use super::walk::turn_bend_total;
+use crate::Error;
+use crate::d3::Creature;
+
+/// What a live creature is asked to do in one update of an [`Animator`].
+///
+/// ```
+/// use creature::d3::Intent;
+/// use creature::glam::Vec3;
+///
+/// let walk = Intent::Move { velocity: Vec3::Z * 1.5, turn_rate: 0.2 };
+/// let go = Intent::GoTo(Vec3::new(10.0, 0.0, 4.0));
+/// assert_ne!(walk, go);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
+pub enum Intent {
+    /// Stand still (idle: breathing, the feet settling).
+    Stand,
+    /// Move at `velocity` (m/s, world; its vertical part is ignored) while turning at
+    /// `turn_rate` (rad/s about +Y, positive toward +X from +Z). A speed above twice the
+    /// creature's [`speed`](Creature::speed) is lowered to that, a turn rate faster than the
+    /// animator's [`max_turn_rate`](Animator::max_turn_rate) to that.
+    Move {
+        /// Velocity over the ground, m/s.
+        velocity: Vec3,
+        /// Turn rate, rad/s.
+        turn_rate: f32,
+    },
+    /// Walk to a point (world; its height is ignored): turn toward it, walk at the creature's
+    /// speed (slower while facing away, and slowing to a stop on arrival, within
+    /// [`ARRIVAL_RADIUS`] of the body's length).
+    GoTo(Vec3),
+}
+
+/// Within this fraction of its body length of a [`Intent::GoTo`] target, a creature has arrived
+/// and stands.
+pub const ARRIVAL_RADIUS: f32 = 0.25;
+
+/// A walker driven live: one [`update`](Self::update) per frame with a time step, an
+/// [`Intent`] and any [`Ground`](creature_gait::Ground) (a
+/// [`HeightField`](creature_gait::HeightField), a [`Plane`](creature_gait::Plane), your own
+/// raycast). Each update runs the gait controller (feet placed by raycasts, steps, the body's
+/// bob, sway and lean), follows the terrain under the feet with the body's height, pitch and
+/// roll, and poses every joint: [`local_transforms`](Self::local_transforms) (each joint in
+/// its parent's frame, the root in the world), [`world_transforms`](Self::world_transforms)
+/// and [`skinning_matrices`](Self::skinning_matrices) (joint world × inverse bind, for a GPU
+/// skinning shader). An update allocates nothing.
+///
+/// ```
+/// use creature::d3::{generate, Animator, Intent, Kind, Params};
+/// use creature::gait::Plane;
+/// use creature::glam::Vec3;
+///
+/// let walker = generate(7, &Params::DEFAULT.with_kind(Kind::Walker).with_clips(false))?;
+/// let mut animator = Animator::new(&walker)?;
+/// let target = Vec3::new(0.0, 0.0, 3.0 * walker.length);
+/// for _ in 0..30 * 20 {
+///     animator.update(1.0 / 30.0, Intent::GoTo(target), &Plane::GROUND)?;
+/// }
+/// assert!(animator.position().distance(target) < walker.length);
+/// assert_eq!(animator.skinning_matrices().len(), walker.skeleton.joints.len());
+/// # Ok::<(), creature::Error>(())
+/// ```
+#[derive(Debug, Clone)]
+pub struct Animator {
+    controller: Controller,
+    /// The body's place on the ground (x, z; y the ground's height it follows) and heading.
+    position: Vec3,
+    heading: f32,
+    /// The body's lean following the terrain (pitch, roll), smoothed.
+    lean: Vec2,
+    /// The turn rate of the last update (the neck and tail bend toward it), smoothed.
+    turn: f32,
+    speed: f32,
+    max_turn_rate: f32,
+    length: f32,
+    rest_root: Vec3,
+    root: usize,
+    /// Joints in an order with every parent before its children, and each one's parent.
+    order: Vec<usize>,
+    parents: Vec<Option<usize>>,
+    rest_local: Vec<Vec3>,
+    rest_position: Vec<Vec3>,
+    /// The neck's and tail's joints with their bend per unit of the turn's total bend, and
+    /// their limit.
+    bends: Vec<(usize, f32, f32)>,
+    legs: Vec<LiveLeg>,
+    /// Per joint, the leg (index into `legs`) whose hip it is.
+    leg_at: Vec<Option<usize>>,
+    /// Per joint, whether its local transform turns (the root, the legs' joints, the neck's
+    /// and tail's bending joints); the others only sit at their rest offset.
+    turns: Vec<bool>,
+    /// The time step the smoothing shares were last computed for, and the shares (terrain,
+    /// turn bend).
+    smoothing: (f32, f32, f32),
+    /// Whether the next update starts afresh (feet put under the body where it stands).
+    fresh: bool,
+    local: Vec<Affine3A>,
+    world: Vec<Affine3A>,
+    skinning: Vec<Mat4>,
+}
+
+/// One leg's (or arm's) posing: its joints, its knee hinge and how far its knee's ring of
+/// vertices reaches.
+#[derive(Debug, Clone, Copy)]
+struct LiveLeg {
+    rest_upper: Vec3,
+    rest_lower: Vec3,
+    hinge: Hinge,
+    knee_radius: f32,
+}
+
+impl Animator {
+    /// An animator for `creature` standing at its rest place, facing +Z.
+    ///
+    /// # Errors
+    /// [`Error::NoGait`] for a creature without a gait set-up (fliers and swimmers);
+    /// [`Error::Gait`] if the gait controller rejects its set-up (an edited creature);
+    /// [`Error::BadParent`] for a skeleton whose parents form a cycle.
+    pub fn new(creature: &Creature) -> Result<Self, Error> {
+        let setup = creature.gait.as_ref().ok_or(Error::NoGait)?;
+        let controller = setup.controller()?;
+        let joints = &creature.skeleton.joints;
+        let n = joints.len();
+        let parents: Vec<Option<usize>> = joints.iter().map(|j| j.parent).collect();
+        let order = parents_first(&parents)?;
+        let root = order.first().copied().unwrap_or(0);
+        let rest_local = creature.skeleton.rest_translations();
+        let rest_position: Vec<Vec3> = joints.iter().map(|j| j.position).collect();
+        let rest = |j: usize| rest_position.get(j).copied().unwrap_or(Vec3::ZERO);
+        let mut leg_at = alloc::vec![None; n];
+        for (i, &hip) in setup.hip_joints.iter().enumerate() {
+            // A leg's chain is its hip, knee and foot, one after the other.
+            let chain =
+                hip + 2 < n && parents[hip + 1] == Some(hip) && parents[hip + 2] == Some(hip + 1);
+            if !chain {
+                return Err(Error::BadParent {
+                    bone: hip + 1,
+                    parent: parents.get(hip + 1).copied().flatten(),
+                });
+            }
+            leg_at[hip] = Some(i);
+        }
+        let bends = creature.turn_bend_shares();
+        let mut turns = alloc::vec![false; n];
+        for &(j, _, _) in &bends {
+            turns[j] = true;
+        }
+        for &hip in &setup.hip_joints {
+            turns[hip..hip + 3].fill(true);
+        }
+        let legs = setup
+            .legs
+            .iter()
+            .zip(&setup.hip_joints)
+            .map(|(leg, &hip)| {
+                let rest_upper = (rest(hip + 1) - rest(hip)).normalize_or(Vec3::NEG_Y);
+                let rest_lower = (rest(hip + 2) - rest(hip + 1)).normalize_or(Vec3::NEG_Y);
+                LiveLeg {
+                    rest_upper,
+                    rest_lower,
+                    hinge: Hinge::new((rest_upper, rest_lower), leg.pole),
+                    knee_radius: creature.ring_radius(hip + 1),
+                }
+            })
+            .collect();
+        let local: Vec<Affine3A> = rest_local
+            .iter()
+            .map(|&t| Affine3A::from_translation(t))
+            .collect();
+        let mut animator = Self {
+            controller,
+            position: Vec3::ZERO,
+            heading: 0.0,
+            lean: Vec2::ZERO,
+            turn: 0.0,
+            speed: creature.speed,
+            max_turn_rate: creature.turn_rate(&setup.legs),
+            length: creature.length,
+            rest_root: creature.rest_root(),
+            root,
+            order,
+            parents,
+            rest_local,
+            rest_position,
+            bends,
+            legs,
+            leg_at,
+            turns,
+            smoothing: (0.0, 0.0, 0.0),
+            fresh: true,
+            world: local.clone(),
+            local,
+            skinning: alloc::vec![Mat4::IDENTITY; n],
+        };
+        animator.pose_joints(
+            &Pose::IDENTITY,
+            Quat::IDENTITY,
+            None::<&creature_gait::Plane>,
+        );
+        Ok(animator)
+    }
+
+    /// Places the creature at `position` (its height is taken from the ground at the next
+    /// update) facing `heading` (radians about +Y from +Z), its feet under it.
+    #[must_use]
+    pub fn with_pose(mut self, position: Vec3, heading: f32) -> Self {
+        self.position = position;
+        self.heading = heading;
+        self.fresh = true;
+        self
+    }
+
+    /// One frame: `dt` seconds (0 poses without moving; above [`MAX_STEP`] seconds, a frame
+    /// hitch, it is taken as `MAX_STEP` so the feet do not jump), the creature's `intent`, on
+    /// `ground`.
+    ///
+    /// # Errors
+    /// [`Error::NonFinite`] for a NaN or infinite `dt` or intent, [`Error::OutOfRange`] for a
+    /// negative `dt`; the pose is unchanged then. [`Error::Gait`] if the controller rejects a
+    /// position beyond its range (`creature_gait::MAX_COORDINATE`).
+    pub fn update<G: Ground + ?Sized>(
+        &mut self,
+        dt: f32,
+        intent: Intent,
+        ground: &G,
+    ) -> Result<(), Error> {
+        if !dt.is_finite() {
+            return Err(Error::NonFinite { what: "dt" });
+        }
+        if dt < 0.0 {
+            return Err(Error::OutOfRange {
+                what: "dt",
+                value: dt,
+                min: 0.0,
+                max: f32::INFINITY,
+            });
+        }
+        let dt = dt.min(MAX_STEP);
+        let (velocity, turn_rate) = self.wanted(intent)?;
+        let heading = wrap(self.heading + turn_rate * dt);
+        let mut position = self.position + velocity * dt;
+        // The body follows the ground under its rest feet: height, pitch and roll; afresh, it
+        // is put straight onto the ground where it stands.
+        let yaw = Quat::from_rotation_y(heading);
+        let (height, slope) = self.ground_under(position, yaw, ground);
+        let k = if self.fresh {
+            1.0
+        } else {
+            self.smoothing(dt).0
+        };
+        if let Some(height) = height {
+            position.y += (height - position.y) * k;
+        }
+        let lean = self.lean + (slope - self.lean) * k;
+        let rotation =
+            (yaw * Quat::from_rotation_x(lean.x) * Quat::from_rotation_z(lean.y)).normalize();
+        let pose = Pose::new(position, rotation);
+        if self.fresh {
+            self.controller.reset(pose, ground)?;
+        }
+        self.controller
+            .update(dt, pose, velocity, Vec3::Y * turn_rate, ground)?;
+        self.fresh = false;
+        (self.position, self.heading, self.lean) = (position, heading, lean);
+        self.turn += (turn_rate - self.turn) * self.smoothing(dt).1;
+        let body = self.controller.reacted_pose();
+        self.pose_joints(&body, yaw, Some(ground));
+        Ok(())
+    }
+
+    /// The shares of the way the terrain's follower and the turn's bend go in `dt` (see
+    /// [`smoothing`]), computed again only when `dt` changes.
+    fn smoothing(&mut self, dt: f32) -> (f32, f32) {
+        if dt != self.smoothing.0 {
+            self.smoothing = (
+                dt,
+                smoothing(dt, TERRAIN_TIME),
+                smoothing(dt, TURN_BEND_TIME),
+            );
+        }
+        (self.smoothing.1, self.smoothing.2)
+    }
+
+    /// The velocity (horizontal) and turn rate `intent` asks for, within the creature's limits.
+    fn wanted(&self, intent: Intent) -> Result<(Vec3, f32), Error> {
+        let top = 2.0 * self.speed;
+        Ok(match intent {
+            Intent::Stand => (Vec3::ZERO, 0.0),
+            Intent::Move {
+                velocity,
+                turn_rate,
+            } => {
+                if !velocity.is_finite() {
+                    return Err(Error::NonFinite {
+                        what: "intent velocity",
+                    });
+                }
+                if !turn_rate.is_finite() {
+                    return Err(Error::NonFinite {
+                        what: "intent turn rate",
+                    });
+                }
+                let level = Vec3::new(velocity.x, 0.0, velocity.z).clamp_length_max(top);
+                let turn = turn_rate.clamp(-self.max_turn_rate, self.max_turn_rate);
+                (level, turn)
+            }
+            Intent::GoTo(target) => {
+                if !target.is_finite() {
+                    return Err(Error::NonFinite {
+                        what: "intent target",
+                    });
+                }
+                let to = Vec2::new(target.x - self.position.x, target.z - self.position.z);
+                let distance = to.length();
+                if distance <= ARRIVAL_RADIUS * self.length {
+                    return Ok((Vec3::ZERO, 0.0));
+                }
+                // Off by `error` from facing the target: turn toward it, walking forward
+                // only as much as it faces it, slowing down over the last body length.
+                let error = wrap(Vec2::new(to.y, to.x).to_angle() - self.heading);
+                let turn = (TURN_GAIN * error).clamp(-self.max_turn_rate, self.max_turn_rate);
+                let facing = crate::math::cos(error).max(0.0);
+                let arriving = (distance / self.length).min(1.0);
+                let forward = Vec3::new(
+                    crate::math::sin(self.heading),
+                    0.0,
+                    crate::math::cos(self.heading),
+                );
+                (forward * (self.speed * facing * arriving), turn)
+            }
+        })
+    }
+
+    /// The mean height of the ground under the legs' rest positions with the body at `origin`
+    /// turned by `yaw` (none if no ray hits), and
+    /// the slopes of those heights along the body's forward and left axes, as a pitch and a
+    /// roll (radians, each within [`MAX_LEAN`]).
+    fn ground_under<G: Ground + ?Sized>(
+        &self,
+        origin: Vec3,
+        yaw: Quat,
+        ground: &G,
+    ) -> (Option<f32>, Vec2) {
+        // Least-squares slopes of the heights along x and z: sums of e, x, z, x², z², ex, ez.
+        let mut count = 0.0f32;
+        let (mut e, mut x, mut z) = (0.0f32, 0.0f32, 0.0f32);
+        let (mut xx, mut zz, mut ex, mut ez) = (0.0f32, 0.0f32, 0.0f32, 0.0f32);
+        let reach = self.length;
+        for leg in self.controller.legs() {
+            if leg.kind != LimbKind::Leg {
+                continue;
+            }
+            let rest = Vec3::new(leg.rest.x, 0.0, leg.rest.z);
+            let above = origin + yaw * rest + Vec3::Y * reach;
+            if let Some(hit) = ground.cast_down_point(above, 2.0 * reach + leg.size) {
+                let h = hit.y - origin.y;
+                count += 1.0;
+                (e, x, z) = (e + h, x + rest.x, z + rest.z);
+                (xx, zz) = (xx + rest.x * rest.x, zz + rest.z * rest.z);
+                (ex, ez) = (ex + h * rest.x, ez + h * rest.z);
+            }
+        }
+        if count == 0.0 {
+            return (None, Vec2::ZERO);
+        }
+        let slope = |num: f32, den: f32| {
+            if den > 1e-9 * self.length * self.length * count * count {
+                Vec2::new(den, num).to_angle().clamp(-MAX_LEAN, MAX_LEAN)
+            } else {
+                0.0
+            }
+        };
+        let pitch = -slope(count * ez - e * z, count * zz - z * z);
+        let roll = slope(count * ex - e * x, count * xx - x * x);
+        (Some(origin.y + e / count), Vec2::new(pitch, roll))
+    }
+
+    /// Every joint's local, world and skinning transform for the body at `body` (the reacted
+    /// pose) with its legs as the controller solved them, their knees above `ground` (none:
+    /// nothing to keep them above), their feet level with `heading` and tilted to the ground
+    /// under them.
+    fn pose_joints<G: Ground + ?Sized>(&mut self, body: &Pose, heading: Quat, ground: Option<&G>) {
+        // Neck and tail bent toward the turn, as the baked clips bend them.
+        let total = turn_bend_total(self.turn);
+        for &(joint, divisor, limit) in &self.bends {
+            let angle = (total / divisor).clamp(-limit, limit);
+            self.local[joint] = Affine3A::from_rotation_translation(
+                Quat::from_rotation_y(angle),
+                self.rest_local[joint],
+            );
+        }
+        self.local[self.root] = Affine3A::from_rotation_translation(
+            body.rotation,
+            body.translation + body.rotation * self.rest_root,
+        );
+        let unturn = body.rotation.inverse();
+        let up = unturn * Vec3::Y;
+        let states = self.controller.leg_states();
+        let setup = self.controller.legs();
+        for &j in &self.order {
+            let parent = self.parents[j].map(|p| self.world[p]);
+            if let Some(i) = self.leg_at[j] {
+                // A leg's hip: its chain solved from the hip to the foot in body space.
+                let (leg, live, state) = (&setup[i], &self.legs[i], &states[i]);
+                // The controller's two-bone solution (world, the knee toward the pole), in
+                // body space.
+                let solved = &state.joints;
+                let to_body = |p: Vec3| unturn * (p - body.translation);
+                let (root, end) = (to_body(solved.root), to_body(solved.end));
+                let floor = ground.map_or(f32::NEG_INFINITY, |g| {
+                    let knee = solved.middle;
+                    let above = Vec3::new(knee.x, knee.y + leg.size, knee.z);
+                    g.cast_down_point(above, 2.0 * leg.size)
+                        .map_or(f32::NEG_INFINITY, |hit| {
+                            hit.y + live.knee_radius - body.translation.y
+                        })
+                });
+                let middle = knee_above(root, to_body(solved.middle), end, up, floor);
+                let upper = (middle - root).normalize_or(live.rest_upper);
+                let lower = (end - middle).normalize_or(live.rest_lower);
+                let (hip, knee) = live.hinge.rotations((upper, lower));
+                let hip_world =
+                    Affine3A::from_rotation_translation(body.rotation * hip, solved.root);
+                self.local[j] = parent.map_or(hip_world, |p| p.inverse() * hip_world);
+                let (knee_joint, foot_joint) = (j + 1, j + 2);
+                self.local[knee_joint] =
+                    Affine3A::from_rotation_translation(knee, self.rest_local[knee_joint]);
+                // The sole flat on the ground: level, turned with the heading, tilted to the
+                // ground's normal.
+                let sole = rotation_arc(Vec3::Y, state.normal) * heading;
+                let foot_rotation = ((body.rotation * hip * knee).inverse() * sole).normalize();
+                self.local[foot_joint] =
+                    Affine3A::from_rotation_translation(foot_rotation, self.rest_local[foot_joint]);
+            }
+            let local = &self.local[j];
+            self.world[j] = match parent {
+                // Most joints only sit at their rest offset: a translation within the parent.
+                Some(p) if self.turns[j] => p * *local,
+                Some(p) => Affine3A {
+                    matrix3: p.matrix3,
+                    translation: p.transform_point3a(local.translation),
+                },
+                None => *local,
+            };
+        }
+        for ((skin, world), &rest) in self
+            .skinning
+            .iter_mut()
+            .zip(&self.world)
+            .zip(&self.rest_position)
+        {
+            // world × translation(−rest), the inverse bind matrix.
+            *skin = Mat4::from(Affine3A {
+                matrix3: world.matrix3,
+                translation: world.translation - world.matrix3 * Vec3A::from(rest),
+            });
+        }
+    }
+
+    /// Where the creature stands (x, z) and the ground height its body follows (y).
+    #[must_use]
+    pub const fn position(&self) -> Vec3 {
+        self.position
+    }
+
+    /// The creature's heading, radians about +Y from +Z.
+    #[must_use]
+    pub const fn heading(&self) -> f32 {
+        self.heading
+    }
+
+    /// The fastest the creature turns (rad/s): a quarter turn a second, slower for a long body
+    /// whose end feet would otherwise sweep round faster than it walks (as its `turn` clip).
+    #[must_use]
+    pub const fn max_turn_rate(&self) -> f32 {
+        self.max_turn_rate
+    }
+
+    /// Each joint's transform in its parent's frame (the root's in the world), as a glTF
+    /// node's TRS.
+    #[must_use]
+    pub fn local_transforms(&self) -> &[Affine3A] {
+        &self.local
+    }
+
+    /// Each joint's transform in the world.
+    #[must_use]
+    pub fn world_transforms(&self) -> &[Affine3A] {
+        &self.world
+    }
+
+    /// Each joint's skinning matrix: its world transform times its inverse bind matrix
+    /// ([`Skeleton::inverse_bind_matrices`](crate::d3::Skeleton::inverse_bind_matrices)), so
+    /// a vertex at its rest position `p` goes to `Σ wᵢ Mᵢ p`.
+    #[must_use]
+    pub fn skinning_matrices(&self) -> &[Mat4] {
+        &self.skinning
+    }
+
+    /// The gait controller driving the legs (its leg states, metrics and body reaction).
+    #[must_use]
+    pub const fn controller(&self) -> &Controller {
+        &self.controller
+    }
+}
+
+/// The longest time step an update takes: a longer one (a frame hitch) is taken as this.
+pub const MAX_STEP: f32 = 0.1;
+
+/// How fast the body follows the terrain's height and slope (seconds, the time constant).
+const TERRAIN_TIME: f32 = 0.15;
+
+/// How fast the neck and tail bend follows the turn rate (seconds).
+const TURN_BEND_TIME: f32 = 0.3;
+
+/// Turn rate (rad/s) per radian a [`Intent::GoTo`] target is off the heading.
+const TURN_GAIN: f32 = 2.0;
+
+/// The most the body leans with the terrain (radians): 30°.
+const MAX_LEAN: f32 = core::f32::consts::FRAC_PI_6;
+
+/// The share `1 − e^(−dt/τ)` of the way a first-order follower goes in `dt`.
+fn smoothing(dt: f32, tau: f32) -> f32 {
+    1.0 - crate::math::exp(-dt / tau)
+}
+
+/// `angle` wrapped into `[-π, π)`.
+fn wrap(angle: f32) -> f32 {
+    use core::f32::consts::{PI, TAU};
+    angle - TAU * crate::math::floor_f((angle + PI) / TAU)
+}
+
+/// The joints ordered parents first (by their depth below the root).
+fn parents_first(parents: &[Option<usize>]) -> Result<Vec<usize>, Error> {
+    let n = parents.len();
+    let mut depth = alloc::vec![0usize; n];
+    for (joint, depth) in depth.iter_mut().enumerate() {
+        let mut at = joint;
+        while let Some(parent) = parents[at] {
+            if parent >= n || *depth >= n {
+                return Err(Error::BadParent {
+                    bone: at,
+                    parent: Some(parent),
+                });
+            }
+            at = parent;
+            *depth += 1;
+        }
+    }
+    let mut order: Vec<usize> = (0..n).collect();
+    order.sort_by_key(|&j| depth[j]);
+    Ok(order)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn angles_wrap_into_one_turn_about_zero() {
+        use core::f32::consts::PI;
+        for (angle, wrapped) in [
+            (0.0, 0.0),
+            (1.0, 1.0),
+            (PI + 0.5, 0.5 - PI),
+            (-PI - 0.5, PI - 0.5),
+            (7.0 * PI, -PI),
+        ] {
+            assert!(
+                (wrap(angle) - wrapped).abs() < 1e-5,
+                "{angle} → {}",
+                wrap(angle)
+            );
+        }
+    }
+
+    #[test]
+    fn joints_are_ordered_parents_first_and_a_cycle_is_an_error() {
+        // 0 ← 2 ← 1 ← 3: the parents come after their children in the list.
+        let order = parents_first(&[None, Some(2), Some(0), Some(1)]).unwrap();
+        assert_eq!(order, [0, 2, 1, 3]);
+        assert!(matches!(
+            parents_first(&[None, Some(2), Some(1)]),
+            Err(Error::BadParent { .. })
+        ));
+        assert!(matches!(
+            parents_first(&[Some(5)]),
+            Err(Error::BadParent { .. })
+        ));
+    }
+
+    #[test]
+    fn a_go_to_turns_toward_the_target_and_stops_on_arrival() {
+        let walker = crate::d3::generate(
+            3,
+            &crate::d3::Params::DEFAULT
+                .with_kind(crate::d3::Kind::Walker)
+                .with_clips(false),
+        )
+        .unwrap();
+        let animator = Animator::new(&walker).unwrap();
+        // A target to the right (+X): a positive turn, toward +X from +Z.
+        let (_, turn) = animator.wanted(Intent::GoTo(Vec3::X * 10.0)).unwrap();
+        assert!(turn > 0.0);
+        // Straight ahead: no turn, full speed.
+        let (velocity, turn) = animator
+            .wanted(Intent::GoTo(Vec3::Z * 10.0 * walker.length))
+            .unwrap();
+        assert_eq!(turn, 0.0);
+        assert!((velocity.length() - walker.speed).abs() < 1e-4 * walker.speed);
+        // Within the arrival radius: stand.
+        let near = Vec3::Z * 0.1 * walker.length;
+        assert_eq!(
+            animator.wanted(Intent::GoTo(near)).unwrap(),
+            (Vec3::ZERO, 0.0)
+        );
+        // A move faster than twice the creature's speed is slowed to that.
+        let fast = Intent::Move {
+            velocity: Vec3::Z * 1e6,
+            turn_rate: 1e6,
+        };
+        let (velocity, turn) = animator.wanted(fast).unwrap();
+        assert!((velocity.length() - 2.0 * walker.speed).abs() < 1e-3 * walker.speed);
+        assert_eq!(turn, animator.max_turn_rate());
+    }
+}

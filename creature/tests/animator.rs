@@ -1,0 +1,225 @@
+//! The live animator through the public API: walkers crossing flat ground and procedural
+//! terrain to a target, measured on the skinned output (the joints' world transforms and the
+//! mesh skinned by the skinning matrices, as a GPU would), and bad input.
+
+#![allow(clippy::unwrap_used)]
+
+use creature::d3::{self, Animator, Intent, Kind};
+use creature::gait::{Ground, Plane};
+use creature::glam::{Vec3, Vec4Swizzles};
+use creature::terrain::{TerrainParams, terrain};
+
+fn walker(seed: u64) -> d3::Creature {
+    d3::generate(
+        seed,
+        &d3::Params::DEFAULT
+            .with_kind(Kind::Walker)
+            .with_clips(false),
+    )
+    .unwrap()
+}
+
+/// The mesh skinned by the animator's skinning matrices (linear blend, as a vertex shader).
+fn skinned(c: &d3::Creature, animator: &Animator) -> Vec<Vec3> {
+    let m = animator.skinning_matrices();
+    c.mesh
+        .positions
+        .iter()
+        .zip(&c.mesh.joints)
+        .zip(&c.mesh.weights)
+        .map(|((&p, js), ws)| {
+            js.iter()
+                .zip(ws)
+                .map(|(&j, &w)| w * (m[usize::from(j)] * p.extend(1.0)).xyz())
+                .sum()
+        })
+        .collect()
+}
+
+/// The world positions of the walker's foot joints, and whether each foot is planted.
+fn feet(c: &d3::Creature, animator: &Animator) -> Vec<(Vec3, bool)> {
+    let setup = c.gait.as_ref().unwrap();
+    let world = animator.world_transforms();
+    setup
+        .hip_joints
+        .iter()
+        .zip(animator.controller().leg_states())
+        .zip(&setup.legs)
+        .filter(|(_, leg)| leg.kind == creature::gait::LimbKind::Leg)
+        .map(|((&hip, state), _)| (Vec3::from(world[hip + 2].translation), state.planted))
+        .collect()
+}
+
+fn height<G: Ground>(ground: &G, p: Vec3) -> f32 {
+    ground
+        .cast_down_point(Vec3::new(p.x, 1e4, p.z), 2e4)
+        .unwrap()
+        .y
+}
+
+/// Walks `c` from the origin to `target` (10 body lengths away) on `ground`, checking every
+/// frame the feet as posed (none below the surface, the planted ones on it) and every fifth
+/// frame the body as skinned (no vertex on spine joints only in the ground); panics unless it
+/// arrives within 4 minutes.
+fn walks_to<G: Ground>(c: &d3::Creature, ground: &G, target: Vec3, label: &str) {
+    let body: Vec<bool> = c
+        .mesh
+        .joints
+        .iter()
+        .zip(&c.mesh.weights)
+        .map(|(js, ws)| {
+            js.iter().zip(ws).all(|(&j, &w)| {
+                w == 0.0 || c.skeleton.joints[usize::from(j)].part == d3::Part::Spine
+            })
+        })
+        .collect();
+    let mut animator = Animator::new(c).unwrap().with_pose(Vec3::ZERO, 0.0);
+    for frame in 0..30 * 240 {
+        animator
+            .update(1.0 / 30.0, Intent::GoTo(target), ground)
+            .unwrap();
+        for (foot, planted) in feet(c, &animator) {
+            let under = height(ground, foot);
+            assert!(
+                foot.y > under - 0.005 * c.length,
+                "{label} frame {frame}: foot {foot} under the ground at {under}"
+            );
+            if planted {
+                assert!(
+                    (foot.y - under).abs() < 0.01 * c.length,
+                    "{label} frame {frame}: planted foot {foot}, ground {under}"
+                );
+            }
+        }
+        if frame % 5 == 0 {
+            for (v, p) in skinned(c, &animator).into_iter().enumerate() {
+                if body[v] {
+                    let under = height(ground, p);
+                    assert!(
+                        p.y > under - 0.005 * c.length,
+                        "{label} frame {frame}: body vertex {v} at {p} in the ground at {under}"
+                    );
+                }
+            }
+        }
+        let p = animator.position();
+        if Vec3::new(p.x, 0.0, p.z).distance(target) < 0.3 * c.length {
+            return;
+        }
+    }
+    panic!("{label}: stopped at {}", animator.position());
+}
+
+#[test]
+fn a_walker_reaches_a_target_on_flat_ground_with_its_feet_planted_on_it() {
+    for seed in [1, 2, 3] {
+        let c = walker(seed);
+        let target = Vec3::new(6.0 * c.length, 0.0, 8.0 * c.length);
+        walks_to(&c, &Plane::GROUND, target, &format!("seed {seed}"));
+    }
+}
+
+#[test]
+fn skinning_matrices_pose_the_mesh_as_the_joints_world_transforms() {
+    let c = walker(4);
+    let mut animator = Animator::new(&c).unwrap();
+    for _ in 0..20 {
+        let intent = Intent::Move {
+            velocity: Vec3::Z * c.speed,
+            turn_rate: 0.3,
+        };
+        animator.update(1.0 / 30.0, intent, &Plane::GROUND).unwrap();
+    }
+    // Each joint's skinning matrix takes its rest position to its world position.
+    for ((m, w), j) in animator
+        .skinning_matrices()
+        .iter()
+        .zip(animator.world_transforms())
+        .zip(&c.skeleton.joints)
+    {
+        let moved = (*m * j.position.extend(1.0)).xyz();
+        assert!(moved.distance(w.translation.into()) < 1e-3 * c.length);
+    }
+    assert!(skinned(&c, &animator).iter().all(|p| p.is_finite()));
+}
+
+#[test]
+fn a_walker_crosses_hilly_stepped_terrain_to_a_target_feet_on_the_surface() {
+    // Slopes up to 30°, steps up to a quarter of the leg's length.
+    for (seed, slope) in [(11, 12.0), (12, 20.0), (13, 30.0)] {
+        let c = walker(seed);
+        let setup = c.gait.as_ref().unwrap();
+        let leg = setup
+            .legs
+            .iter()
+            .map(|l| l.size)
+            .fold(f32::INFINITY, f32::min);
+        let params = TerrainParams::DEFAULT
+            .with_extent(40.0 * c.length, 321)
+            .with_hills(0.8 * c.length, 6.0 * c.length)
+            .with_slope(slope)
+            .with_steps(0.25 * leg, 3.0 * c.length);
+        let ground = terrain(seed, &params).unwrap();
+        let target = Vec3::new(6.0 * c.length, 0.0, 8.0 * c.length);
+        walks_to(&c, &ground, target, &format!("seed {seed}, slope {slope}°"));
+    }
+}
+
+#[test]
+fn bad_time_steps_and_intents_are_errors_and_leave_the_pose() {
+    let c = walker(5);
+    let mut animator = Animator::new(&c).unwrap();
+    animator
+        .update(1.0 / 30.0, Intent::Stand, &Plane::GROUND)
+        .unwrap();
+    let before = animator.skinning_matrices().to_vec();
+    for dt in [f32::NAN, f32::INFINITY, -1.0] {
+        assert!(animator.update(dt, Intent::Stand, &Plane::GROUND).is_err());
+    }
+    for intent in [
+        Intent::GoTo(Vec3::NAN),
+        Intent::Move {
+            velocity: Vec3::new(f32::INFINITY, 0.0, 0.0),
+            turn_rate: 0.0,
+        },
+        Intent::Move {
+            velocity: Vec3::ZERO,
+            turn_rate: f32::NAN,
+        },
+    ] {
+        assert!(animator.update(1.0 / 30.0, intent, &Plane::GROUND).is_err());
+    }
+    assert_eq!(animator.skinning_matrices(), &before[..]);
+    // A zero and a huge time step are fine (the huge one taken as `MAX_STEP`).
+    for dt in [0.0, 1e6] {
+        animator
+            .update(dt, Intent::GoTo(Vec3::Z * 100.0), &Plane::GROUND)
+            .unwrap();
+        assert!(animator.skinning_matrices().iter().all(|m| m.is_finite()));
+    }
+}
+
+#[test]
+fn the_same_updates_give_the_same_pose() {
+    let c = walker(6);
+    let run = || {
+        let mut a = Animator::new(&c).unwrap();
+        for k in 0..90 {
+            let intent = Intent::Move {
+                velocity: Vec3::new(0.2, 0.0, 1.0) * c.speed,
+                turn_rate: if k < 45 { 0.5 } else { -0.5 },
+            };
+            a.update(1.0 / 30.0, intent, &Plane::GROUND).unwrap();
+        }
+        a.skinning_matrices().to_vec()
+    };
+    assert_eq!(run(), run());
+}
+
+#[test]
+fn fliers_and_swimmers_have_no_walking_animator() {
+    for kind in [Kind::Flier, Kind::Swimmer] {
+        let c = d3::generate(1, &d3::Params::DEFAULT.with_kind(kind).with_clips(false)).unwrap();
+        assert_eq!(Animator::new(&c).err(), Some(creature::Error::NoGait));
+    }
+}

@@ -8,6 +8,7 @@
 //! cargo run --release --example generate -- --seed 7 --out out/
 //! cargo run --release --example generate -- --kind walker --count 16 --out out/
 //! cargo run --release --example generate -- --kind walker --in-place --seed 7 --out out/
+//! cargo run --release --example generate -- --kind walker --terrain 3 --seed 7 --out out/
 //! cargo run --release --example generate -- --dim 2d --seed 7 --out out/
 //! cargo run --release --example generate -- --help
 //! ```
@@ -15,7 +16,9 @@
 //! Options: `--dim 3d|2d` (default 3d), `--kind walker|flier|swimmer|random` (3D, default
 //! random), `--count N` (default 1), `--seed N` (default 0), `--out DIR` (default `out/`),
 //! `--texture-size N` (2D, default 256), `--bones` (2D: draw the bones on the PNG),
-//! `--threads N` (default: every core), `--dry-run` (generate and encode, write nothing).
+//! `--in-place` (3D), `--terrain SEED` (3D walkers: a walk over procedural terrain, the terrain
+//! in the file), `--threads N` (default: every core), `--dry-run` (generate and encode, write
+//! nothing).
 
 #![allow(clippy::std_instead_of_core, clippy::std_instead_of_alloc)]
 
@@ -28,6 +31,8 @@ use std::time::Instant;
 
 use clap::{CommandFactory, Parser, ValueEnum};
 use creature::export::{self, PreviewOptions};
+use creature::glam;
+use creature::terrain::{TerrainParams, terrain, terrain_mesh};
 use creature::{d2, d3, generate, generate_2d};
 use indicatif::{ProgressBar, ProgressState, ProgressStyle};
 use rayon::prelude::*;
@@ -63,6 +68,11 @@ struct Args {
     /// loop them as they are; the default keeps root motion, as engines want it.
     #[arg(long)]
     in_place: bool,
+    /// 3D walkers: instead of the flat-ground clips, bake `walk_to`, a walk from the origin to
+    /// a point 10 body lengths away over procedural terrain drawn from this seed (hills,
+    /// a 12° slope, steps), and put the terrain in the `.glb` as a second node.
+    #[arg(long, value_name = "SEED")]
+    terrain: Option<u64>,
     /// Worker threads for `--count` (default: every core, or `RAYON_NUM_THREADS`).
     #[arg(long, value_name = "N")]
     threads: Option<NonZeroUsize>,
@@ -112,6 +122,7 @@ struct Job<'a> {
     params: d3::Params,
     params_2d: d2::Params,
     bones: bool,
+    terrain: Option<u64>,
     out: &'a Path,
     /// One creature: files are `creature.*`, not named by seed.
     single: bool,
@@ -163,9 +174,11 @@ fn run(args: &Args, end: u64) -> Result<bool, String> {
         dim: args.dim,
         params: d3::Params::DEFAULT
             .with_kind(args.kind.into())
-            .with_in_place(args.in_place),
+            .with_in_place(args.in_place)
+            .with_clips(args.terrain.is_none()),
         params_2d: d2::Params::DEFAULT.with_texture_size(args.texture_size),
         bones: args.bones,
+        terrain: args.terrain,
         out: &args.out,
         single: args.count == 1,
         write: !args.dry_run,
@@ -242,8 +255,24 @@ fn make_3d(seed: u64, job: &Job<'_>) -> Result<String, String> {
     let start = Instant::now();
     let creature = generate(seed, &job.params).map_err(err)?;
     let elapsed = start.elapsed();
-    let clips = &creature.clips;
-    let glb = export::glb_3d(&creature, clips).map_err(err)?;
+    let walk_to;
+    let (clips, glb) = match job.terrain {
+        None => (
+            &creature.clips[..],
+            export::glb_3d(&creature, &creature.clips).map_err(err)?,
+        ),
+        Some(terrain_seed) => {
+            let (clip, ground) = walk_over_terrain(&creature, terrain_seed).map_err(err)?;
+            walk_to = [if job.params.in_place {
+                clip.in_place()
+            } else {
+                clip
+            }];
+            let glb = export::glb_3d_on_terrain(&creature, &walk_to, &terrain_mesh(&ground))
+                .map_err(err)?;
+            (&walk_to[..], glb)
+        }
+    };
     let image = export::preview_3d(&creature, 256).map_err(err)?;
     let png = export::image_png(&image).map_err(err)?;
     let kind = format!("{:?}", creature.kind).to_lowercase();
@@ -264,6 +293,32 @@ fn make_3d(seed: u64, job: &Job<'_>) -> Result<String, String> {
         elapsed.as_secs_f64() * 1e3,
         glb_path.display()
     ))
+}
+
+/// `--terrain`: terrain from `seed` sized to `walker` (hills half its length high, a 12°
+/// slope, steps a fifth of its shortest leg high), and its walk from the origin to a point 10
+/// body lengths away over it.
+fn walk_over_terrain(
+    walker: &d3::Creature,
+    seed: u64,
+) -> Result<(d3::Clip, creature::gait::HeightField), creature::Error> {
+    let length = walker.length;
+    let leg = walker
+        .gait
+        .as_ref()
+        .ok_or(creature::Error::NoGait)?
+        .legs
+        .iter()
+        .map(|l| l.size)
+        .fold(f32::INFINITY, f32::min);
+    let params = TerrainParams::DEFAULT
+        .with_extent(24.0 * length, 193)
+        .with_hills(0.5 * length, 6.0 * length)
+        .with_slope(12.0)
+        .with_steps(0.2 * leg, 3.0 * length);
+    let ground = terrain(seed, &params)?;
+    let clip = walker.bake_walk_to(&ground, glam::Vec3::new(6.0, 0.0, 8.0) * length, 120.0)?;
+    Ok((clip, ground))
 }
 
 fn make_2d(seed: u64, job: &Job<'_>) -> Result<String, String> {

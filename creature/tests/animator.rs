@@ -57,6 +57,22 @@ fn height<G: Ground>(ground: &G, p: Vec3) -> f32 {
         .y
 }
 
+/// A foot joint at `foot` is never below `ground` (by 0.5% of the body `length`), and on it
+/// (within 1%) when `planted`.
+fn foot_on<G: Ground>(ground: &G, foot: Vec3, planted: bool, length: f32, label: &str) {
+    let under = height(ground, foot);
+    assert!(
+        foot.y > under - 0.005 * length,
+        "{label}: foot {foot} under the ground at {under}"
+    );
+    if planted {
+        assert!(
+            (foot.y - under).abs() < 0.01 * length,
+            "{label}: planted foot {foot}, ground {under}"
+        );
+    }
+}
+
 /// Walks `c` from the origin to `target` (10 body lengths away) on `ground`, checking every
 /// frame the feet as posed (none below the surface, the planted ones on it) and every fifth
 /// frame the body as skinned (no vertex on spine joints only in the ground); panics unless it
@@ -79,17 +95,13 @@ fn walks_to<G: Ground>(c: &d3::Creature, ground: &G, target: Vec3, label: &str) 
             .update(1.0 / 30.0, Intent::GoTo(target), ground)
             .unwrap();
         for (foot, planted) in feet(c, &animator) {
-            let under = height(ground, foot);
-            assert!(
-                foot.y > under - 0.005 * c.length,
-                "{label} frame {frame}: foot {foot} under the ground at {under}"
+            foot_on(
+                ground,
+                foot,
+                planted,
+                c.length,
+                &format!("{label} frame {frame}"),
             );
-            if planted {
-                assert!(
-                    (foot.y - under).abs() < 0.01 * c.length,
-                    "{label} frame {frame}: planted foot {foot}, ground {under}"
-                );
-            }
         }
         if frame % 5 == 0 {
             for (v, p) in skinned(c, &animator).into_iter().enumerate() {
@@ -222,4 +234,67 @@ fn fliers_and_swimmers_have_no_walking_animator() {
         let c = d3::generate(1, &d3::Params::DEFAULT.with_kind(kind).with_clips(false)).unwrap();
         assert_eq!(Animator::new(&c).err(), Some(creature::Error::NoGait));
     }
+}
+
+#[test]
+fn a_walk_baked_over_terrain_keeps_its_planted_feet_on_it_as_a_viewer_plays_it() {
+    // The clip as exported, posed by forward kinematics frame by frame (`Creature::pose`).
+    for seed in [21, 22] {
+        let c = walker(seed);
+        let params = TerrainParams::DEFAULT
+            .with_extent(30.0 * c.length, 241)
+            .with_hills(0.6 * c.length, 6.0 * c.length)
+            .with_slope(15.0);
+        let ground = terrain(seed, &params).unwrap();
+        let target = Vec3::new(6.0, 0.0, 8.0) * c.length;
+        let clip = c.bake_walk_to(&ground, target, 240.0).unwrap();
+        let end = clip.root_translation[clip.frames - 1];
+        assert!(
+            Vec3::new(end.x - target.x, 0.0, end.z - target.z).length() < c.length,
+            "seed {seed}: ends at {end} after {} frames",
+            clip.frames
+        );
+        let setup = c.gait.as_ref().unwrap();
+        for f in 0..clip.frames {
+            let pose = c.pose(&clip, f);
+            for ((&hip, &planted), leg) in setup
+                .hip_joints
+                .iter()
+                .zip(&clip.contacts[f])
+                .zip(&setup.legs)
+            {
+                if leg.kind != creature::gait::LimbKind::Leg {
+                    continue;
+                }
+                let foot = Vec3::from(pose[hip + 2].translation);
+                foot_on(
+                    &ground,
+                    foot,
+                    planted,
+                    c.length,
+                    &format!("seed {seed} frame {f}"),
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn baking_a_walk_to_a_target_checks_its_input() {
+    let c = walker(8);
+    for seconds in [0.0, -1.0, f32::NAN, 1e4] {
+        assert!(matches!(
+            c.bake_walk_to(&Plane::GROUND, Vec3::Z, seconds),
+            Err(creature::Error::OutOfRange { .. })
+        ));
+    }
+    assert!(matches!(
+        c.bake_walk_to(&Plane::GROUND, Vec3::NAN, 10.0),
+        Err(creature::Error::NonFinite { .. })
+    ));
+    let fish = d3::generate(1, &d3::Params::DEFAULT.with_kind(Kind::Swimmer)).unwrap();
+    assert_eq!(
+        fish.bake_walk_to(&Plane::GROUND, Vec3::Z, 10.0).err(),
+        Some(creature::Error::NoGait)
+    );
 }

@@ -53,3 +53,34 @@ fn glb_3d_is_a_well_formed_skinned_container() {
         }
     }
 }
+
+#[test]
+fn glb_3d_on_terrain_adds_the_terrain_as_a_second_node() {
+    use creature::glam::Vec3;
+    use creature::terrain::{TerrainParams, terrain, terrain_mesh};
+    let c = generate(
+        7,
+        &d3::Params::DEFAULT
+            .with_kind(d3::Kind::Walker)
+            .with_clips(false),
+    )
+    .unwrap();
+    let ground = terrain(7, &TerrainParams::DEFAULT.with_extent(20.0, 41)).unwrap();
+    let clip = c.bake_walk_to(&ground, Vec3::Z * 2.0, 20.0).unwrap();
+    let mesh = terrain_mesh(&ground);
+    let clips = [clip];
+    let glb = export::glb_3d_on_terrain(&c, &clips, &mesh).unwrap();
+    let json_len = u32_at(&glb, 12) as usize;
+    let json = String::from_utf8(glb[20..20 + json_len].to_vec()).unwrap();
+    // The terrain's material, mesh and node; the creature's scene lists three nodes.
+    assert_eq!(json.matches("\"name\":\"terrain\"").count(), 3, "{json}");
+    assert!(json.contains("\"name\":\"walk_to\""));
+    assert!(glb.len() > export::glb_3d(&c, &clips).unwrap().len());
+    // A broken terrain mesh is an error.
+    let mut broken = mesh.clone();
+    broken.triangles[0][1] = u32::MAX;
+    assert!(export::glb_3d_on_terrain(&c, &clips, &broken).is_err());
+    let mut empty = mesh;
+    empty.triangles.clear();
+    assert!(export::glb_3d_on_terrain(&c, &clips, &empty).is_err());
+}

@@ -802,6 +802,11 @@ fn gltf(w: &Workspace) -> Result<(), String> {
     c.args(["--kind", "random", "--count", "8", "--seed", "100", "--out"]);
     c.arg(dir.join("3d"));
     run(c)?;
+    // A walker crossing procedural terrain, the terrain a second node of its file.
+    let mut c = example(w, "generate");
+    c.args(["--kind", "walker", "--seed", "7", "--terrain", "3", "--out"]);
+    c.arg(dir.join("terrain"));
+    run(c)?;
     verify_gltf(w, &dir)
 }
 

@@ -12,6 +12,7 @@ use super::gltf::{
 use crate::Error;
 use crate::d3::Clip;
 use crate::d3::Creature;
+use crate::terrain::TerrainMesh;
 
 /// A 3D creature as a glTF 2.0 binary (`.glb`): one skinned mesh (positions, unit normals,
 /// `COLOR_0` vertex colours, `JOINTS_0` as unsigned shorts, `WEIGHTS_0` as normalised unsigned
@@ -37,6 +38,56 @@ use crate::d3::Creature;
 /// [`Error::Export`] when the mesh is empty, its attributes disagree, an index or joint is out
 /// of range, a clip's tracks do not have one value per frame, or encoding fails.
 pub fn glb_3d(creature: &Creature, clips: &[Clip]) -> Result<Vec<u8>, Error> {
+    scene(creature, clips, None)
+}
+
+/// [`glb_3d`] with the ground it walks on: `terrain` (for example
+/// [`terrain_mesh`](crate::terrain::terrain_mesh) of the height field a clip was baked on with
+/// [`Creature::bake_walk_to`]) as a second mesh node, `terrain`, unskinned, with an earthy
+/// single-sided material, so a viewer shows the feet on the ground.
+///
+/// ```
+/// use creature::d3::{generate, Kind, Params};
+/// use creature::export;
+/// use creature::glam::Vec3;
+/// use creature::terrain::{terrain, terrain_mesh, TerrainParams};
+///
+/// let walker = generate(7, &Params::DEFAULT.with_kind(Kind::Walker).with_clips(false))?;
+/// let hills = terrain(7, &TerrainParams::DEFAULT)?;
+/// let walk = walker.bake_walk_to(&hills, Vec3::new(0.0, 0.0, 2.0) * walker.length, 20.0)?;
+/// let glb = export::glb_3d_on_terrain(&walker, &[walk], &terrain_mesh(&hills))?;
+/// assert_eq!(&glb[0..4], b"glTF");
+/// # Ok::<(), creature::Error>(())
+/// ```
+///
+/// # Errors
+/// As [`glb_3d`]; [`Error::Export`] too when the terrain has no triangles, its normals are not
+/// one per vertex, a triangle's index is out of range or a position is not finite.
+pub fn glb_3d_on_terrain(
+    creature: &Creature,
+    clips: &[Clip],
+    terrain: &TerrainMesh,
+) -> Result<Vec<u8>, Error> {
+    let n = terrain.positions.len();
+    if terrain.triangles.is_empty()
+        || terrain.normals.len() != n
+        || terrain.triangles.iter().flatten().any(|&i| i as usize >= n)
+        || !terrain.positions.iter().all(|p| p.is_finite())
+    {
+        return Err(export_error(
+            "glb",
+            "the terrain mesh needs triangles indexing its vertices, finite positions and one normal per vertex",
+        ));
+    }
+    scene(creature, clips, Some(terrain))
+}
+
+/// The `.glb` of [`glb_3d`], with `terrain` (checked) as a second mesh node if given.
+fn scene(
+    creature: &Creature,
+    clips: &[Clip],
+    terrain: Option<&TerrainMesh>,
+) -> Result<Vec<u8>, Error> {
     let m = &creature.mesh;
     let n = m.positions.len();
     let joint_count = creature.skeleton.joints.len();
@@ -156,15 +207,66 @@ pub fn glb_3d(creature: &Creature, clips: &[Clip]) -> Result<Vec<u8>, Error> {
         name: Some("creature".into()),
         ..Default::default()
     });
+    let mut nodes = vec![root_node, mesh_node];
+    if let Some(terrain) = terrain {
+        nodes.push(terrain_node(&mut root, &mut bin, terrain));
+    }
     let scene = root.push(json::Scene {
         name: Some("creature".into()),
-        nodes: vec![root_node, mesh_node],
+        nodes,
         extensions: None,
         extras: Default::default(),
     });
     root.scene = Some(scene);
 
     bin.into_glb(root)
+}
+
+/// The terrain as an unskinned mesh node: positions, unit normals and triangles, with an
+/// earthy material.
+fn terrain_node(
+    root: &mut json::Root,
+    bin: &mut Bin,
+    terrain: &TerrainMesh,
+) -> json::Index<json::Node> {
+    use json::accessor::Type as T;
+    let positions = bin.positions(root, &terrain.positions);
+    let normals = bin.floats(
+        root,
+        terrain
+            .normals
+            .iter()
+            .flat_map(|v| v.normalize_or(glam::Vec3::Y).to_array()),
+        terrain.normals.len(),
+        T::Vec3,
+    );
+    let indices = bin.indices(root, &terrain.triangles);
+    let mut material = json::Material {
+        name: Some("terrain".into()),
+        ..Default::default()
+    };
+    material.pbr_metallic_roughness.base_color_factor =
+        json::material::PbrBaseColorFactor([0.42, 0.37, 0.28, 1.0]);
+    material.pbr_metallic_roughness.metallic_factor = json::material::StrengthFactor(0.0);
+    material.pbr_metallic_roughness.roughness_factor = json::material::StrengthFactor(1.0);
+    let material = root.push(material);
+    let mesh = push_mesh(
+        root,
+        &[
+            (json::mesh::Semantic::Positions, positions),
+            (json::mesh::Semantic::Normals, normals),
+        ],
+        indices,
+        material,
+    );
+    if let Some(pushed) = root.meshes.get_mut(mesh.value()) {
+        pushed.name = Some("terrain".into());
+    }
+    root.push(json::Node {
+        mesh: Some(mesh),
+        name: Some("terrain".into()),
+        ..Default::default()
+    })
 }
 
 /// One clip as a glTF animation (see [`AnimationBuilder`]): the root's translation and

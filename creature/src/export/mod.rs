@@ -54,7 +54,7 @@ mod svg;
 pub use glb2d::glb_2d;
 #[cfg(feature = "export")]
 #[cfg_attr(docsrs, doc(cfg(feature = "export")))]
-pub use glb3d::glb_3d;
+pub use glb3d::{glb_3d, glb_3d_on_terrain};
 #[cfg(feature = "export")]
 #[cfg_attr(docsrs, doc(cfg(feature = "export")))]
 pub use preview2d::{PreviewOptions, preview_2d, preview_2d_png};

@@ -11,6 +11,7 @@ use creature_gait::{Controller, Ground, LimbKind, Pose};
 use super::floor::knee_above;
 use super::kinematics::{Hinge, rotation_arc};
 use super::walk::turn_bend_total;
+use super::{CLIP_FPS, Clip, Track};
 use crate::Error;
 use crate::d3::Creature;
 
@@ -564,6 +565,105 @@ fn parents_first(parents: &[Option<usize>]) -> Result<Vec<usize>, Error> {
     let mut order: Vec<usize> = (0..n).collect();
     order.sort_by_key(|&j| depth[j]);
     Ok(order)
+}
+
+impl Creature {
+    /// A clip named `walk_to` of this walker crossing `ground` to `target` (world; its height
+    /// is ignored) from the origin, facing +Z, driven by an [`Animator`] at [`CLIP_FPS`]
+    /// (see [`Intent::GoTo`]): it ends on arrival or after `max_seconds`. Its frames are the
+    /// animator's poses: the root's world transform and the local rotations of the legs' and
+    /// the neck's and tail's joints (and the hips' translations), with each leg's contacts.
+    ///
+    /// ```
+    /// use creature::d3::{generate, Kind, Params};
+    /// use creature::glam::Vec3;
+    /// use creature::terrain::{terrain, TerrainParams};
+    ///
+    /// let walker = generate(7, &Params::DEFAULT.with_kind(Kind::Walker).with_clips(false))?;
+    /// let hills = terrain(7, &TerrainParams::DEFAULT)?;
+    /// let clip = walker.bake_walk_to(&hills, Vec3::new(1.0, 0.0, 3.0) * walker.length, 30.0)?;
+    /// assert_eq!(clip.name, "walk_to");
+    /// assert!(clip.frames > 1);
+    /// # Ok::<(), creature::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// As [`Animator::new`] (a creature without a gait: [`Error::NoGait`]) and
+    /// [`Animator::update`] (a non-finite target); [`Error::OutOfRange`] for `max_seconds`
+    /// outside `[1 / CLIP_FPS, 600]`.
+    pub fn bake_walk_to<G: Ground + ?Sized>(
+        &self,
+        ground: &G,
+        target: Vec3,
+        max_seconds: f32,
+    ) -> Result<Clip, Error> {
+        let min = 1.0 / CLIP_FPS;
+        if !(min..=600.0).contains(&max_seconds) {
+            return Err(Error::OutOfRange {
+                what: "max_seconds",
+                value: max_seconds,
+                min,
+                max: 600.0,
+            });
+        }
+        let mut animator = Animator::new(self)?;
+        let animated: Vec<usize> = (0..animator.turns.len())
+            .filter(|&j| animator.turns[j] && j != animator.root)
+            .collect();
+        let most = (max_seconds * CLIP_FPS) as usize + 1;
+        let mut clip = Clip {
+            name: "walk_to",
+            fps: CLIP_FPS,
+            frames: 0,
+            root_translation: Vec::new(),
+            root_rotation: Vec::new(),
+            tracks: animated
+                .iter()
+                .map(|&joint| Track {
+                    joint,
+                    translations: animator.leg_at[joint].map(|_| Vec::new()),
+                    rotations: Vec::new(),
+                })
+                .collect(),
+            contacts: Vec::new(),
+            loop_error: 0.0,
+        };
+        let arrived = ARRIVAL_RADIUS * self.length;
+        for frame in 0..most {
+            let dt = if frame == 0 { 0.0 } else { 1.0 / CLIP_FPS };
+            animator.update(dt, Intent::GoTo(target), ground)?;
+            let root = animator.local[animator.root];
+            clip.root_translation.push(Vec3::from(root.translation));
+            clip.root_rotation
+                .push(Quat::from_mat3a(&root.matrix3).normalize());
+            for track in &mut clip.tracks {
+                let local = animator.local[track.joint];
+                track
+                    .rotations
+                    .push(Quat::from_mat3a(&local.matrix3).normalize());
+                if let Some(t) = track.translations.as_mut() {
+                    t.push(Vec3::from(local.translation));
+                }
+            }
+            clip.contacts.push(
+                animator
+                    .controller
+                    .leg_states()
+                    .iter()
+                    .map(|s| s.planted)
+                    .collect(),
+            );
+            clip.frames += 1;
+            let at = animator.position;
+            if Vec2::new(target.x - at.x, target.z - at.z).length() <= arrived
+                && animator.controller.all_planted()
+            {
+                break;
+            }
+        }
+        clip.loop_error = super::loop_error(&clip);
+        Ok(clip)
+    }
 }
 
 #[cfg(test)]

@@ -55,7 +55,8 @@ pub const ARRIVAL_RADIUS: f32 = 0.25;
 /// [`HeightField`](creature_gait::HeightField), a [`Plane`](creature_gait::Plane), your own
 /// raycast). Each update runs the gait controller (feet placed by raycasts, steps, the body's
 /// bob, sway and lean), follows the terrain under the feet with the body's height, pitch and
-/// roll, and poses every joint: [`local_transforms`](Self::local_transforms) (each joint in
+/// roll, turns the head to look at an [`Intent::GoTo`] target (else where the body turns), and
+/// poses every joint: [`local_transforms`](Self::local_transforms) (each joint in
 /// its parent's frame, the root in the world), [`world_transforms`](Self::world_transforms)
 /// and [`skinning_matrices`](Self::skinning_matrices) (joint world × inverse bind, for a GPU
 /// skinning shader). An update allocates nothing.
@@ -99,6 +100,9 @@ pub struct Animator {
     /// their limit.
     bends: Vec<(usize, f32, f32)>,
     legs: Vec<LiveLeg>,
+    /// The `head` joint, which turns to look where the body turns or at a
+    /// [`Intent::GoTo`] target.
+    head: Option<usize>,
     /// Per joint, the leg (index into `legs`) whose hip it is.
     leg_at: Vec<Option<usize>>,
     /// Per joint, whether its local transform turns (the root, the legs' joints, the neck's
@@ -155,8 +159,16 @@ impl Animator {
             }
             leg_at[hip] = Some(i);
         }
+        let mut controller = controller;
+        let head = joints.iter().position(|j| j.name == "head");
+        if let Some(head) = head {
+            controller.set_head(rest_position[head])?;
+        }
         let bends = creature.turn_bend_shares();
         let mut turns = alloc::vec![false; n];
+        if let Some(head) = head {
+            turns[head] = true;
+        }
         for &(j, _, _) in &bends {
             turns[j] = true;
         }
@@ -199,6 +211,7 @@ impl Animator {
             rest_position,
             bends,
             legs,
+            head,
             leg_at,
             turns,
             smoothing: (0.0, 0.0, 0.0),
@@ -273,6 +286,21 @@ impl Animator {
         if self.fresh {
             self.controller.reset(pose, ground)?;
         }
+        // The head looks at a target to go to (at the height of its head), else where the body
+        // turns.
+        let look = match intent {
+            Intent::GoTo(target) => Some(Vec3::new(
+                target.x,
+                position.y
+                    + self
+                        .rest_position
+                        .get(self.head.unwrap_or(0))
+                        .map_or(0.0, |p| p.y),
+                target.z,
+            )),
+            _ => None,
+        };
+        self.controller.set_look_target(look)?;
         self.controller
             .update(dt, pose, velocity, Vec3::Y * turn_rate, ground)?;
         self.fresh = false;
@@ -446,6 +474,13 @@ impl Animator {
                 let foot_rotation = ((body.rotation * hip * knee).inverse() * sole).normalize();
                 self.local[foot_joint] =
                     Affine3A::from_rotation_translation(foot_rotation, self.rest_local[foot_joint]);
+            }
+            if Some(j) == self.head {
+                // The look, a rotation in body space, as the head's world rotation.
+                let look = body.rotation * self.controller.look().rotation;
+                let turn = parent.map_or(look, |p| Quat::from_mat3a(&p.matrix3).inverse() * look);
+                self.local[j] =
+                    Affine3A::from_rotation_translation(turn.normalize(), self.rest_local[j]);
             }
             let local = &self.local[j];
             self.world[j] = match parent {

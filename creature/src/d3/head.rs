@@ -284,6 +284,10 @@ fn add_eye(mesh: &mut MeshBuilder, eye: Eye, lid: Vec3, up: Vec3, bind: Bind) {
 /// A cone from `base` (radius `radius`, sunk a little inside along `-axis`) to `base + axis`,
 /// in one colour.
 fn add_cone(mesh: &mut MeshBuilder, base: Vec3, axis: Vec3, radius: f32, colour: Vec3, bind: Bind) {
+    if axis.length_squared() <= 1e-12 {
+        // No length (an `ornament_size` of 0): nothing to add.
+        return;
+    }
     let (x, y) = cross_axes(axis);
     let dir = axis.normalize_or(Vec3::Y);
     let rings = [
@@ -401,10 +405,10 @@ pub(crate) fn add_head(
 ) -> Built {
     let r = mount.radius;
     let s = shape.skull * r;
-    // The skull's back well inside the neck.
+    // The skull's back three-quarters of its half-length inside the neck.
     let frame = Frame::new(mount.tip, mount.forward);
     let frame = Frame {
-        centre: mount.tip + frame.forward * (0.1 * s.z),
+        centre: mount.tip + frame.forward * (0.25 * s.z),
         ..frame
     };
     let bind = Bind::one(mount.joint);

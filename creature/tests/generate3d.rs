@@ -433,3 +433,46 @@ fn a_walk_baked_in_place_stays_where_it_starts_and_steps() {
     assert_eq!(here.contacts, moving.contacts);
     assert_eq!(here, moving.clone().in_place());
 }
+
+#[test]
+fn every_creature_has_a_face_its_eyes_in_view_and_on_the_head_joint() {
+    for kind in [d3::Kind::Walker, d3::Kind::Flier, d3::Kind::Swimmer] {
+        for seed in 0..12 {
+            let params = d3::Params::DEFAULT.with_kind(kind).with_clips(false);
+            let c = generate(seed, &params).unwrap();
+            assert!(
+                c.quality.eyes_in_view >= 2,
+                "{kind:?} {seed}: {:?}",
+                c.quality
+            );
+            if kind == d3::Kind::Swimmer {
+                continue;
+            }
+            // The head's vertices follow the `head` joint alone: every vertex ahead of the
+            // neck tip (`head_end`) that is bound to one joint is bound to `head`.
+            let joints = &c.skeleton.joints;
+            let head = joints.iter().position(|j| j.name == "head").unwrap() as u16;
+            let tip = joints
+                .iter()
+                .find(|j| j.name == "head_end")
+                .unwrap()
+                .position;
+            let parent = joints[usize::from(head)].position;
+            let forward = (tip - parent).normalize();
+            let ahead = c
+                .mesh
+                .positions
+                .iter()
+                .zip(&c.mesh.joints)
+                .filter(|(p, _)| (**p - tip).dot(forward) > 0.0);
+            let mut on_head = 0;
+            for (_, j) in ahead {
+                on_head += usize::from(j[0] == head);
+            }
+            assert!(
+                on_head > 50,
+                "{kind:?} {seed}: {on_head} head vertices ahead of the tip"
+            );
+        }
+    }
+}

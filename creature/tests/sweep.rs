@@ -75,6 +75,13 @@ fn sweep_3d(kind: d3::Kind) {
                         c.quality.belly_contrast
                     ));
                 }
+                // The proxy for a face: its eyes show in the front or side preview.
+                if c.quality.eyes_in_view < 2 {
+                    problems.push(format!(
+                        "{} eyes facing the front or side views, not 2",
+                        c.quality.eyes_in_view
+                    ));
+                }
                 if !problems.is_empty() {
                     failures.push(format!("seed {seed}: {}", problems.join("; ")));
                 }

@@ -328,6 +328,8 @@ pub(crate) struct Colouring {
     wave: f32,
     slant: f32,
     noise: u32,
+    /// The seed of the colouring's own generator, for [`Colouring::head_rng`].
+    seed: u64,
 }
 
 impl Colouring {
@@ -443,7 +445,15 @@ impl Colouring {
             wave: 0.15 + 0.25 * u(),
             slant: u() - 0.5,
             noise: own.next_u32(),
+            seed,
         }
+    }
+
+    /// A generator of its own for the head's shape, seeded from the colouring's seed: the head
+    /// draws nothing from the pipeline's stream, so it can change without changing the body,
+    /// the limbs or the colours.
+    pub(crate) fn head_rng(&self) -> Pcg64Mcg {
+        Pcg64Mcg::seed_from_u64(self.seed ^ 0x4ead_4ead_4ead_4ead)
     }
 
     /// How far toward the belly colour the skin facing `up` (1 back, −1 belly) goes, and how

@@ -124,6 +124,10 @@ pub struct Quality {
     /// those facing up (more than 60° from the sideways, in the rest pose; pattern included),
     /// in `[-1, 1]`; above 0 when the belly is lighter than the back.
     pub belly_contrast: f32,
+    /// Eyes on the head (a swimmer's on its body's front) that face the front or a side view
+    /// in the rest pose: their outward normal more than a little forward (`+z`) or mostly to a
+    /// side. Two or more on every default creature.
+    pub eyes_in_view: u32,
 }
 
 /// A generated 3D creature: plain data.

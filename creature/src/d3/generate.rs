@@ -18,6 +18,7 @@ use super::body::{BASE_RADIUS, base_body, centre_of_volume, pill_triangles};
 use super::clip::MAX_LEG_TURN_RATE;
 use super::colour::{Colouring, body_surface};
 use super::gait::{mean_leg_size, swing_time_for_joints, walk_speed_limit};
+use super::head::{self, Shape};
 use super::limbs::{
     Bind, LegChain, LimbNames, LimbStyle, MeshBuilder, Mount, add_limb, leg_knees, limb_shape,
     socket_point,
@@ -25,15 +26,13 @@ use super::limbs::{
 use super::{GaitSetup, Kind, Params};
 use crate::Error;
 use crate::d3::{Clip, Creature, Joint, Mesh, Part, Quality, Skeleton};
-use crate::math::{cos, sin};
+use crate::math::{asin, cos, sin};
 use crate::rng::{rng_for, uniform};
 use crate::span::Span;
 use rand_pcg::Pcg64Mcg;
 
 /// FFD lattice divisions: 3×3 control points per slice, 11 slices along the body (the seed's).
 const DIVISIONS: [usize; 3] = [2, 2, 10];
-/// Head sphere resolution (rings, segments).
-const HEAD_RES: (usize, usize) = (5, 8);
 
 /// Generates a 3D creature from `seed` the 3D seed's way (thesis §4.1–4.2): a pill body shaped
 /// by three of nine profiles blended with random weights, an FFD 3×3×11 lattice with randomly
@@ -169,9 +168,12 @@ fn generate_kind(rng: &mut Pcg64Mcg, params: &Params, spec: &KindSpec) -> Result
     );
     let mut mesh = skin_body(&rigged, &paint.vertices);
     let head_size = params.head_size.at(uniform(rng));
-    if spec.neck_and_head {
-        add_head(&mut mesh, &rigged.rig, head_size, &colouring)?;
-    }
+    let head = Shape::draw(&mut colouring.head_rng(), params);
+    let face = if spec.neck_and_head {
+        add_head(&mut mesh, &rigged.rig, head_size, &head, &colouring)?
+    } else {
+        add_fish_face(&mut mesh, &rigged.rig, params, &head, &colouring)
+    };
     let ground = ground_under(
         &mesh,
         params.ground_clearance.at(uniform(rng)) * rigged.length,
@@ -213,6 +215,7 @@ fn generate_kind(rng: &mut Pcg64Mcg, params: &Params, spec: &KindSpec) -> Result
         rigged.bend_degrees,
     );
     quality.belly_contrast = paint.contrast;
+    quality.eyes_in_view = face.map_or(0, |f| f.eyes_in_view());
     let mut creature = Creature {
         kind: spec.limbs,
         mesh,
@@ -969,17 +972,18 @@ fn body_width(body: &creature_autorig::Rig, bone: usize) -> f32 {
         .unwrap_or(2.0 * BASE_RADIUS)
 }
 
-/// A low-poly sphere on the neck tip, bound to the last neck bone's joint, countershaded.
+/// The head of `shape` on the neck tip, bound to the `head` joint (the last neck bone's).
 fn add_head(
     mesh: &mut MeshBuilder,
     body: &creature_autorig::Rig,
     size: f32,
+    shape: &Shape,
     colouring: &Colouring,
-) -> Result<(), Error> {
+) -> Result<Option<head::Built>, Error> {
     let spine = &body.spine;
     let n = spine.len();
     if n < 2 {
-        return Ok(());
+        return Ok(None);
     }
     let pos = |j: usize| body.joints[j].position;
     let tip = pos(spine[n - 1]);
@@ -987,28 +991,86 @@ fn add_head(
     let centre_index = root_on_spine(body)?;
     // The body's width at the second neck bone counted from the root.
     let width = body_width(body, centre_index + 1);
-    let radius = 0.5 * width * size;
-    let direction = (tip - pos(carrier)).normalize_or(Vec3::Z);
-    let centre = tip + direction * (0.5 * radius);
-    let (rings, segments) = HEAD_RES;
-    let first = mesh.positions.len() as u32;
-    let bind = Bind::one(carrier as u16);
-    let side = colouring.head(0.0);
-    mesh.vertex(centre - Vec3::Z * radius, side, bind);
-    for i in 0..rings {
-        let phi = core::f32::consts::PI * (i + 1) as f32 / (rings + 1) as f32;
-        let (z, r) = (-cos(phi) * radius, sin(phi) * radius);
-        for k in 0..segments {
-            let a = core::f32::consts::TAU * k as f32 / segments as f32;
-            let colour = colouring.head(sin(a) * sin(phi));
-            mesh.vertex(centre + Vec3::new(r * cos(a), r * sin(a), z), colour, bind);
-        }
+    // The head held nearer level than the neck: a neck raised by `p` (in the body's YZ plane,
+    // past upright on a neck bent back) pitches it by 0.3 `p`, at most 20° down or 25° up.
+    let neck = (tip - pos(carrier)).normalize_or(Vec3::Z);
+    let raised = asin(neck.y.clamp(-1.0, 1.0));
+    let raised = if neck.z < 0.0 {
+        core::f32::consts::PI.copysign(raised) - raised
+    } else {
+        raised
+    };
+    let pitch = (0.3 * raised).clamp(-0.35, 0.44);
+    let mount = head::Mount {
+        tip,
+        forward: Vec3::new(0.0, sin(pitch), cos(pitch)),
+        radius: 0.5 * width * size,
+        joint: carrier as u16,
+    };
+    Ok(Some(head::add_head(mesh, mount, shape, colouring)))
+}
+
+/// A swimmer's face on its body's front (the first `body_vertices` of `mesh`, the pill's:
+/// tail tip, rings, head tip), each part bound as the body vertex nearest it.
+fn add_fish_face(
+    mesh: &mut MeshBuilder,
+    body: &creature_autorig::Rig,
+    params: &Params,
+    shape: &Shape,
+    colouring: &Colouring,
+) -> Option<head::Built> {
+    let (rings, segments) = (params.rings as usize, params.segments as usize);
+    let body_vertices = 2 + rings * segments;
+    let spine = &body.spine;
+    let n = spine.len();
+    if n < 2 || rings < 2 || mesh.positions.len() < body_vertices {
+        return None;
     }
-    mesh.vertex(centre + Vec3::Z * radius, side, bind);
-    for t in pill_triangles(rings, segments) {
-        mesh.indices.push(t.map(|i| i + first));
-    }
-    Ok(())
+    let tip = body.joints[body.head].position;
+    let forward = (tip - body.joints[spine[n - 2]].position).normalize_or(Vec3::Z);
+    // The body as it is now, for the face to find its place and binds on.
+    let positions: Vec<Vec3> = mesh.positions[..body_vertices].to_vec();
+    let binds: Vec<Bind> = (0..body_vertices)
+        .map(|v| Bind::from_arrays(mesh.joints[v], mesh.weights[v]))
+        .collect();
+    let front = positions
+        .iter()
+        .copied()
+        .max_by(|a, b| a.dot(forward).total_cmp(&b.dot(forward)))?;
+    let length = body.spine_length();
+    // The ring about a tenth of the body's length behind the front.
+    let ring_at = |i: usize| {
+        let ring = &positions[1 + i * segments..1 + (i + 1) * segments];
+        let centre = ring.iter().copied().sum::<Vec3>() / segments as f32;
+        (centre, ring)
+    };
+    let target = front.dot(forward) - 0.1 * length;
+    let i = (0..rings).min_by(|&a, &b| {
+        let d = |i: usize| (ring_at(i).0.dot(forward) - target).abs();
+        d(a).total_cmp(&d(b))
+    })?;
+    let (centre, ring) = ring_at(i);
+    let frame = head::Frame::new(centre, forward);
+    let (half_width, half_height) = ring.iter().fold((0.0f32, 0.0f32), |(w, h), &p| {
+        let d = p - centre;
+        (w.max(d.dot(frame.side).abs()), h.max(d.dot(frame.up).abs()))
+    });
+    let front = head::FishFront {
+        tip: front,
+        forward,
+        ring_centre: centre,
+        half_width,
+        half_height,
+    };
+    let nearest = |p: Vec3| {
+        let v = positions
+            .iter()
+            .enumerate()
+            .min_by(|a, b| a.1.distance_squared(p).total_cmp(&b.1.distance_squared(p)))
+            .map_or(0, |(v, _)| v);
+        binds[v]
+    };
+    Some(head::add_fish_face(mesh, front, shape, colouring, nearest))
 }
 
 /// The planner's view of the body: one bone per socket, `along` the arc length at the bone's
@@ -1120,6 +1182,7 @@ fn measure(
         min_triangle_area,
         bend_degrees,
         belly_contrast: 0.0,
+        eyes_in_view: 0,
     }
 }
 

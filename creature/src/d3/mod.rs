@@ -20,6 +20,7 @@ pub(crate) mod colour;
 mod creature;
 mod gait;
 mod generate;
+mod head;
 mod limbs;
 mod params;
 

@@ -88,9 +88,23 @@ pub struct Params {
     /// random per-bone angle of at most `spine_bend / bones`, and never more than half of this
     /// in total. From 0 to 200. Default 200 (the seed's: neither passes 100°).
     pub spine_bend: f32,
-    /// Head sphere radius, × half the body width at the second neck bone. From 0.1 to 10.
+    /// Head radius (walkers and fliers), × half the body width at the second neck bone: the
+    /// skull's half-width is about this (a broad, flat head's more). From 0.1 to 10.
     /// Default 0.9..1.3.
     pub head_size: Span,
+    /// Eye radius, × the head radius (on a swimmer, × the half-width or half-height of its
+    /// front, whichever is less). From 0.05 to 0.6. Default 0.2..0.3.
+    pub eye_size: Span,
+    /// Snout length (a long-snouted head's; a beak is 0.8 of it), × the head radius, past the
+    /// skull's front. From 0 to 5. Default 0.6..1.3.
+    pub snout_length: Span,
+    /// Length of ears, horns, a crest's feathers and mandibles, × the head radius (antennae
+    /// twice as long). From 0 to 3. Default 0.5..0.9.
+    pub ornament_size: Span,
+    /// How likely a head is to have its family's optional ornament (ears or horns, a crest,
+    /// an insect's second pair of eyes; an insect always has mandibles and antennae). From 0 to
+    /// 1. Default 0.5.
+    pub ornament_chance: f32,
     /// Height of the lowest body point above the ground, × body length (the seed's random
     /// capsule collider height). From 0 to 10. Default 0.15..0.6.
     pub ground_clearance: Span,
@@ -138,6 +152,10 @@ impl Params {
         spine_bones: IntSpan::new(5, 24),
         spine_bend: 200.0,
         head_size: Span::new(0.9, 1.3),
+        eye_size: Span::new(0.2, 0.3),
+        snout_length: Span::new(0.6, 1.3),
+        ornament_size: Span::new(0.5, 0.9),
+        ornament_chance: 0.5,
         ground_clearance: Span::new(0.15, 0.6),
         limbs: PlanOptions::DEFAULT,
         saturation: Span::new(0.3, 0.75),
@@ -246,6 +264,29 @@ impl Params {
         self
     }
 
+    /// Sets [`eye_size`](Self::eye_size).
+    #[must_use]
+    pub const fn with_eye_size(mut self, size: Span) -> Self {
+        self.eye_size = size;
+        self
+    }
+
+    /// Sets [`snout_length`](Self::snout_length).
+    #[must_use]
+    pub const fn with_snout_length(mut self, length: Span) -> Self {
+        self.snout_length = length;
+        self
+    }
+
+    /// Sets [`ornament_size`](Self::ornament_size) and
+    /// [`ornament_chance`](Self::ornament_chance).
+    #[must_use]
+    pub const fn with_ornaments(mut self, size: Span, chance: f32) -> Self {
+        self.ornament_size = size;
+        self.ornament_chance = chance;
+        self
+    }
+
     /// Sets [`ground_clearance`](Self::ground_clearance).
     #[must_use]
     pub const fn with_ground_clearance(mut self, clearance: Span) -> Self {
@@ -332,6 +373,10 @@ impl Params {
         self.spine_bones.check("spine_bones", 5, 60)?;
         scalar("spine_bend", self.spine_bend, 0.0, 200.0)?;
         self.head_size.check("head_size", 0.1, 10.0)?;
+        self.eye_size.check("eye_size", 0.05, 0.6)?;
+        self.snout_length.check("snout_length", 0.0, 5.0)?;
+        self.ornament_size.check("ornament_size", 0.0, 3.0)?;
+        scalar("ornament_chance", self.ornament_chance, 0.0, 1.0)?;
         self.ground_clearance.check("ground_clearance", 0.0, 10.0)?;
         self.limbs.validate()?;
         self.saturation.check("saturation", 0.0, 1.0)?;
@@ -405,6 +450,45 @@ mod tests {
             e,
             Err(Error::EmptyRange {
                 what: "countershading",
+                ..
+            })
+        ));
+        let e = Params::DEFAULT
+            .with_eye_size(Span::new(0.01, 0.2))
+            .validate();
+        assert!(matches!(
+            e,
+            Err(Error::OutOfRange {
+                what: "eye_size",
+                ..
+            })
+        ));
+        let e = Params::DEFAULT
+            .with_snout_length(Span::new(1.0, 0.5))
+            .validate();
+        assert!(matches!(
+            e,
+            Err(Error::EmptyRange {
+                what: "snout_length",
+                ..
+            })
+        ));
+        let e = Params::DEFAULT
+            .with_ornaments(Span::new(0.5, 0.9), f32::NAN)
+            .validate();
+        assert_eq!(
+            e,
+            Err(Error::NonFinite {
+                what: "ornament_chance"
+            })
+        );
+        let e = Params::DEFAULT
+            .with_ornaments(Span::new(0.5, 9.0), 0.5)
+            .validate();
+        assert!(matches!(
+            e,
+            Err(Error::OutOfRange {
+                what: "ornament_size",
                 ..
             })
         ));

@@ -193,17 +193,26 @@ fn floor(x: f32) -> f32 {
     if whole > x { whole - 1.0 } else { whole }
 }
 
-/// The terrain as a triangle mesh (for a viewer or an exporter): one vertex per sample at its
-/// height, smooth normals from the neighbouring samples, two triangles per cell, wound
-/// counter-clockwise seen from above.
+/// The terrain as a triangle mesh (for a viewer or an exporter) that stays within a hundredth
+/// of a cell of the height field's bilinear surface, the one the gait walks on: one vertex per
+/// sample at its height, smooth normals, and each cell cut into triangles fanned around its
+/// middle (four per cell), wound counter-clockwise seen from above.
+///
+/// A fan is within a sixteenth of the cell's twist (`|h₀₀ − h₁₀ − h₀₁ + h₁₁|`) of the
+/// bilinear surface, a quarter of what two triangles per cell show; a cell twisted more than
+/// that allows (a step's corner) is first cut into `n × n` smaller cells, fanned each, whose
+/// twist is `n²` times less. Along a cell's edges the bilinear surface is straight, so the
+/// extra vertices of a cut cell lie exactly on its neighbours' edges and leave no crack.
 #[must_use]
 pub fn terrain_mesh(field: &HeightField) -> TerrainMesh {
     let (columns, rows) = (field.columns(), field.rows());
     let (origin, cell) = (field.origin(), field.cell());
     let heights = field.heights();
     let at = |i: usize, j: usize| heights[j * columns + i];
-    let mut positions = Vec::with_capacity(columns * rows);
-    let mut normals = Vec::with_capacity(columns * rows);
+    let samples = columns * rows;
+    let cells = (columns - 1) * (rows - 1);
+    let mut positions = Vec::with_capacity(samples + cells);
+    let mut normals = Vec::with_capacity(samples + cells);
     for j in 0..rows {
         for i in 0..columns {
             let x = origin.x + i as f32 * cell;
@@ -214,17 +223,75 @@ pub fn terrain_mesh(field: &HeightField) -> TerrainMesh {
             let (j0, j1) = (j.saturating_sub(1), (j + 1).min(rows - 1));
             let dx = (at(i1, j) - at(i0, j)) / ((i1 - i0) as f32 * cell);
             let dz = (at(i, j1) - at(i, j0)) / ((j1 - j0) as f32 * cell);
-            let n = glam::Vec3::new(-dx, 1.0, -dz);
-            normals.push(n / sqrt(n.length_squared()));
+            normals.push(unit_normal(dx, dz));
         }
     }
-    let mut triangles = Vec::with_capacity(2 * (columns - 1) * (rows - 1));
+    let mut triangles = Vec::with_capacity(4 * cells);
+    let tolerance = MESH_TOLERANCE * cell;
     for j in 0..rows - 1 {
         for i in 0..columns - 1 {
+            let corners = [at(i, j), at(i + 1, j), at(i, j + 1), at(i + 1, j + 1)];
+            let [a, b, c, d] = corners;
+            let twist = (a - b - c + d).abs();
+            // The fewest cuts `n` with twist / (16 n²) within the tolerance.
+            let mut n = 1;
+            while n < MAX_CUTS && twist > 16.0 * (n * n) as f32 * tolerance {
+                n += 1;
+            }
+            let cell_origin =
+                glam::Vec2::new(origin.x + i as f32 * cell, origin.y + j as f32 * cell);
+            // The vertices of the cut cell's (n + 1)² grid: its corners are the samples'.
             let v = |i: usize, j: usize| (j * columns + i) as u32;
-            let (a, b, c, d) = (v(i, j), v(i + 1, j), v(i, j + 1), v(i + 1, j + 1));
-            triangles.push([a, c, b]);
-            triangles.push([b, c, d]);
+            let sample = [v(i, j), v(i + 1, j), v(i, j + 1), v(i + 1, j + 1)];
+            let first = positions.len();
+            let grid = |p: usize, q: usize| -> u32 {
+                let inner = if q == 0 {
+                    p.wrapping_sub(1)
+                } else if q < n {
+                    (n - 1) + (q - 1) * (n + 1) + p
+                } else {
+                    (n - 1) + (n - 1) * (n + 1) + p.wrapping_sub(1)
+                };
+                if (p == 0 || p == n) && (q == 0 || q == n) {
+                    sample[usize::from(p == n) + 2 * usize::from(q == n)]
+                } else {
+                    (first + inner) as u32
+                }
+            };
+            let bilinear = |u: f32, w: f32| {
+                let h = a + (b - a) * u + (c - a) * w + (a - b - c + d) * u * w;
+                let slope_x = ((b - a) + (a - b - c + d) * w) / cell;
+                let slope_z = ((c - a) + (a - b - c + d) * u) / cell;
+                let p = cell_origin + glam::Vec2::new(u, w) * cell;
+                (glam::Vec3::new(p.x, h, p.y), unit_normal(slope_x, slope_z))
+            };
+            let step = 1.0 / n as f32;
+            for q in 0..=n {
+                for p in 0..=n {
+                    if (p == 0 || p == n) && (q == 0 || q == n) {
+                        continue;
+                    }
+                    let (position, normal) = bilinear(p as f32 * step, q as f32 * step);
+                    positions.push(position);
+                    normals.push(normal);
+                }
+            }
+            for q in 0..n {
+                for p in 0..n {
+                    let (position, normal) =
+                        bilinear((p as f32 + 0.5) * step, (q as f32 + 0.5) * step);
+                    let m = positions.len() as u32;
+                    positions.push(position);
+                    normals.push(normal);
+                    let (a, b, c, d) = (
+                        grid(p, q),
+                        grid(p + 1, q),
+                        grid(p, q + 1),
+                        grid(p + 1, q + 1),
+                    );
+                    triangles.extend([[a, m, b], [b, m, d], [d, m, c], [c, m, a]]);
+                }
+            }
         }
     }
     TerrainMesh {
@@ -234,11 +301,25 @@ pub fn terrain_mesh(field: &HeightField) -> TerrainMesh {
     }
 }
 
+/// How far [`terrain_mesh`] may draw the terrain from its bilinear surface, × the cell size.
+const MESH_TOLERANCE: f32 = 0.01;
+
+/// The most cuts along a side [`terrain_mesh`] makes in one cell (a cliff within a cell is
+/// drawn as a steep ramp whichever way it is cut).
+const MAX_CUTS: usize = 8;
+
+/// The unit normal of a surface rising `dx` along X and `dz` along Z.
+fn unit_normal(dx: f32, dz: f32) -> glam::Vec3 {
+    let n = glam::Vec3::new(-dx, 1.0, -dz);
+    n / sqrt(n.length_squared())
+}
+
 /// A terrain's triangle mesh (see [`terrain_mesh`]).
 #[derive(Debug, Clone, PartialEq)]
 #[non_exhaustive]
 pub struct TerrainMesh {
-    /// One vertex per height sample, X fastest.
+    /// One vertex per height sample, X fastest; then, cell by cell (X fastest), the inner
+    /// vertices of a cut cell's grid and the middles of its fans.
     pub positions: Vec<glam::Vec3>,
     /// Unit normals, one per vertex.
     pub normals: Vec<glam::Vec3>,
@@ -267,17 +348,52 @@ mod tests {
     }
 
     #[test]
-    fn the_mesh_faces_up_with_a_vertex_per_sample() {
-        let field = terrain(3, &TerrainParams::DEFAULT.with_extent(10.0, 11)).unwrap();
-        let mesh = terrain_mesh(&field);
-        assert_eq!(mesh.positions.len(), 121);
-        assert_eq!(mesh.triangles.len(), 200);
-        for t in &mesh.triangles {
-            let [a, b, c] = t.map(|v| mesh.positions[v as usize]);
-            assert!((b - a).cross(c - a).y > 0.0, "{t:?}");
-        }
-        for n in &mesh.normals {
-            assert!(n.y > 0.0 && (n.length() - 1.0).abs() < 1e-5, "{n}");
+    fn the_mesh_faces_up_and_follows_the_bilinear_surface() {
+        let params = TerrainParams::DEFAULT.with_extent(10.0, 11);
+        for field in [
+            terrain(3, &params).unwrap(),
+            terrain(4, &params.with_steps(0.8, 2.0)).unwrap(),
+        ] {
+            let mesh = terrain_mesh(&field);
+            assert_eq!(
+                mesh.positions[..121],
+                {
+                    let mut samples = Vec::new();
+                    for j in 0..11 {
+                        for i in 0..11 {
+                            let (x, z) = (-5.0 + i as f32, -5.0 + j as f32);
+                            samples.push(glam::Vec3::new(x, field.heights()[j * 11 + i], z));
+                        }
+                    }
+                    samples
+                }[..]
+            );
+            assert!(mesh.triangles.len() >= 400);
+            for p in &mesh.positions {
+                let h = field.height(p.x, p.z).unwrap();
+                assert!((p.y - h).abs() < 1e-4, "{p}: {h}");
+            }
+            for n in &mesh.normals {
+                assert!(n.y > 0.0 && (n.length() - 1.0).abs() < 1e-5, "{n}");
+            }
+            // Inside every triangle, within the tolerance of the bilinear surface.
+            for t in &mesh.triangles {
+                let [a, b, c] = t.map(|v| mesh.positions[v as usize]);
+                assert!((b - a).cross(c - a).y > 0.0, "{t:?}");
+                for (u, v) in [
+                    (1.0 / 3.0, 1.0 / 3.0),
+                    (0.5, 0.25),
+                    (0.25, 0.5),
+                    (0.25, 0.25),
+                ] {
+                    let p = a + u * (b - a) + v * (c - a);
+                    let h = field.height(p.x, p.z).unwrap();
+                    assert!(
+                        (p.y - h).abs() <= MESH_TOLERANCE * field.cell() + 1e-5,
+                        "{p}: {h}"
+                    );
+                }
+            }
         }
     }
 }

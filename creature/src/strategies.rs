@@ -136,7 +136,7 @@ pub fn pattern_weights() -> impl Strategy<Value = PatternWeights> {
 /// Valid 3D parameters of the given kind: every field drawn inside its documented range (see
 /// [`Params`]), kept to a moderate box so generation stays fast — up to 24 rings and 16
 /// segments, slice scales 0.3 to 3, body scale 0.1 to 10, bones 0.1 to 0.5 long, at most 40
-/// spine bones; colours over their whole ranges. The limb planner keeps its defaults. Always
+/// spine bones; colours and the head's eyes, snout and ornaments over their whole ranges. The limb planner keeps its defaults. Always
 /// passes [`Params::validate`].
 pub fn params_of_kind(kind: Kind) -> impl Strategy<Value = Params> {
     let mesh = (1u32..=9, 4u32..=24, 3u32..=16, 3u32..=8, any::<bool>());
@@ -159,12 +159,19 @@ pub fn params_of_kind(kind: Kind) -> impl Strategy<Value = Params> {
         any::<bool>(),
     );
     let colours = (span(0.0, 1.0), span(0.0, 1.0), pattern_weights());
-    (mesh, slices, body, colours).prop_map(
+    let head = (
+        span(0.05, 0.6),
+        span(0.0, 5.0),
+        span(0.0, 3.0),
+        0.0f32..=1.0,
+    );
+    (mesh, slices, body, colours, head).prop_map(
         move |(
             (profiles, rings, segments, limb_sides, flat),
             (width, height, step, swim_width, swim_height, swim_step),
             (scale, speed, bone_length, spine_bones, bend, head, clearance, clips),
             (saturation, countershading, patterns),
+            (eye_size, snout_length, ornament_size, ornament_chance),
         )| {
             Params::DEFAULT
                 .with_kind(kind)
@@ -184,6 +191,9 @@ pub fn params_of_kind(kind: Kind) -> impl Strategy<Value = Params> {
                 .with_saturation(saturation)
                 .with_countershading(countershading)
                 .with_patterns(patterns)
+                .with_eye_size(eye_size)
+                .with_snout_length(snout_length)
+                .with_ornaments(ornament_size, ornament_chance)
                 .with_clips(clips)
         },
     )
@@ -229,10 +239,10 @@ pub fn bad_params_2d() -> impl Strategy<Value = d2::Params> {
 
 /// Valid [`params`] with exactly one field broken: a range with `min > max`, a NaN or
 /// infinite value, a zero count (profiles, rings, segments, limb sides, spine bones), a value
-/// out of range (a colour range outside 0 to 1, a negative pattern weight) or every pattern
-/// weight 0. [`Params::validate`] — and so [`generate`](crate::generate) — rejects every one.
+/// out of range (a colour range outside 0 to 1, an eye size above 0.6, a negative pattern
+/// weight) or every pattern weight 0. [`Params::validate`] — and so [`generate`](crate::generate) — rejects every one.
 pub fn bad_params() -> impl Strategy<Value = Params> {
-    (params(), non_finite_f32(), 0usize..14).prop_map(|(p, bad, which)| {
+    (params(), non_finite_f32(), 0usize..17).prop_map(|(p, bad, which)| {
         let swap = |s: Span| {
             if s.min < s.max {
                 Span::new(s.max, s.min)
@@ -254,6 +264,9 @@ pub fn bad_params() -> impl Strategy<Value = Params> {
             10 => p.with_countershading(swap(p.countershading)),
             11 => p.with_patterns(p.patterns.with(Pattern::Spots, bad)),
             12 => p.with_patterns(PatternWeights::only(Pattern::Bands).with(Pattern::Bands, -1.0)),
+            13 => p.with_eye_size(Span::new(p.eye_size.min, 0.7)),
+            14 => p.with_snout_length(swap(p.snout_length)),
+            15 => p.with_ornaments(p.ornament_size, bad),
             _ => p.with_spine_bones(IntSpan::new(0, 0)),
         }
     })

@@ -508,3 +508,36 @@ fn regression_a_long_stride_bends_crowded_knees_apart() {
     );
     passes(13_341_310_954_036_717_780, &params, &[Check::LegsIntersect]);
 }
+
+#[test]
+fn regression_a_limited_swing_frame_that_would_touch_the_ground_moves_only_as_far_as_it_must() {
+    // An 8.9 m eight-legged walker (property case 1866 over valid params, head fields drawn):
+    // the frame before a rear foot landed, its rate-limited knee lowered the sole under the
+    // ground, and the frame went back to the gait's pose whole: the knee turned 73° between
+    // two keys of `walk`. Such a frame now blends from the limited pose toward the gait's
+    // only as far as keeps the sole clear of the ground.
+    let params = drawn(
+        Kind::Walker,
+        (6, 22, 12, 3, false),
+        [
+            (0.979_103_2, 1.424_793_5),
+            (1.465_426_4, 1.940_351_4),
+            (0.947_793_54, 2.526_943_4),
+        ],
+        (1.714_868_3, 5.781_369_7),
+        (0.768_233_3, 4.482_866),
+        0.200_448_23,
+        (28, 30),
+        127.710_31,
+        (0.569_013_24, 0.917_463_2),
+        (0.022_081_522, 0.083_563_19),
+    )
+    .with_eye_size(creature::Span::new(0.282_893_78, 0.324_411_2))
+    .with_snout_length(creature::Span::new(0.320_417_43, 1.413_983_2))
+    .with_ornaments(creature::Span::new(1.348_072_9, 2.514_043), 0.112_624_206);
+    passes(
+        17_310_549_602_782_747_354,
+        &params,
+        &[Check::KeyTurn, Check::FootSlides, Check::BelowGround],
+    );
+}

@@ -488,8 +488,10 @@ impl Creature {
                     .normalize();
                 }
                 limit_free_turn_rate(&mut foot, &free, MAX_LEG_TURN_PER_FRAME);
-                // Unless that lowers the foot (its sole, tilted or not) to the ground or brings
-                // it across the body's midline: that frame keeps the gait's pose.
+                // Unless that lowers the foot (its sole, tilted or not) to within `ground` of the
+                // ground or brings it across the body's midline: that frame goes back toward the gait's pose,
+                // only as far as it must (the gait's pose itself is safe), so it jumps as
+                // little as it can from its limited neighbours.
                 let mut foot_radius = None;
                 for f in 0..frames {
                     if !(limited(f, &hip, &knee) || foot[f] != foot_0[f]) {
@@ -497,16 +499,45 @@ impl Creature {
                     }
                     let body = &bodies[f];
                     let unlimited = tracks.foot_at(f, hip_0, knee_0);
-                    let at = tracks.foot_at(f, &hip, &knee);
                     let side = tracks.leg.rest.x;
-                    let kept_side = side == 0.0
-                        || at.x * side.signum() >= (unlimited.x * side.signum()).min(0.0);
-                    let up = (body.rotation * parent * hip[f] * knee[f] * foot[f]) * Vec3::Y;
-                    let tilt = up.cross(Vec3::Y).length();
                     let foot_radius =
                         *foot_radius.get_or_insert_with(|| self.ring_radius(tracks.hip + 2));
-                    let sole = body.transform_point(at).y - foot_radius * tilt;
-                    if !(sole > 0.0 && kept_side) {
+                    let safe = |h: Quat, k: Quat, o: Quat| {
+                        let at = tracks.foot_at_with(f, h, k);
+                        let kept_side = side == 0.0
+                            || at.x * side.signum() >= (unlimited.x * side.signum()).min(0.0);
+                        let up = (body.rotation * parent * h * k * o) * Vec3::Y;
+                        let tilt = up.cross(Vec3::Y).length();
+                        let sole = body.transform_point(at).y - foot_radius * tilt;
+                        // Clear of the ground (a foot near it counts as on it, and would be
+                        // seen to slide to where it lands).
+                        sole > ground && kept_side
+                    };
+                    let limited_pose = (hip[f], knee[f], foot[f]);
+                    let toward = |t: f32| {
+                        (
+                            limited_pose.0.slerp(hip_0[f], t).normalize(),
+                            limited_pose.1.slerp(knee_0[f], t).normalize(),
+                            limited_pose.2.slerp(foot_0[f], t).normalize(),
+                        )
+                    };
+                    if safe(limited_pose.0, limited_pose.1, limited_pose.2) {
+                        continue;
+                    }
+                    // Bisect the blend: `hi` is safe (the gait's pose at 1), `lo` is not.
+                    let (mut lo, mut hi) = (0.0f32, 1.0f32);
+                    for _ in 0..10 {
+                        let t = 0.5 * (lo + hi);
+                        let (h, k, o) = toward(t);
+                        if safe(h, k, o) {
+                            hi = t;
+                        } else {
+                            lo = t;
+                        }
+                    }
+                    if hi < 1.0 {
+                        (hip[f], knee[f], foot[f]) = toward(hi);
+                    } else {
                         hip[f] = hip_0[f];
                         knee[f] = knee_0[f];
                         foot[f] = foot_0[f];
@@ -630,10 +661,15 @@ impl LegTracks<'_> {
     /// The foot (the lower segment's end) in body space at frame `frame` with the hip and knee
     /// rotations `hip` and `knee` (tracks as [`rotations`](Self::rotations) holds them).
     fn foot_at(&self, frame: usize, hip: &[Quat], knee: &[Quat]) -> Vec3 {
+        self.foot_at_with(frame, hip[frame], knee[frame])
+    }
+
+    /// [`foot_at`](Self::foot_at) with frame `frame`'s hip and knee rotations given.
+    fn foot_at_with(&self, frame: usize, hip: Quat, knee: Quat) -> Vec3 {
         let root = self.parent.transform_point3(self.translations[frame]);
-        let turn = self.parent_rotation * hip[frame];
+        let turn = self.parent_rotation * hip;
         root + turn * (self.rest_upper * self.leg.upper)
-            + turn * (knee[frame] * (self.rest_lower * self.leg.lower))
+            + turn * (knee * (self.rest_lower * self.leg.lower))
     }
 }
 

@@ -245,18 +245,17 @@ pub fn terrain_mesh(field: &HeightField) -> TerrainMesh {
             let sample = [v(i, j), v(i + 1, j), v(i, j + 1), v(i + 1, j + 1)];
             let first = positions.len();
             let grid = |p: usize, q: usize| -> u32 {
+                if (p == 0 || p == n) && (q == 0 || q == n) {
+                    return sample[usize::from(p == n) + 2 * usize::from(q == n)];
+                }
                 let inner = if q == 0 {
-                    p.wrapping_sub(1)
+                    p - 1
                 } else if q < n {
                     (n - 1) + (q - 1) * (n + 1) + p
                 } else {
-                    (n - 1) + (n - 1) * (n + 1) + p.wrapping_sub(1)
+                    (n - 1) + (n - 1) * (n + 1) + p - 1
                 };
-                if (p == 0 || p == n) && (q == 0 || q == n) {
-                    sample[usize::from(p == n) + 2 * usize::from(q == n)]
-                } else {
-                    (first + inner) as u32
-                }
+                (first + inner) as u32
             };
             let bilinear = |u: f32, w: f32| {
                 let h = a + (b - a) * u + (c - a) * w + (a - b - c + d) * u * w;

@@ -133,6 +133,119 @@ pub(crate) fn segment_distance(p0: Vec3, p1: Vec3, q0: Vec3, q1: Vec3) -> f32 {
     (p0 + d1 * s).distance(q0 + d2 * t)
 }
 
+/// A terrain: an unskinned triangle mesh the creature walks on, looked up by height under a
+/// point (triangles bucketed on a grid over their bounds in the ground plane).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Terrain {
+    positions: Vec<Vec3>,
+    triangles: Vec<[u32; 3]>,
+    origin: Vec2,
+    cell: f32,
+    columns: usize,
+    rows: usize,
+    buckets: Vec<Vec<u32>>,
+}
+
+impl Terrain {
+    /// The terrain of a triangle mesh (in world space); `None` when it has no triangle with an
+    /// area seen from above, or a non-finite position.
+    #[must_use]
+    pub fn new(positions: Vec<Vec3>, triangles: Vec<[u32; 3]>) -> Option<Self> {
+        if positions.iter().any(|p| !p.is_finite())
+            || triangles
+                .iter()
+                .flatten()
+                .any(|&v| v as usize >= positions.len())
+        {
+            return None;
+        }
+        let flat = |p: Vec3| Vec2::new(p.x, p.z);
+        let (lo, hi) = triangles.iter().flatten().fold(
+            (Vec2::splat(f32::INFINITY), Vec2::splat(f32::NEG_INFINITY)),
+            |(lo, hi), &v| {
+                (
+                    lo.min(flat(positions[v as usize])),
+                    hi.max(flat(positions[v as usize])),
+                )
+            },
+        );
+        let size = hi - lo;
+        if !(size.x > 0.0 && size.y > 0.0) {
+            return None;
+        }
+        // About two triangles per bucket.
+        let cell = (size.x * size.y * 2.0 / triangles.len() as f32).sqrt();
+        let columns = ((size.x / cell).ceil() as usize).clamp(1, 4096);
+        let rows = ((size.y / cell).ceil() as usize).clamp(1, 4096);
+        let cell = (size.x / columns as f32).max(size.y / rows as f32);
+        let mut terrain = Self {
+            positions,
+            triangles,
+            origin: lo,
+            cell,
+            columns,
+            rows,
+            buckets: vec![Vec::new(); columns * rows],
+        };
+        for (t, tri) in terrain.triangles.iter().enumerate() {
+            let corners = tri.map(|v| flat(terrain.positions[v as usize]));
+            let (a, b) = corners
+                .iter()
+                .fold((corners[0], corners[0]), |(lo, hi), &c| {
+                    (lo.min(c), hi.max(c))
+                });
+            let (i0, j0) = terrain.bucket(a);
+            let (i1, j1) = terrain.bucket(b);
+            for j in j0..=j1 {
+                for i in i0..=i1 {
+                    terrain.buckets[j * columns + i].push(t as u32);
+                }
+            }
+        }
+        Some(terrain)
+    }
+
+    /// The bucket holding `p` (clamped to the grid).
+    fn bucket(&self, p: Vec2) -> (usize, usize) {
+        let at = |v: f32, n: usize| (v.max(0.0) as usize).min(n - 1);
+        let q = (p - self.origin) / self.cell;
+        (at(q.x, self.columns), at(q.y, self.rows))
+    }
+
+    /// The terrain's height under `(x, z)` (the highest of its triangles there), `None` off it.
+    #[must_use]
+    pub fn height(&self, x: f32, z: f32) -> Option<f32> {
+        let p = Vec2::new(x, z);
+        let q = (p - self.origin) / self.cell;
+        if !(q.x >= -1e-4
+            && q.y >= -1e-4
+            && q.x <= self.columns as f32 + 1e-4
+            && q.y <= self.rows as f32 + 1e-4)
+        {
+            return None;
+        }
+        let (i, j) = self.bucket(p);
+        let mut best: Option<f32> = None;
+        for &t in &self.buckets[j * self.columns + i] {
+            let [a, b, c] = self.triangles[t as usize].map(|v| self.positions[v as usize]);
+            let (ab, ac) = (b - a, c - a);
+            let det = ab.x * ac.z - ab.z * ac.x;
+            if det == 0.0 {
+                continue;
+            }
+            let (px, pz) = (x - a.x, z - a.z);
+            let u = (px * ac.z - pz * ac.x) / det;
+            let v = (ab.x * pz - ab.z * px) / det;
+            let e = 1e-5;
+            if u >= -e && v >= -e && u + v <= 1.0 + e {
+                let h = a.y + u * ab.y + v * ac.y;
+                best = Some(best.map_or(h, |b: f32| b.max(h)));
+            }
+        }
+        best
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -200,5 +313,26 @@ mod tests {
             Vec3::new(3.0, 0.0, 0.0),
         );
         assert!((d - 1.0).abs() < 1e-6);
+    }
+
+    #[test]
+    fn a_terrain_answers_the_height_of_its_triangles() {
+        // Two triangles over the unit square, rising along X: y = x.
+        let positions = vec![
+            Vec3::new(0.0, 0.0, 0.0),
+            Vec3::new(1.0, 1.0, 0.0),
+            Vec3::new(0.0, 0.0, 1.0),
+            Vec3::new(1.0, 1.0, 1.0),
+        ];
+        let terrain = Terrain::new(positions, vec![[0, 2, 1], [1, 2, 3]]).unwrap();
+        for (x, z) in [(0.25, 0.5), (0.75, 0.1), (0.5, 0.9), (1.0, 1.0), (0.0, 0.0)] {
+            let h = terrain.height(x, z).unwrap();
+            assert!((h - x).abs() < 1e-5, "({x}, {z}): {h}");
+        }
+        assert_eq!(terrain.height(1.5, 0.5), None);
+        assert_eq!(terrain.height(0.5, -0.5), None);
+        assert!(Terrain::new(vec![Vec3::ZERO; 3], vec![[0, 1, 2]]).is_none());
+        assert!(Terrain::new(vec![Vec3::NAN; 3], vec![[0, 1, 2]]).is_none());
+        assert!(Terrain::new(vec![Vec3::ZERO; 3], vec![[0, 1, 5]]).is_none());
     }
 }

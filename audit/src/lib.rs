@@ -10,6 +10,7 @@ use std::fmt;
 
 use glam::{Vec2, Vec3};
 
+pub use geometry::Terrain;
 pub use model::{Channel, Clip, Model, Node, Values};
 use pose::Poser;
 
@@ -269,6 +270,9 @@ struct Leg {
 /// skinning as a viewer does, and measures every [`Check`] on the skinned mesh. The body
 /// length is the length of the joints named `spine_*`, `tail_*`, `head` and `head_end`; legs
 /// are the joints `leg_<side><n>_hip`, `_knee` and `_foot`; the body frame is `spine_0`'s.
+/// A model with a `walk` or `walk_to` clip is a walker (the stance checks apply). Heights in
+/// the clips are measured above the model's [`terrain`](Model::terrain) under each point when
+/// it has one, else above `y = 0`; the rest pose stands on `y = 0`.
 ///
 /// # Errors
 /// [`AuditError::Unsupported`] when the model has no named spine.
@@ -301,7 +305,16 @@ pub fn audit(model: &Model, limits: &Limits) -> Result<Report, AuditError> {
     let body = model.joint("spine_0").ok_or(AuditError::Unsupported {
         what: "no spine_0 joint",
     })?;
-    let walker = model.clips.iter().any(|c| c.name == "walk");
+    let walker = model
+        .clips
+        .iter()
+        .any(|c| c.name == "walk" || c.name == "walk_to");
+    // Heights in the clips are above the terrain when the file has one (off it there is no
+    // ground), else above `y = 0`; the rest pose stands on `y = 0`.
+    let ground = |p: Vec3| match &model.terrain {
+        None => 0.0,
+        Some(t) => t.height(p.x, p.z).unwrap_or(f32::NEG_INFINITY),
+    };
     let dominant = dominant(model);
     let legs = legs(model, &dominant, &rest);
     let edges = edges(model, length);
@@ -358,7 +371,7 @@ pub fn audit(model: &Model, limits: &Limits) -> Result<Report, AuditError> {
         for (frame, &t) in times.iter().enumerate() {
             poser.at(clip, t);
             let p = &poser.positions;
-            let (depth, at) = lowest(p);
+            let (depth, at) = lowest_above(p, ground);
             below.max(-depth / length, frame, || format!("vertex {at}"));
             for &(a, b, rest) in &edges {
                 let ratio = p[a].distance(p[b]) / rest;
@@ -382,7 +395,7 @@ pub fn audit(model: &Model, limits: &Limits) -> Result<Report, AuditError> {
                     .foot
                     .iter()
                     .fold((f32::INFINITY, Vec3::ZERO), |(s, c), &v| {
-                        (s.min(p[v].y), c + p[v])
+                        (s.min(p[v].y - ground(p[v])), c + p[v])
                     });
                 let centre = centre / leg.foot.len().max(1) as f32;
                 soles[k].push(sole);
@@ -531,6 +544,14 @@ impl Worst {
 }
 
 /// The lowest height among `p`, and its vertex.
+/// The lowest height of `p` above `ground` under it, and its index.
+fn lowest_above(p: &[Vec3], ground: impl Fn(Vec3) -> f32) -> (f32, usize) {
+    p.iter().enumerate().fold((f32::INFINITY, 0), |m, (i, &v)| {
+        let h = v.y - ground(v);
+        if h < m.0 { (h, i) } else { m }
+    })
+}
+
 fn lowest(p: &[Vec3]) -> (f32, usize) {
     p.iter().enumerate().fold(
         (f32::INFINITY, 0),

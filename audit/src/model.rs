@@ -3,6 +3,7 @@
 use glam::{Mat4, Quat, Vec3};
 
 use crate::AuditError;
+use crate::geometry::Terrain;
 
 /// One node of the file: its name, parent and rest transform.
 #[derive(Debug, Clone, PartialEq)]
@@ -82,6 +83,10 @@ pub struct Model {
     pub inverse_bind: Vec<Mat4>,
     /// The animations.
     pub clips: Vec<Clip>,
+    /// The ground the creature walks on when the file carries one: the triangles of an
+    /// unskinned mesh on a node named `terrain` (as `creature`'s `glb_3d_on_terrain` writes
+    /// it), in world space. `None`: the plane `y = 0`.
+    pub terrain: Option<Terrain>,
 }
 
 impl Model {
@@ -213,6 +218,45 @@ impl Model {
                 channels,
             });
         }
+        let terrain = match gltf
+            .nodes()
+            .find(|n| n.name() == Some("terrain") && n.skin().is_none())
+            .and_then(|n| Some((n.index(), n.mesh()?)))
+        {
+            None => None,
+            Some((index, mesh)) => {
+                let world = world_matrix(&nodes, index);
+                let mut positions = Vec::new();
+                let mut triangles = Vec::new();
+                for primitive in mesh
+                    .primitives()
+                    .filter(|p| p.mode() == gltf::mesh::Mode::Triangles)
+                {
+                    let reader = primitive.reader(buffer);
+                    let first = positions.len() as u32;
+                    let Some(read) = reader.read_positions() else {
+                        continue;
+                    };
+                    positions.extend(read.map(|p| world.transform_point3(Vec3::from_array(p))));
+                    let count = positions.len() as u32 - first;
+                    let flat: Vec<u32> = match reader.read_indices() {
+                        Some(i) => i.into_u32().collect(),
+                        None => (0..count).collect(),
+                    };
+                    if !flat.len().is_multiple_of(3) || flat.iter().any(|&i| i >= count) {
+                        return Err(unsupported("terrain triangle indices"));
+                    }
+                    triangles.extend(
+                        flat.chunks_exact(3)
+                            .map(|t| [first + t[0], first + t[1], first + t[2]]),
+                    );
+                }
+                Some(
+                    Terrain::new(positions, triangles)
+                        .ok_or(unsupported("a terrain mesh with no area seen from above"))?,
+                )
+            }
+        };
         Ok(Self {
             positions,
             triangles,
@@ -222,6 +266,7 @@ impl Model {
             skin: skin_joints,
             inverse_bind,
             clips,
+            terrain,
         })
     }
 
@@ -236,4 +281,18 @@ impl Model {
     pub fn joint_name(&self, j: usize) -> &str {
         &self.nodes[self.skin[j]].name
     }
+}
+
+/// Node `index`'s rest transform in the world (its parents' composed).
+fn world_matrix(nodes: &[Node], index: usize) -> Mat4 {
+    let mut m = Mat4::IDENTITY;
+    let mut at = Some(index);
+    // A file's hierarchy is a forest; the bound guards a malformed cycle.
+    for _ in 0..nodes.len() {
+        let Some(i) = at else { break };
+        let n = &nodes[i];
+        m = Mat4::from_scale_rotation_translation(n.scale, n.rotation, n.translation) * m;
+        at = n.parent;
+    }
+    m
 }

@@ -289,15 +289,22 @@ impl Animator {
         // The head looks at a target to go to (at the height of its head), else where the body
         // turns.
         let look = match intent {
-            Intent::GoTo(target) => Some(Vec3::new(
-                target.x,
-                position.y
-                    + self
-                        .rest_position
-                        .get(self.head.unwrap_or(0))
-                        .map_or(0.0, |p| p.y),
-                target.z,
-            )),
+            // Until it is within a body length: a target beside or behind the head as the
+            // body arrives would wrench it round.
+            Intent::GoTo(target)
+                if Vec2::new(target.x - position.x, target.z - position.z).length()
+                    > self.length =>
+            {
+                Some(Vec3::new(
+                    target.x,
+                    position.y
+                        + self
+                            .rest_position
+                            .get(self.head.unwrap_or(0))
+                            .map_or(0.0, |p| p.y),
+                    target.z,
+                ))
+            }
             _ => None,
         };
         self.controller.set_look_target(look)?;
@@ -423,14 +430,32 @@ impl Animator {
     /// nothing to keep them above), their feet level with `heading` and tilted to the ground
     /// under them.
     fn pose_joints<G: Ground + ?Sized>(&mut self, body: &Pose, heading: Quat, ground: Option<&G>) {
-        // Neck and tail bent toward the turn, as the baked clips bend them.
+        // Neck and tail bent toward the turn, as the baked clips bend them; the neck turned on
+        // toward the look, its rest shared among the neck's joints, none past what its skin
+        // allows (a head turned alone on its joint tore the neck's skin).
         let total = turn_bend_total(self.turn);
+        let neck = self.bends.iter().filter(|b| b.1 > 0.0).count();
+        let look = match self.head {
+            Some(head) if neck > 0 && self.bends.iter().any(|b| b.0 == head) => {
+                Quat::from_rotation_y(total).inverse() * self.controller.look().rotation
+            }
+            _ => Quat::IDENTITY,
+        };
+        let look_share = Quat::IDENTITY.slerp(look, 1.0 / neck.max(1) as f32);
         for &(joint, divisor, limit) in &self.bends {
-            let angle = (total / divisor).clamp(-limit, limit);
-            self.local[joint] = Affine3A::from_rotation_translation(
-                Quat::from_rotation_y(angle),
-                self.rest_local[joint],
-            );
+            let bend = Quat::from_rotation_y(total / divisor);
+            let turn = if divisor > 0.0 {
+                (bend * look_share).normalize()
+            } else {
+                bend
+            };
+            let angle = turn.angle_between(Quat::IDENTITY);
+            let turn = if angle > limit {
+                Quat::IDENTITY.slerp(turn, limit / angle).normalize()
+            } else {
+                turn
+            };
+            self.local[joint] = Affine3A::from_rotation_translation(turn, self.rest_local[joint]);
         }
         self.local[self.root] = Affine3A::from_rotation_translation(
             body.rotation,
@@ -475,8 +500,9 @@ impl Animator {
                 self.local[foot_joint] =
                     Affine3A::from_rotation_translation(foot_rotation, self.rest_local[foot_joint]);
             }
-            if Some(j) == self.head {
-                // The look, a rotation in body space, as the head's world rotation.
+            if Some(j) == self.head && look == Quat::IDENTITY {
+                // No neck to share it: the look, a rotation in body space, as the head's world
+                // rotation.
                 let look = body.rotation * self.controller.look().rotation;
                 let turn = parent.map_or(look, |p| Quat::from_mat3a(&p.matrix3).inverse() * look);
                 self.local[j] =

@@ -7,13 +7,16 @@ use alloc::vec::Vec;
 use glam::{Affine3A, Mat4, Quat, Vec2, Vec3, Vec3A};
 
 use creature_gait::{Controller, Ground, LimbKind, Pose};
+use creature_limbs::CreatureKind;
 
 use super::floor::knee_above;
 use super::kinematics::{Hinge, rotation_arc};
 use super::walk::turn_bend_total;
 use super::{CLIP_FPS, Clip, Track};
 use crate::Error;
-use crate::d3::Creature;
+use crate::d3::{Creature, GaitSetup};
+
+mod fly_swim;
 
 /// What a live creature is asked to do in one update of an [`Animator`].
 ///
@@ -79,6 +82,8 @@ pub const ARRIVAL_RADIUS: f32 = 0.25;
 #[derive(Debug, Clone)]
 pub struct Animator {
     controller: Controller,
+    /// What moves the body: a walker's legs, a flier's wings, a swimmer's wave.
+    drive: Drive,
     /// The body's place on the ground (x, z; y the ground's height it follows) and heading.
     position: Vec3,
     heading: f32,
@@ -105,8 +110,8 @@ pub struct Animator {
     head: Option<usize>,
     /// Per joint, the leg (index into `legs`) whose hip it is.
     leg_at: Vec<Option<usize>>,
-    /// Per joint, whether its local transform turns (the root, the legs' joints, the neck's
-    /// and tail's bending joints); the others only sit at their rest offset.
+    /// Per joint, whether a walker's local transform turns (the root, the legs' joints, the
+    /// neck's and tail's bending joints); the others only sit at their rest offset.
     turns: Vec<bool>,
     /// The time step the smoothing shares were last computed for, and the shares (terrain,
     /// turn bend).
@@ -116,6 +121,17 @@ pub struct Animator {
     local: Vec<Affine3A>,
     world: Vec<Affine3A>,
     skinning: Vec<Mat4>,
+}
+
+/// What moves an [`Animator`]'s body.
+#[derive(Debug, Clone)]
+enum Drive {
+    /// A walker: the gait controller's legs (the animator's own fields).
+    Walk,
+    /// A flier: its wings, chains and flying height.
+    Fly(alloc::boxed::Box<fly_swim::Flight>),
+    /// A swimmer: its body wave and swimming height.
+    Swim(alloc::boxed::Box<fly_swim::Swimming>),
 }
 
 /// One leg's (or arm's) posing: its joints, its knee hinge and how far its knee's ring of
@@ -129,24 +145,87 @@ struct LiveLeg {
 }
 
 impl Animator {
-    /// An animator for `creature` standing at its rest place, facing +Z.
+    /// An animator for `creature` at its rest place, facing +Z: a walker standing, a flier
+    /// hovering, a swimmer at its swimming height (each over flat ground at `y = 0` until the
+    /// first update).
     ///
     /// # Errors
-    /// [`Error::NoGait`] for a creature without a gait set-up (fliers and swimmers);
-    /// [`Error::Gait`] if the gait controller rejects its set-up (an edited creature);
-    /// [`Error::BadParent`] for a skeleton whose parents form a cycle.
+    /// [`Error::NoGait`] for a walker without a gait set-up (or a kind this version does not
+    /// animate); [`Error::Gait`] if the gait controller rejects its set-up (an edited
+    /// creature); [`Error::BadParent`] for a skeleton whose parents form a cycle.
     pub fn new(creature: &Creature) -> Result<Self, Error> {
-        let setup = creature.gait.as_ref().ok_or(Error::NoGait)?;
-        let controller = setup.controller()?;
+        match (&creature.gait, creature.kind) {
+            (Some(setup), _) => Self::walker(creature, setup),
+            (None, CreatureKind::Flier) => Self::flier(creature),
+            (None, CreatureKind::Swimmer) => Self::swimmer(creature),
+            (None, _) => Err(Error::NoGait),
+        }
+    }
+
+    /// What every kind's animator shares: the skeleton's order and rest pose, driven by
+    /// `drive` through `controller`; no legs, no head turning, nothing bending to a turn.
+    fn bare(
+        creature: &Creature,
+        controller: Controller,
+        max_turn_rate: f32,
+        drive: Drive,
+    ) -> Result<Self, Error> {
         let joints = &creature.skeleton.joints;
         let n = joints.len();
         let parents: Vec<Option<usize>> = joints.iter().map(|j| j.parent).collect();
         let order = parents_first(&parents)?;
         let root = order.first().copied().unwrap_or(0);
         let rest_local = creature.skeleton.rest_translations();
-        let rest_position: Vec<Vec3> = joints.iter().map(|j| j.position).collect();
-        let rest = |j: usize| rest_position.get(j).copied().unwrap_or(Vec3::ZERO);
-        let mut leg_at = alloc::vec![None; n];
+        let local: Vec<Affine3A> = rest_local
+            .iter()
+            .map(|&t| Affine3A::from_translation(t))
+            .collect();
+        Ok(Self {
+            controller,
+            drive,
+            position: Vec3::ZERO,
+            heading: 0.0,
+            lean: Vec2::ZERO,
+            turn: 0.0,
+            speed: creature.speed,
+            max_turn_rate,
+            length: creature.length,
+            rest_root: creature.rest_root(),
+            root,
+            order,
+            parents,
+            rest_local,
+            rest_position: joints.iter().map(|j| j.position).collect(),
+            bends: Vec::new(),
+            legs: Vec::new(),
+            head: None,
+            leg_at: alloc::vec![None; n],
+            turns: alloc::vec![false; n],
+            smoothing: (0.0, 0.0, 0.0),
+            fresh: true,
+            world: local.clone(),
+            local,
+            skinning: alloc::vec![Mat4::IDENTITY; n],
+        })
+    }
+
+    /// A walker's animator: its legs driven by the gait controller.
+    fn walker(creature: &Creature, setup: &GaitSetup) -> Result<Self, Error> {
+        let mut controller = setup.controller()?;
+        let joints = &creature.skeleton.joints;
+        let head = joints.iter().position(|j| j.name == "head");
+        if let Some(head) = head {
+            controller.set_head(joints[head].position)?;
+        }
+        let mut animator = Self::bare(
+            creature,
+            controller,
+            creature.turn_rate(&setup.legs),
+            Drive::Walk,
+        )?;
+        let n = joints.len();
+        let parents = &animator.parents;
+        let rest = |j: usize| joints.get(j).map_or(Vec3::ZERO, |j| j.position);
         for (i, &hip) in setup.hip_joints.iter().enumerate() {
             // A leg's chain is its hip, knee and foot, one after the other.
             let chain =
@@ -157,25 +236,21 @@ impl Animator {
                     parent: parents.get(hip + 1).copied().flatten(),
                 });
             }
-            leg_at[hip] = Some(i);
+            animator.leg_at[hip] = Some(i);
         }
-        let mut controller = controller;
-        let head = joints.iter().position(|j| j.name == "head");
-        if let Some(head) = head {
-            controller.set_head(rest_position[head])?;
-        }
-        let bends = creature.turn_bend_shares();
-        let mut turns = alloc::vec![false; n];
+        animator.head = head;
+        animator.bends = creature.turn_bend_shares();
+        let turns = &mut animator.turns;
         if let Some(head) = head {
             turns[head] = true;
         }
-        for &(j, _, _) in &bends {
+        for &(j, _, _) in &animator.bends {
             turns[j] = true;
         }
         for &hip in &setup.hip_joints {
             turns[hip..hip + 3].fill(true);
         }
-        let legs = setup
+        animator.legs = setup
             .legs
             .iter()
             .zip(&setup.hip_joints)
@@ -190,36 +265,6 @@ impl Animator {
                 }
             })
             .collect();
-        let local: Vec<Affine3A> = rest_local
-            .iter()
-            .map(|&t| Affine3A::from_translation(t))
-            .collect();
-        let mut animator = Self {
-            controller,
-            position: Vec3::ZERO,
-            heading: 0.0,
-            lean: Vec2::ZERO,
-            turn: 0.0,
-            speed: creature.speed,
-            max_turn_rate: creature.turn_rate(&setup.legs),
-            length: creature.length,
-            rest_root: creature.rest_root(),
-            root,
-            order,
-            parents,
-            rest_local,
-            rest_position,
-            bends,
-            legs,
-            head,
-            leg_at,
-            turns,
-            smoothing: (0.0, 0.0, 0.0),
-            fresh: true,
-            world: local.clone(),
-            local,
-            skinning: alloc::vec![Mat4::IDENTITY; n],
-        };
         animator.pose_joints(
             &Pose::IDENTITY,
             Quat::IDENTITY,
@@ -252,19 +297,34 @@ impl Animator {
         intent: Intent,
         ground: &G,
     ) -> Result<(), Error> {
-        if !dt.is_finite() {
-            return Err(Error::NonFinite { what: "dt" });
-        }
-        if dt < 0.0 {
-            return Err(Error::OutOfRange {
-                what: "dt",
-                value: dt,
-                min: 0.0,
-                max: f32::INFINITY,
-            });
-        }
-        let dt = dt.min(MAX_STEP);
+        let dt = time_step(dt)?;
         let (velocity, turn_rate) = self.wanted(intent)?;
+        // The drive is taken out while it moves the body (a `Box` moved: no allocation) and put
+        // back whatever happens.
+        match core::mem::replace(&mut self.drive, Drive::Walk) {
+            Drive::Walk => self.walk(dt, intent, (velocity, turn_rate), ground),
+            Drive::Fly(mut flight) => {
+                let done = self.fly(&mut flight, dt, (velocity, turn_rate), ground);
+                self.drive = Drive::Fly(flight);
+                done
+            }
+            Drive::Swim(mut swimming) => {
+                let done = self.swim(&mut swimming, dt, (velocity, turn_rate), ground);
+                self.drive = Drive::Swim(swimming);
+                done
+            }
+        }
+    }
+
+    /// A walker's update (see [`update`](Self::update)): `dt` already checked and capped,
+    /// the velocity and turn rate its intent asks.
+    fn walk<G: Ground + ?Sized>(
+        &mut self,
+        dt: f32,
+        intent: Intent,
+        (velocity, turn_rate): (Vec3, f32),
+        ground: &G,
+    ) -> Result<(), Error> {
         let heading = wrap(self.heading + turn_rate * dt);
         let mut position = self.position + velocity * dt;
         // The body follows the ground under its rest feet: height, pitch and roll; afresh, it
@@ -493,6 +553,11 @@ impl Animator {
                 None => *local,
             };
         }
+        self.skin();
+    }
+
+    /// Every joint's skinning matrix from its world transform.
+    fn skin(&mut self) {
         for ((skin, world), &rest) in self
             .skinning
             .iter_mut()
@@ -574,6 +639,22 @@ fn smoothing(dt: f32, tau: f32) -> f32 {
     1.0 - crate::math::exp(-dt / tau)
 }
 
+/// `dt` checked (finite, not negative) and capped at [`MAX_STEP`].
+fn time_step(dt: f32) -> Result<f32, Error> {
+    if !dt.is_finite() {
+        return Err(Error::NonFinite { what: "dt" });
+    }
+    if dt < 0.0 {
+        return Err(Error::OutOfRange {
+            what: "dt",
+            value: dt,
+            min: 0.0,
+            max: f32::INFINITY,
+        });
+    }
+    Ok(dt.min(MAX_STEP))
+}
+
 /// `angle` wrapped into `[-π, π)`.
 fn wrap(angle: f32) -> f32 {
     use core::f32::consts::{PI, TAU};
@@ -640,6 +721,9 @@ impl Creature {
                 min,
                 max: 600.0,
             });
+        }
+        if self.gait.is_none() {
+            return Err(Error::NoGait);
         }
         let mut animator = Animator::new(self)?;
         let animated: Vec<usize> = (0..animator.turns.len())

@@ -463,9 +463,9 @@ fn a_flier_banks_into_its_turns_and_flies_level_straight_ahead() {
 }
 
 /// Upward crossings per second of the mean by `angle` of `joint`'s local rotation about
-/// `axis` over 6 s of moving straight ahead at `speed`, and the animator's
-/// [`beat_frequency`](Animator::beat_frequency) then.
-fn beats(c: &d3::Creature, joint: usize, axis: Vec3, speed: f32) -> (f32, f32) {
+/// `axis` over 6 s of moving straight ahead at `speed`, the animator's
+/// [`beat_frequency`](Animator::beat_frequency) then, and the angle's range.
+fn beats(c: &d3::Creature, joint: usize, axis: Vec3, speed: f32) -> (f32, f32, f32) {
     let mut animator = Animator::new(c).unwrap();
     let intent = Intent::Move {
         velocity: Vec3::Z * speed,
@@ -489,7 +489,13 @@ fn beats(c: &d3::Creature, joint: usize, axis: Vec3, speed: f32) -> (f32, f32) {
         .windows(2)
         .filter(|w| w[0] < mean && w[1] >= mean)
         .count();
-    (crossings as f32 / 6.0, animator.beat_frequency().unwrap())
+    let range = angles.iter().fold(f32::NEG_INFINITY, |a, &b| a.max(b))
+        - angles.iter().fold(f32::INFINITY, |a, &b| a.min(b));
+    (
+        crossings as f32 / 6.0,
+        animator.beat_frequency().unwrap(),
+        range,
+    )
 }
 
 fn joint(c: &d3::Creature, name: &str) -> usize {
@@ -501,13 +507,17 @@ fn joint(c: &d3::Creature, name: &str) -> usize {
 }
 
 #[test]
-fn wings_beat_faster_the_faster_a_flier_flies() {
+fn wings_beat_faster_and_wider_the_faster_a_flier_flies() {
     for seed in [2, 3] {
         let c = flier(seed);
         let wing = joint(&c, "wing_l0_1");
-        let (slow, slow_reported) = beats(&c, wing, Vec3::Z, 0.0);
-        let (fast, fast_reported) = beats(&c, wing, Vec3::Z, 2.0 * c.speed);
+        let (slow, slow_reported, slow_sweep) = beats(&c, wing, Vec3::Z, 0.0);
+        let (fast, fast_reported, fast_sweep) = beats(&c, wing, Vec3::Z, 2.0 * c.speed);
         assert!(fast > slow * 1.3, "seed {seed}: {slow} then {fast} beats/s");
+        assert!(
+            fast_sweep > slow_sweep * 1.2,
+            "seed {seed}: sweeps {slow_sweep} then {fast_sweep} rad"
+        );
         // What is reported is what is seen (within a crossing in 6 s).
         for (seen, reported) in [(slow, slow_reported), (fast, fast_reported)] {
             assert!((seen - reported).abs() <= 0.2, "{seen} vs {reported}");
@@ -520,8 +530,8 @@ fn a_swimmer_waves_faster_the_faster_it_swims() {
     let c = swimmer(3);
     // A spine joint halfway along the body.
     let joint = c.rig.spine[c.rig.spine.len() / 2];
-    let (slow, _) = beats(&c, joint, Vec3::Y, 0.5 * c.speed);
-    let (fast, reported) = beats(&c, joint, Vec3::Y, 2.0 * c.speed);
+    let (slow, _, _) = beats(&c, joint, Vec3::Y, 0.5 * c.speed);
+    let (fast, reported, _) = beats(&c, joint, Vec3::Y, 2.0 * c.speed);
     assert!(fast > slow * 1.5, "{slow} then {fast} waves/s");
     assert!((fast - reported).abs() <= 0.2, "{fast} vs {reported}");
 }

@@ -1,6 +1,7 @@
 //! The live animator: a walker driven every frame by the gait controller on any ground, its
 //! joints posed as the baked clips pose them (two-bone legs turning about their knee hinges,
-//! feet flat on the ground, neck and tail bent toward the turn), ready for a GPU.
+//! feet flat on the ground, neck and tail bent toward the turn), ready for a GPU; fliers and
+//! swimmers steered the same way, held above the ground (submodule `fly_swim`).
 
 use alloc::vec::Vec;
 
@@ -31,9 +32,10 @@ mod fly_swim;
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[non_exhaustive]
 pub enum Intent {
-    /// Stand still (idle: breathing, the feet settling).
+    /// Stand still (idle: breathing, the feet settling; a flier hovers, a swimmer sways).
     Stand,
-    /// Move at `velocity` (m/s, world; its vertical part is ignored) while turning at
+    /// Move at `velocity` (m/s, world; its vertical part is ignored: a flier or swimmer keeps
+    /// its own height over the ground) while turning at
     /// `turn_rate` (rad/s about +Y, positive toward +X from +Z). A speed above twice the
     /// creature's [`speed`](Creature::speed) is lowered to that, a turn rate faster than the
     /// animator's [`max_turn_rate`](Animator::max_turn_rate) to that.
@@ -43,9 +45,9 @@ pub enum Intent {
         /// Turn rate, rad/s.
         turn_rate: f32,
     },
-    /// Walk to a point (world; its height is ignored): turn toward it, walk at the creature's
-    /// speed (slower while facing away, and slowing to a stop on arrival, within
-    /// [`ARRIVAL_RADIUS`] of the body's length).
+    /// Walk (fly, swim) to a point (world; its height is ignored): turn toward it, go at the
+    /// creature's speed (slower while facing away, and slowing to a stop on arrival, within
+    /// [`ARRIVAL_RADIUS`] of the body's length; a flier then hovers).
     GoTo(Vec3),
 }
 
@@ -53,7 +55,7 @@ pub enum Intent {
 /// and stands.
 pub const ARRIVAL_RADIUS: f32 = 0.25;
 
-/// A walker driven live: one [`update`](Self::update) per frame with a time step, an
+/// A creature driven live: one [`update`](Self::update) per frame with a time step, an
 /// [`Intent`] and any [`Ground`](creature_gait::Ground) (a
 /// [`HeightField`](creature_gait::HeightField), a [`Plane`](creature_gait::Plane), your own
 /// raycast). Each update runs the gait controller (feet placed by raycasts, steps, the body's
@@ -63,6 +65,24 @@ pub const ARRIVAL_RADIUS: f32 = 0.25;
 /// its parent's frame, the root in the world), [`world_transforms`](Self::world_transforms)
 /// and [`skinning_matrices`](Self::skinning_matrices) (joint world × inverse bind, for a GPU
 /// skinning shader). An update allocates nothing.
+///
+/// Fliers and swimmers are steered by the same intents (at most a quarter turn a second) and
+/// held above the ground under them:
+///
+/// - A flier keeps its model origin (its rest pose's ground level) three quarters of its body
+///   length above the highest ground under its reach now and ahead of it (where it will be in
+///   0.4 and 0.8 s), climbing faster than it sinks; every joint is kept at least as far above
+///   the ground under it as its skin reaches, plus 5% of the body length. It banks into its
+///   turns (its up axis tilts toward the side it turns to, up to 35° at its full turn rate and
+///   speed) and pitches up climbing, down diving. Its wings beat as in its baked `fly` clip,
+///   faster and wider the faster it flies (at 0.8 of the clip's beat hovering, the clip's at its
+///   speed, 1.2 times at twice it; see [`beat_frequency`](Self::beat_frequency)), and its
+///   legs, arms and tail are the clip's damped chains, trailing tucked back.
+/// - A swimmer swims at the height of its baked `swim` clip (its fins clear of the bottom)
+///   plus 2% of its body length above the highest ground under and ahead of it. Its spine
+///   waves as in that clip, faster the faster it swims (half the clip's rate at rest, the
+///   clip's at its speed), blending into the idle sway below half its speed, and bends toward
+///   its turn as a walker's tail does; each joint keeps within the clip's bend limits.
 ///
 /// ```
 /// use creature::d3::{generate, Animator, Intent, Kind, Params};
@@ -77,6 +97,15 @@ pub const ARRIVAL_RADIUS: f32 = 0.25;
 /// }
 /// assert!(animator.position().distance(target) < walker.length);
 /// assert_eq!(animator.skinning_matrices().len(), walker.skeleton.joints.len());
+///
+/// // A flier crossing the same ground, above it.
+/// let bird = generate(7, &Params::DEFAULT.with_kind(Kind::Flier).with_clips(false))?;
+/// let mut flight = Animator::new(&bird)?;
+/// for _ in 0..30 * 20 {
+///     flight.update(1.0 / 30.0, Intent::GoTo(target), &Plane::GROUND)?;
+/// }
+/// assert!(flight.world_transforms().iter().all(|w| w.translation.y > 0.0));
+/// assert!(flight.beat_frequency().is_some());
 /// # Ok::<(), creature::Error>(())
 /// ```
 #[derive(Debug, Clone)]
@@ -290,7 +319,7 @@ impl Animator {
     /// # Errors
     /// [`Error::NonFinite`] for a NaN or infinite `dt` or intent, [`Error::OutOfRange`] for a
     /// negative `dt`; the pose is unchanged then. [`Error::Gait`] if the controller rejects a
-    /// position beyond its range (`creature_gait::MAX_COORDINATE`).
+    /// walker's position beyond its range (`creature_gait::MAX_COORDINATE`).
     pub fn update<G: Ground + ?Sized>(
         &mut self,
         dt: f32,
@@ -572,7 +601,8 @@ impl Animator {
         }
     }
 
-    /// Where the creature stands (x, z) and the ground height its body follows (y).
+    /// Where the creature stands (x, z) and the ground height its body follows (y); for a
+    /// flier or swimmer, the height of its model origin (its rest pose's ground level).
     #[must_use]
     pub const fn position(&self) -> Vec3 {
         self.position
@@ -584,8 +614,9 @@ impl Animator {
         self.heading
     }
 
-    /// The fastest the creature turns (rad/s): a quarter turn a second, slower for a long body
-    /// whose end feet would otherwise sweep round faster than it walks (as its `turn` clip).
+    /// The fastest the creature turns (rad/s): a quarter turn a second, slower for a long
+    /// walker whose end feet would otherwise sweep round faster than it walks (as its `turn`
+    /// clip).
     #[must_use]
     pub const fn max_turn_rate(&self) -> f32 {
         self.max_turn_rate
@@ -612,7 +643,8 @@ impl Animator {
         &self.skinning
     }
 
-    /// The gait controller driving the legs (its leg states, metrics and body reaction).
+    /// The gait controller driving the legs (its leg states, metrics and body reaction); a
+    /// flier's or swimmer's has no legs.
     #[must_use]
     pub const fn controller(&self) -> &Controller {
         &self.controller

@@ -590,3 +590,53 @@ fn a_swimmer_swims_at_its_clip_height_over_flat_ground() {
         }
     }
 }
+
+/// The lowest skinned vertex's height above `ground` under it.
+fn lowest_gap<G: Ground>(c: &d3::Creature, animator: &Animator, ground: &G) -> f32 {
+    skinned(c, animator)
+        .into_iter()
+        .map(|p| p.y - height(ground, p))
+        .fold(f32::INFINITY, f32::min)
+}
+
+#[test]
+fn a_flier_told_to_stand_lands_on_its_rest_pose_and_takes_off_when_told_to_go() {
+    for seed in [1, 2, 3] {
+        let c = flier(seed);
+        let ground = Plane::GROUND;
+        let wing = joint(&c, "wing_l0_1");
+        let mut animator = Animator::new(&c).unwrap();
+        let go = Intent::GoTo(Vec3::new(0.0, 0.0, 4.0) * c.length);
+        for _ in 0..60 {
+            animator.update(1.0 / 30.0, go, &ground).unwrap();
+        }
+        let flying = lowest_gap(&c, &animator, &ground);
+        assert!(flying > 0.3 * c.length, "seed {seed}: flying {flying} up");
+        // Landing: never into the ground, and after 3 s standing on it, the wings still.
+        let mut wing_angles = Vec::new();
+        for frame in 0..90 {
+            animator.update(1.0 / 30.0, Intent::Stand, &ground).unwrap();
+            let gap = lowest_gap(&c, &animator, &ground);
+            assert!(gap > -1e-3 * c.length, "seed {seed} frame {frame}: {gap}");
+            if frame >= 60 {
+                let q = animator.local_transforms()[wing]
+                    .to_scale_rotation_translation()
+                    .1;
+                wing_angles.push(q.angle_between(creature::glam::Quat::IDENTITY));
+            }
+        }
+        let standing = lowest_gap(&c, &animator, &ground);
+        assert!(
+            standing < 0.01 * c.length + c.quality.min_height,
+            "seed {seed}: standing {standing} up"
+        );
+        let wings = wing_angles.iter().fold(0.0f32, |a, &b| a.max(b));
+        assert!(wings < 1e-3, "seed {seed}: wings at {wings} rad landed");
+        // Taking off: up in the air again within 2 s.
+        for _ in 0..60 {
+            animator.update(1.0 / 30.0, go, &ground).unwrap();
+        }
+        let up = lowest_gap(&c, &animator, &ground);
+        assert!(up > 0.3 * c.length, "seed {seed}: taken off {up} up");
+    }
+}

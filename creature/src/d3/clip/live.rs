@@ -32,7 +32,7 @@ mod fly_swim;
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[non_exhaustive]
 pub enum Intent {
-    /// Stand still (idle: breathing, the feet settling; a flier hovers, a swimmer sways).
+    /// Stand still (idle: breathing, the feet settling; a flier lands, a swimmer sways).
     Stand,
     /// Move at `velocity` (m/s, world; its vertical part is ignored: a flier or swimmer keeps
     /// its own height over the ground) while turning at
@@ -47,7 +47,7 @@ pub enum Intent {
     },
     /// Walk (fly, swim) to a point (world; its height is ignored): turn toward it, go at the
     /// creature's speed (slower while facing away, and slowing to a stop on arrival, within
-    /// [`ARRIVAL_RADIUS`] of the body's length; a flier then hovers).
+    /// [`ARRIVAL_RADIUS`] of the body's length; a flier then hovers until told to stand).
     GoTo(Vec3),
 }
 
@@ -74,10 +74,15 @@ pub const ARRIVAL_RADIUS: f32 = 0.25;
 ///   0.4 and 0.8 s), climbing faster than it sinks; every joint is kept at least as far above
 ///   the ground under it as its skin reaches, plus 5% of the body length. It banks into its
 ///   turns (its up axis tilts toward the side it turns to, up to 35° at its full turn rate and
-///   speed) and pitches up climbing, down diving. Its wings beat as in its baked `fly` clip,
+///   speed) and, flying forward, pitches up climbing, down diving. Its wings beat as in its
+///   baked `fly` clip,
 ///   faster and wider the faster it flies (at 0.8 of the clip's beat hovering, the clip's at its
 ///   speed, 1.2 times at twice it; see [`beat_frequency`](Self::beat_frequency)), and its
-///   legs, arms and tail are the clip's damped chains, trailing tucked back.
+///   legs, arms and tail are the clip's damped chains, trailing tucked back. Told to
+///   [`Stand`](Intent::Stand), it lands in 1.5 s: it comes down onto its rest pose on the
+///   ground under it (the highest under its reach: on a slope its downhill feet do not reach),
+///   its wings and chains settling to rest; told anything else, it takes off in 0.75 s, rising
+///   before it moves off.
 /// - A swimmer swims at the height of its baked `swim` clip (its fins clear of the bottom)
 ///   plus 2% of its body length above the highest ground under and ahead of it. Its spine
 ///   waves as in that clip, faster the faster it swims (half the clip's rate at rest, the
@@ -333,7 +338,8 @@ impl Animator {
         match core::mem::replace(&mut self.drive, Drive::Walk) {
             Drive::Walk => self.walk(dt, intent, (velocity, turn_rate), ground),
             Drive::Fly(mut flight) => {
-                let done = self.fly(&mut flight, dt, (velocity, turn_rate), ground);
+                let stand = matches!(intent, Intent::Stand);
+                let done = self.fly(&mut flight, dt, (velocity, turn_rate, stand), ground);
                 self.drive = Drive::Fly(flight);
                 done
             }

@@ -41,6 +41,10 @@ const HOVER_SWEEP: f32 = 0.85;
 /// The body wave's frequency at rest, as a share of its frequency at the creature's speed.
 const REST_WAVE: f32 = 0.5;
 
+/// Seconds a flier takes to land when told to stand, and to take off again.
+const LANDING_TIME: f32 = 1.5;
+const TAKE_OFF_TIME: f32 = 0.75;
+
 /// The most a flier banks into a turn (radians): 35°, at its full turn rate and speed.
 const MAX_BANK: f32 = 0.61;
 
@@ -98,6 +102,10 @@ pub(super) struct Flight {
     bob: f32,
     /// The body's pitch (radians), smoothed.
     pitch: f32,
+    /// Per joint, how far below it its skin reaches at rest (standing, landed).
+    rest_below: Vec<f32>,
+    /// How far it has landed: 0 flying, 1 standing on the ground.
+    landed: f32,
 }
 
 /// A swimmer's body wave.
@@ -134,6 +142,19 @@ struct Steer {
 /// `x` less its whole part (for non-negative phases).
 fn fract(x: f32) -> f32 {
     x - crate::math::floor_f(x)
+}
+
+/// Per joint, how far below it its skin reaches at rest (metres): down to the lowest vertex
+/// it moves.
+fn rest_below(c: &Creature) -> Vec<f32> {
+    let joints = &c.skeleton.joints;
+    let mut lowest: Vec<f32> = joints.iter().map(|j| j.position.y).collect();
+    c.for_each_skinned(|j, p| lowest[j] = lowest[j].min(p.y));
+    joints
+        .iter()
+        .zip(&lowest)
+        .map(|(j, &l)| j.position.y - l)
+        .collect()
 }
 
 /// How far the skin reaches horizontally from the model origin at rest (metres).
@@ -175,6 +196,8 @@ impl Animator {
             beat: 0.0,
             bob: 0.0,
             pitch: 0.0,
+            rest_below: rest_below(c),
+            landed: 0.0,
         };
         let controller = Controller::chains_only(c.length.max(1e-3), &GaitOptions::DEFAULT)?;
         let drive = Drive::Fly(Box::new(flight));
@@ -221,14 +244,7 @@ impl Animator {
         };
         // Each joint's skin reaches down to its lowest vertex at rest (the wave turns the
         // spine about the vertical; the fins' dips are the clip's lift).
-        let joints = &c.skeleton.joints;
-        let mut lowest: Vec<f32> = joints.iter().map(|j| j.position.y).collect();
-        c.for_each_skinned(|j, p| lowest[j] = lowest[j].min(p.y));
-        let below = joints
-            .iter()
-            .zip(&lowest)
-            .map(|(j, &l)| j.position.y - l + lift)
-            .collect();
+        let below = rest_below(c).into_iter().map(|b| b + lift).collect();
         let swimming = Swimming {
             hold: Hold {
                 height: lift + SWIM_CLEARANCE * c.length,
@@ -265,11 +281,11 @@ impl Animator {
     }
 
     /// Where a flier or swimmer goes in `dt` at `velocity` turning at `turn_rate`: its model
-    /// origin follows the highest ground under and ahead of it (held `hold.height` above it),
+    /// origin follows the highest ground under and ahead of it (held `height` above it),
     /// rising faster than it sinks; afresh, it is put there. Nothing is changed.
     fn steer<G: Ground + ?Sized>(
         &mut self,
-        hold: &Hold,
+        (hold, height): (&Hold, f32),
         dt: f32,
         (velocity, turn_rate): (Vec3, f32),
         ground: &G,
@@ -283,7 +299,7 @@ impl Animator {
         let mut position = self.position + velocity * dt;
         let top = self.ground_top(hold, position, velocity, ground);
         if let Some(top) = top {
-            let target = top + hold.height;
+            let target = top + height;
             position.y = if self.fresh {
                 target
             } else {
@@ -358,15 +374,21 @@ impl Animator {
     }
 
     /// Lifts the whole pose (and the position) so that each joint's skin, reaching
-    /// `hold.below` under it, clears the ground under the joint by `hold.clearance`.
-    fn keep_above<G: Ground + ?Sized>(&mut self, hold: &Hold, ground: &G) {
+    /// `below(joint)` under it, clears the ground under the joint by `clearance`.
+    fn keep_above<G: Ground + ?Sized>(
+        &mut self,
+        below: impl Fn(usize) -> f32,
+        clearance: f32,
+        ground: &G,
+    ) {
         let above = RAY_ABOVE * self.length;
         let mut lift = 0.0f32;
-        for (world, &below) in self.world.iter().zip(&hold.below) {
+        for (joint, world) in self.world.iter().enumerate() {
+            let below = below(joint);
             let p = Vec3::from(world.translation);
             let from = p + Vec3::Y * above;
             if let Some(hit) = ground.cast_down_point(from, 2.0 * above + below) {
-                lift = lift.max(hit.y + below + hold.clearance - p.y);
+                lift = lift.max(hit.y + below + clearance - p.y);
             }
         }
         if lift > 0.0 && lift.is_finite() {
@@ -380,14 +402,24 @@ impl Animator {
 
     /// A flier's update (see [`update`](Self::update)): steered by `velocity` and
     /// `turn_rate`, banking into the turn and pitching as it climbs, its wings beating faster
-    /// and wider the faster it flies.
+    /// and wider the faster it flies; told to `stand`, it lands (and takes off when it is told
+    /// anything else).
     pub(super) fn fly<G: Ground + ?Sized>(
         &mut self,
         flight: &mut Flight,
         dt: f32,
-        (velocity, turn_rate): (Vec3, f32),
+        (velocity, turn_rate, stand): (Vec3, f32, bool),
         ground: &G,
     ) -> Result<(), Error> {
+        // Landing: coming down onto its rest pose, the wings and the chains settling; taking
+        // off, it rises before it flies off.
+        let landed = if stand {
+            (flight.landed + dt / LANDING_TIME).min(1.0)
+        } else {
+            (flight.landed - dt / TAKE_OFF_TIME).max(0.0)
+        };
+        let down = landed * landed * (3.0 - 2.0 * landed);
+        let (velocity, turn_rate) = (velocity * (1.0 - down), turn_rate * (1.0 - down));
         let Steer {
             heading,
             position,
@@ -395,18 +427,26 @@ impl Animator {
             relative,
             turn,
             share,
-        } = self.steer(&flight.hold, dt, (velocity, turn_rate), ground);
+        } = self.steer(
+            (&flight.hold, flight.hold.height * (1.0 - down)),
+            dt,
+            (velocity, turn_rate),
+            ground,
+        );
         // Wings: beats faster and wider with speed; the body bobs with them.
         let flap = &flight.flap;
         let frequency = flap.frequency * (HOVER_BEAT + (1.0 - HOVER_BEAT) * relative);
-        let amplitude = (flap.amplitude * (HOVER_SWEEP + (1.0 - HOVER_SWEEP) * relative)).min(1.5);
+        let amplitude = (flap.amplitude * (HOVER_SWEEP + (1.0 - HOVER_SWEEP) * relative)).min(1.5)
+            * (1.0 - down);
         let beat = fract(flight.beat + frequency * dt);
         let bob_phase = fract(flight.bob + flap.idle_frequency * dt);
         // The flap with its phases in turns: a frequency of 1 per turn.
         let unit = flap
             .with_frequency(1.0)
             .with_idle_frequency(1.0)
-            .with_amplitude(amplitude);
+            .with_amplitude(amplitude)
+            .with_bias(flap.bias * (1.0 - down))
+            .with_bob(flap.bob * (1.0 - down));
         let bob = unit.body_bob(if flight.buzzing { bob_phase } else { beat }, speed);
         // The chains swing with the bob in the body's frame, as in the `fly` clip.
         flight.chains.update(dt, Vec3::Y * bob)?;
@@ -423,13 +463,16 @@ impl Animator {
         } else {
             0.0
         };
-        let glide = speed.max(0.25 * self.speed).max(1e-3);
+        // Only flying forward: hovering (and landing) it climbs and sinks level.
+        let glide = speed.max(1e-3);
         let pitch_target = -glam::Vec2::new(glide, climb)
             .to_angle()
-            .clamp(-MAX_PITCH, MAX_PITCH);
+            .clamp(-MAX_PITCH, MAX_PITCH)
+            * relative.min(1.0);
         let pitch = flight.pitch + (pitch_target - flight.pitch) * share;
         (self.position, self.heading, self.turn) = (position, heading, turn);
         (flight.beat, flight.bob, flight.pitch) = (beat, bob_phase, pitch);
+        flight.landed = landed;
         (flight.hold.speed, flight.hold.frequency) = (speed, frequency);
         self.fresh = false;
         let yaw = Quat::from_rotation_y(heading);
@@ -451,13 +494,19 @@ impl Animator {
             .zip(&flight.chain_limits)
             .zip(&flight.chain_rotations)
         {
-            self.local[joint] = Affine3A::from_rotation_translation(
-                chain_bend_limited(rotation, limit),
-                self.rest_local[joint],
-            );
+            // Landed, the legs stand at rest (reaching down) and the tail rests.
+            let rotation = chain_bend_limited(rotation, limit).slerp(Quat::IDENTITY, down);
+            self.local[joint] =
+                Affine3A::from_rotation_translation(rotation.normalize(), self.rest_local[joint]);
         }
         self.forward_kinematics();
-        self.keep_above(&flight.hold, ground);
+        let hold = &flight.hold;
+        let rest = &flight.rest_below;
+        self.keep_above(
+            |j| hold.below[j] + (rest[j] - hold.below[j]) * down,
+            hold.clearance * (1.0 - down),
+            ground,
+        );
         self.skin();
         Ok(())
     }
@@ -478,7 +527,12 @@ impl Animator {
             relative,
             turn,
             ..
-        } = self.steer(&swimming.hold, dt, (velocity, turn_rate), ground);
+        } = self.steer(
+            (&swimming.hold, swimming.hold.height),
+            dt,
+            (velocity, turn_rate),
+            ground,
+        );
         let params = &swimming.params;
         let frequency = params.frequency * (REST_WAVE + (1.0 - REST_WAVE) * relative);
         let wave = fract(swimming.wave + frequency * dt);
@@ -524,13 +578,15 @@ impl Animator {
             );
         }
         self.forward_kinematics();
-        self.keep_above(&swimming.hold, ground);
+        let hold = &swimming.hold;
+        self.keep_above(|j| hold.below[j], hold.clearance, ground);
         self.skin();
         Ok(())
     }
 
     /// A flier's wing beats or a swimmer's body waves per second in the last update (they
-    /// follow its speed); `None` for a walker.
+    /// follow its speed); `None` for a walker. (A landing flier's wings slow their sweep to
+    /// rest, not their rate.)
     #[must_use]
     pub fn beat_frequency(&self) -> Option<f32> {
         match &self.drive {

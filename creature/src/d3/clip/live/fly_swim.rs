@@ -495,7 +495,10 @@ impl Animator {
             .zip(&flight.chain_rotations)
         {
             // Landed, the legs stand at rest (reaching down) and the tail rests.
-            let rotation = chain_bend_limited(rotation, limit).slerp(Quat::IDENTITY, down);
+            let mut rotation = chain_bend_limited(rotation, limit);
+            if down > 0.0 {
+                rotation = rotation.slerp(Quat::IDENTITY, down);
+            }
             self.local[joint] =
                 Affine3A::from_rotation_translation(rotation.normalize(), self.rest_local[joint]);
         }

@@ -134,7 +134,9 @@ fn bench_3d(c: &mut Criterion) {
 }
 
 /// One live update of walker 7 (`d3::Animator`: gait, pose and skinning matrices) on flat
-/// ground and on the default procedural terrain, walking in a circle; and, as the reference in
+/// ground and on the default procedural terrain, walking in a circle; of flier 7 and swimmer 7
+/// (steering, ground under and ahead, wings or wave, pose, skinning) going round over that
+/// terrain; and, as the reference in
 /// the same run, sampling a baked `walk` clip of the same walker (`Creature::pose` at a frame,
 /// then each joint's skinning matrix).
 fn bench_animator(c: &mut Criterion) {
@@ -166,6 +168,29 @@ fn bench_animator(c: &mut Criterion) {
                 animator
                     .update(black_box(1.0 / 60.0), black_box(intent), ground)
                     .expect("walks");
+                black_box(animator.skinning_matrices().len())
+            });
+        });
+    }
+    // Fliers and swimmers over the same hills, turning as the walker does.
+    for (name, kind) in [
+        ("animator_update_flier_terrain", d3::Kind::Flier),
+        ("animator_update_swimmer_terrain", d3::Kind::Swimmer),
+    ] {
+        let c = generate(7, &d3::Params::DEFAULT.with_kind(kind)).expect("valid");
+        let intent = Intent::Move {
+            velocity: Vec3::Z * c.speed,
+            turn_rate: 0.5,
+        };
+        let mut animator = Animator::new(&c).expect("a flier or swimmer");
+        for _ in 0..120 {
+            animator.update(1.0 / 60.0, intent, &hills).expect("moves");
+        }
+        group.bench_function(name, |b| {
+            b.iter(|| {
+                animator
+                    .update(black_box(1.0 / 60.0), black_box(intent), &hills)
+                    .expect("moves");
                 black_box(animator.skinning_matrices().len())
             });
         });

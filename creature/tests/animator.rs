@@ -19,6 +19,14 @@ fn walker(seed: u64) -> d3::Creature {
     .unwrap()
 }
 
+fn flier(seed: u64) -> d3::Creature {
+    d3::generate(seed, &d3::Params::DEFAULT.with_kind(Kind::Flier)).unwrap()
+}
+
+fn swimmer(seed: u64) -> d3::Creature {
+    d3::generate(seed, &d3::Params::DEFAULT.with_kind(Kind::Swimmer)).unwrap()
+}
+
 /// The mesh skinned by the animator's skinning matrices (linear blend, as a vertex shader).
 fn skinned(c: &d3::Creature, animator: &Animator) -> Vec<Vec3> {
     let m = animator.skinning_matrices();
@@ -179,8 +187,13 @@ fn a_walker_crosses_hilly_stepped_terrain_to_a_target_feet_on_the_surface() {
 
 #[test]
 fn bad_time_steps_and_intents_are_errors_and_leave_the_pose() {
-    let c = walker(5);
-    let mut animator = Animator::new(&c).unwrap();
+    for c in [walker(5), flier(5), swimmer(5)] {
+        bad_input_leaves_the_pose(&c);
+    }
+}
+
+fn bad_input_leaves_the_pose(c: &d3::Creature) {
+    let mut animator = Animator::new(c).unwrap();
     animator
         .update(1.0 / 30.0, Intent::Stand, &Plane::GROUND)
         .unwrap();
@@ -213,9 +226,14 @@ fn bad_time_steps_and_intents_are_errors_and_leave_the_pose() {
 
 #[test]
 fn the_same_updates_give_the_same_pose() {
-    let c = walker(6);
+    for c in [walker(6), flier(6), swimmer(6)] {
+        same_updates_same_pose(&c);
+    }
+}
+
+fn same_updates_same_pose(c: &d3::Creature) {
     let run = || {
-        let mut a = Animator::new(&c).unwrap();
+        let mut a = Animator::new(c).unwrap();
         for k in 0..90 {
             let intent = Intent::Move {
                 velocity: Vec3::new(0.2, 0.0, 1.0) * c.speed,
@@ -226,14 +244,6 @@ fn the_same_updates_give_the_same_pose() {
         a.skinning_matrices().to_vec()
     };
     assert_eq!(run(), run());
-}
-
-#[test]
-fn fliers_and_swimmers_have_no_walking_animator() {
-    for kind in [Kind::Flier, Kind::Swimmer] {
-        let c = d3::generate(1, &d3::Params::DEFAULT.with_kind(kind).with_clips(false)).unwrap();
-        assert_eq!(Animator::new(&c).err(), Some(creature::Error::NoGait));
-    }
 }
 
 #[test]
@@ -351,5 +361,296 @@ fn the_head_looks_toward_a_target_before_the_body_faces_it() {
                 "edge {a}-{b}: {ratio}× its rest length"
             );
         }
+    }
+}
+
+/// Rolling hills for fliers and swimmers to cross: `hills` body lengths high, 6 apart, sloping
+/// up to `slope` degrees.
+fn hills(c: &d3::Creature, seed: u64, hills: f32, slope: f32) -> creature::gait::HeightField {
+    let params = TerrainParams::DEFAULT
+        .with_extent(40.0 * c.length, 321)
+        .with_hills(hills * c.length, 6.0 * c.length)
+        .with_slope(slope);
+    terrain(seed, &params).unwrap()
+}
+
+/// Goes from the origin to `target` (its height ignored) on `ground`, checking every update
+/// that every joint is at least `margin` body lengths above the ground under it and every
+/// fifth that every skinned vertex is above it; panics unless it arrives within a minute.
+/// The updates taken.
+fn goes_to<G: Ground>(
+    c: &d3::Creature,
+    ground: &G,
+    target: Vec3,
+    margin: f32,
+    label: &str,
+) -> usize {
+    let mut animator = Animator::new(c).unwrap();
+    for frame in 0..30 * 60 {
+        animator
+            .update(1.0 / 30.0, Intent::GoTo(target), ground)
+            .unwrap();
+        for (j, w) in animator.world_transforms().iter().enumerate() {
+            let p = Vec3::from(w.translation);
+            let under = height(ground, p);
+            assert!(
+                p.y > under + margin * c.length,
+                "{label} frame {frame}: joint {j} at {p}, the ground at {under}"
+            );
+        }
+        if frame % 5 == 0 {
+            for (v, p) in skinned(c, &animator).into_iter().enumerate() {
+                let under = height(ground, p);
+                assert!(
+                    p.y > under,
+                    "{label} frame {frame}: vertex {v} at {p} in the ground at {under}"
+                );
+            }
+        }
+        let p = animator.position();
+        if Vec3::new(p.x, 0.0, p.z).distance(target) < 0.3 * c.length {
+            return frame;
+        }
+    }
+    panic!("{label}: stopped at {}", animator.position());
+}
+
+#[test]
+fn a_flier_flies_over_hills_to_a_target_ten_lengths_away_clear_of_the_ground() {
+    for seed in [1, 2, 3, 4] {
+        let c = flier(seed);
+        let ground = hills(&c, seed, 0.8, 25.0);
+        let target = Vec3::new(6.0, 0.0, 8.0) * c.length;
+        goes_to(&c, &ground, target, 0.05, &format!("flier {seed}"));
+    }
+}
+
+#[test]
+fn a_swimmer_swims_over_the_seabed_to_a_target_ten_lengths_away_above_it() {
+    for seed in [1, 2, 3, 4] {
+        let c = swimmer(seed);
+        let ground = hills(&c, seed, 0.3, 10.0);
+        for target in [Vec3::new(6.0, 0.0, 8.0), Vec3::new(-8.0, 0.0, -6.0)] {
+            let label = format!("swimmer {seed} to {target}");
+            goes_to(&c, &ground, target * c.length, 0.0, &label);
+        }
+    }
+}
+
+/// The root joint's index.
+fn root(c: &d3::Creature) -> usize {
+    c.skeleton
+        .joints
+        .iter()
+        .position(|j| j.parent.is_none())
+        .unwrap()
+}
+
+#[test]
+fn a_flier_banks_into_its_turns_and_flies_level_straight_ahead() {
+    let c = flier(7);
+    let root = root(&c);
+    // The root's up axis along the body's left (+X at heading 0), averaged over the last second
+    // of two seconds of turning at `turn_rate`.
+    let roll = |turn_rate: f32| {
+        let mut animator = Animator::new(&c).unwrap();
+        let mut sum = 0.0;
+        for frame in 0..60 {
+            let intent = Intent::Move {
+                velocity: Vec3::Z * c.speed,
+                turn_rate,
+            };
+            animator.update(1.0 / 30.0, intent, &Plane::GROUND).unwrap();
+            if frame >= 30 {
+                let h = animator.heading();
+                let left = Vec3::new(h.cos(), 0.0, -h.sin());
+                let up = animator.world_transforms()[root].matrix3.y_axis;
+                sum += Vec3::from(up).dot(left) / 30.0;
+            }
+        }
+        sum
+    };
+    let (left, right, straight) = (roll(1.0), roll(-1.0), roll(0.0));
+    assert!(left > 0.2, "turning left, rolled {left}");
+    assert!(right < -0.2, "turning right, rolled {right}");
+    assert!(straight.abs() < 0.01, "flying straight, rolled {straight}");
+}
+
+/// Upward crossings per second of the mean by `angle` of `joint`'s local rotation about
+/// `axis` over 6 s of moving straight ahead at `speed`, the animator's
+/// [`beat_frequency`](Animator::beat_frequency) then, and the angle's range.
+fn beats(c: &d3::Creature, joint: usize, axis: Vec3, speed: f32) -> (f32, f32, f32) {
+    let mut animator = Animator::new(c).unwrap();
+    let intent = Intent::Move {
+        velocity: Vec3::Z * speed,
+        turn_rate: 0.0,
+    };
+    // Up to speed first.
+    for _ in 0..60 {
+        animator.update(1.0 / 60.0, intent, &Plane::GROUND).unwrap();
+    }
+    let mut angles = Vec::new();
+    for _ in 0..360 {
+        animator.update(1.0 / 60.0, intent, &Plane::GROUND).unwrap();
+        // The signed angle of a turn about `axis`.
+        let q = animator.local_transforms()[joint]
+            .to_scale_rotation_translation()
+            .1;
+        angles.push(2.0 * q.xyz().dot(axis).atan2(q.w));
+    }
+    let mean = angles.iter().sum::<f32>() / angles.len() as f32;
+    let crossings = angles
+        .windows(2)
+        .filter(|w| w[0] < mean && w[1] >= mean)
+        .count();
+    let range = angles.iter().fold(f32::NEG_INFINITY, |a, &b| a.max(b))
+        - angles.iter().fold(f32::INFINITY, |a, &b| a.min(b));
+    (
+        crossings as f32 / 6.0,
+        animator.beat_frequency().unwrap(),
+        range,
+    )
+}
+
+fn joint(c: &d3::Creature, name: &str) -> usize {
+    c.skeleton
+        .joints
+        .iter()
+        .position(|j| j.name.starts_with(name))
+        .unwrap()
+}
+
+#[test]
+fn wings_beat_faster_and_wider_the_faster_a_flier_flies() {
+    for seed in [2, 3] {
+        let c = flier(seed);
+        let wing = joint(&c, "wing_l0_1");
+        let (slow, slow_reported, slow_sweep) = beats(&c, wing, Vec3::Z, 0.0);
+        let (fast, fast_reported, fast_sweep) = beats(&c, wing, Vec3::Z, 2.0 * c.speed);
+        assert!(fast > slow * 1.3, "seed {seed}: {slow} then {fast} beats/s");
+        assert!(
+            fast_sweep > slow_sweep * 1.2,
+            "seed {seed}: sweeps {slow_sweep} then {fast_sweep} rad"
+        );
+        // What is reported is what is seen (within a crossing in 6 s).
+        for (seen, reported) in [(slow, slow_reported), (fast, fast_reported)] {
+            assert!((seen - reported).abs() <= 0.2, "{seen} vs {reported}");
+        }
+    }
+}
+
+#[test]
+fn a_swimmer_waves_faster_the_faster_it_swims() {
+    let c = swimmer(3);
+    // A spine joint halfway along the body.
+    let joint = c.rig.spine[c.rig.spine.len() / 2];
+    let (slow, _, _) = beats(&c, joint, Vec3::Y, 0.5 * c.speed);
+    let (fast, reported, _) = beats(&c, joint, Vec3::Y, 2.0 * c.speed);
+    assert!(fast > slow * 1.5, "{slow} then {fast} waves/s");
+    assert!((fast - reported).abs() <= 0.2, "{fast} vs {reported}");
+}
+
+#[test]
+fn a_swimmer_bends_its_body_toward_its_turn() {
+    let c = swimmer(4);
+    let tail = joint(&c, "tail_end");
+    let root = root(&c);
+    // The tail tip's mean place along the body's left over two seconds of turning.
+    let side = |turn_rate: f32| {
+        let mut animator = Animator::new(&c).unwrap();
+        let mut sum = 0.0;
+        for frame in 0..120 {
+            let intent = Intent::Move {
+                velocity: Vec3::Z * c.speed,
+                turn_rate,
+            };
+            animator.update(1.0 / 30.0, intent, &Plane::GROUND).unwrap();
+            if frame >= 60 {
+                let world = animator.world_transforms();
+                let h = animator.heading();
+                let left = Vec3::new(h.cos(), 0.0, -h.sin());
+                let off = Vec3::from(world[tail].translation - world[root].translation);
+                sum += off.dot(left) / 60.0;
+            }
+        }
+        sum
+    };
+    let (left, right) = (side(1.0), side(-1.0));
+    assert!(
+        left > right + 0.05 * c.length,
+        "tail tip {left} turning left, {right} right"
+    );
+}
+
+#[test]
+fn a_swimmer_swims_at_its_clip_height_over_flat_ground() {
+    for seed in [1, 5] {
+        let c = swimmer(seed);
+        let swim = c.clips.iter().find(|clip| clip.name == "swim").unwrap();
+        let root = root(&c);
+        let mut animator = Animator::new(&c).unwrap();
+        for _ in 0..60 {
+            let intent = Intent::Move {
+                velocity: Vec3::Z * c.speed,
+                turn_rate: 0.0,
+            };
+            animator.update(1.0 / 30.0, intent, &Plane::GROUND).unwrap();
+            let y = animator.world_transforms()[root].translation.y;
+            let clip = swim.root_translation[0].y;
+            assert!(
+                y >= clip && y < clip + 0.03 * c.length,
+                "seed {seed}: root at {y}, the clip's at {clip}"
+            );
+        }
+    }
+}
+
+/// The lowest skinned vertex's height above `ground` under it.
+fn lowest_gap<G: Ground>(c: &d3::Creature, animator: &Animator, ground: &G) -> f32 {
+    skinned(c, animator)
+        .into_iter()
+        .map(|p| p.y - height(ground, p))
+        .fold(f32::INFINITY, f32::min)
+}
+
+#[test]
+fn a_flier_told_to_stand_lands_on_its_rest_pose_and_takes_off_when_told_to_go() {
+    for seed in [1, 2, 3] {
+        let c = flier(seed);
+        let ground = Plane::GROUND;
+        let wing = joint(&c, "wing_l0_1");
+        let mut animator = Animator::new(&c).unwrap();
+        let go = Intent::GoTo(Vec3::new(0.0, 0.0, 4.0) * c.length);
+        for _ in 0..60 {
+            animator.update(1.0 / 30.0, go, &ground).unwrap();
+        }
+        let flying = lowest_gap(&c, &animator, &ground);
+        assert!(flying > 0.3 * c.length, "seed {seed}: flying {flying} up");
+        // Landing: never into the ground, and after 3 s standing on it, the wings still.
+        let mut wing_angles = Vec::new();
+        for frame in 0..90 {
+            animator.update(1.0 / 30.0, Intent::Stand, &ground).unwrap();
+            let gap = lowest_gap(&c, &animator, &ground);
+            assert!(gap > -1e-3 * c.length, "seed {seed} frame {frame}: {gap}");
+            if frame >= 60 {
+                let q = animator.local_transforms()[wing]
+                    .to_scale_rotation_translation()
+                    .1;
+                wing_angles.push(q.angle_between(creature::glam::Quat::IDENTITY));
+            }
+        }
+        let standing = lowest_gap(&c, &animator, &ground);
+        assert!(
+            standing < 0.01 * c.length + c.quality.min_height,
+            "seed {seed}: standing {standing} up"
+        );
+        let wings = wing_angles.iter().fold(0.0f32, |a, &b| a.max(b));
+        assert!(wings < 1e-3, "seed {seed}: wings at {wings} rad landed");
+        // Taking off: up in the air again within 2 s.
+        for _ in 0..60 {
+            animator.update(1.0 / 30.0, go, &ground).unwrap();
+        }
+        let up = lowest_gap(&c, &animator, &ground);
+        assert!(up > 0.3 * c.length, "seed {seed}: taken off {up} up");
     }
 }

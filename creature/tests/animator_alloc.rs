@@ -1,6 +1,6 @@
 //! `Animator::update` allocates nothing once the animator is built: a counting global
-//! allocator (this test binary's only one) watches walkers standing, walking, turning and going
-//! to targets over a plane and over procedural terrain, with variable time steps.
+//! allocator (this test binary's only one) watches walkers, fliers and swimmers standing,
+//! moving, turning and going to targets over a plane and over procedural terrain, with variable time steps.
 
 // The allocator below needs `unsafe impl GlobalAlloc`; it only forwards to the system's.
 #![allow(unsafe_code)]
@@ -98,20 +98,15 @@ fn drive(animator: &mut Animator, ground: &dyn Ground, length: f32, frames: u32)
 #[test]
 fn an_update_allocates_nothing() {
     let hills = terrain(3, &TerrainParams::DEFAULT).unwrap();
-    for seed in [1, 2, 3] {
-        let c = d3::generate(
-            seed,
-            &d3::Params::DEFAULT
-                .with_kind(Kind::Walker)
-                .with_clips(false),
-        )
-        .unwrap();
+    let kinds = [Kind::Walker, Kind::Flier, Kind::Swimmer];
+    for (seed, kind) in [1, 2, 3].into_iter().flat_map(|s| kinds.map(|k| (s, k))) {
+        let c = d3::generate(seed, &d3::Params::DEFAULT.with_kind(kind).with_clips(false)).unwrap();
         for ground in [&Plane::GROUND as &dyn Ground, &hills] {
             let mut animator = Animator::new(&c).unwrap();
             // The first update starts afresh; then none allocates.
             animator.update(0.0, Intent::Stand, ground).unwrap();
             let n = allocations_in(|| drive(&mut animator, ground, c.length, 600));
-            assert_eq!(n, 0, "seed {seed}: {n} allocations in 600 updates");
+            assert_eq!(n, 0, "{kind:?} {seed}: {n} allocations in 600 updates");
         }
     }
 }

@@ -860,13 +860,15 @@ proptest! {
         seed in 0u64..1000,
         updates in proptest::collection::vec((any_float(), any_intent()), 1..40),
         hilly in any::<bool>(),
+        kind in prop_oneof![
+            Just(d3::Kind::Walker),
+            Just(d3::Kind::Flier),
+            Just(d3::Kind::Swimmer),
+        ],
     ) {
         // Every update is done or a typed error that leaves the pose; the pose is never NaN.
-        let c = d3::generate(
-            seed,
-            &d3::Params::DEFAULT.with_kind(d3::Kind::Walker).with_clips(false),
-        )
-        .unwrap();
+        let c = d3::generate(seed, &d3::Params::DEFAULT.with_kind(kind).with_clips(false))
+            .unwrap();
         let plane = creature::gait::Plane::GROUND;
         let hills = creature::terrain::terrain(seed, &creature::terrain::TerrainParams::DEFAULT)
             .unwrap();

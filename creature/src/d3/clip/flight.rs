@@ -15,12 +15,7 @@ use crate::d3::Creature;
 
 /// A flier's `hover` (speed 0) or `fly` clip.
 pub(crate) fn flight(c: &Creature, name: &'static str, speed: f32) -> Result<Clip, Error> {
-    let buzzing = c.plan.limbs_of(LimbKind::BuzzingWing).count() > 0;
-    let flap = if buzzing {
-        FlapParams::BUZZING.with_frequency(8.0)
-    } else {
-        FlapParams::FLAPPING
-    };
+    let (flap, buzzing) = flap_params(c);
     // Buzzing: the hover bob's period (10 beats); flapping: 3 beats (bob in time).
     let bob_rate = if buzzing {
         flap.idle_frequency
@@ -34,29 +29,8 @@ pub(crate) fn flight(c: &Creature, name: &'static str, speed: f32) -> Result<Cli
     };
     let (frames, fps) = frames_for(seconds);
     // Wings beat by the flap motion; legs, arms and the tail are damped chains.
-    let mut wings = Vec::new();
-    for (index, limb) in c.plan.limbs.iter().enumerate() {
-        if matches!(limb.kind, LimbKind::BuzzingWing | LimbKind::FlappingWing) {
-            let sign = side_sign(limb.side);
-            for (k, joint) in c.limb_joints(index).into_iter().enumerate() {
-                wings.push((joint, sign, k));
-            }
-        }
-    }
-    let mut chains = Vec::new();
-    for (index, limb) in c.plan.limbs.iter().enumerate() {
-        if matches!(limb.kind, LimbKind::Leg | LimbKind::Arm) {
-            chains.push((c.limb_joints(index), 9.81));
-        }
-    }
-    let tail = c.tail_chain();
-    if let Some(&tip) = c.rig.spine.first()
-        && !tail.is_empty()
-    {
-        let mut joints = tail.clone();
-        joints.push(tip);
-        chains.push((joints, 0.0));
-    }
+    let wings = wing_joints(c);
+    let chains = flight_chain_joints(c);
     let flight = FlightChains::new(c, &chains, speed)?;
     let mut joints: Vec<usize> = wings.iter().map(|w| w.0).collect();
     joints.extend(flight.animated());
@@ -94,27 +68,12 @@ pub(crate) fn flight(c: &Creature, name: &'static str, speed: f32) -> Result<Cli
         let mut tracks = clip.tracks.iter_mut();
         // `wings` first: zip then takes no track past the last wing joint.
         for (&(_, sign, k), track) in wings.iter().zip(tracks.by_ref()) {
-            let rotation = if k == 0 {
-                flap.wing_rotation(t, if sign > 0.0 { Side::Left } else { Side::Right })
-            } else {
-                Quat::from_rotation_z(
-                    sign * 0.25 * flap.amplitude * sin_turns(flap.frequency * t - 0.12 * k as f32),
-                )
-            };
-            track.rotations.push(rotation.normalize());
+            track.rotations.push(wing_joint_rotation(&flap, t, sign, k));
         }
         for (track, rotation) in tracks.zip(flight.rotations(c)?) {
-            // A spine joint (the tail) bends no further than its skin allows; a damped chain
-            // bends all its joints the same way at once, so each takes part of its limit (its
-            // neighbours' bends add up in the skin between them).
-            let limit = CHAIN_BEND_SHARE * limits[track.joint];
-            let angle = rotation.angle_between(Quat::IDENTITY);
-            let rotation = if angle > limit {
-                Quat::IDENTITY.slerp(rotation, limit / angle).normalize()
-            } else {
-                rotation
-            };
-            track.rotations.push(rotation);
+            track
+                .rotations
+                .push(chain_bend_limited(rotation, limits[track.joint]));
         }
     }
     // Clear of the ground in every frame: the lowest any vertex can be (each joint's height
@@ -132,6 +91,80 @@ pub(crate) fn flight(c: &Creature, name: &'static str, speed: f32) -> Result<Cli
     }
     clip.loop_error = loop_error(&clip);
     Ok(clip)
+}
+
+/// A flier's wing beat (buzzing wings at 8 beats per second, the fastest a 30 fps clip
+/// shows), and whether its wings buzz.
+pub(super) fn flap_params(c: &Creature) -> (FlapParams, bool) {
+    let buzzing = c.plan.limbs_of(LimbKind::BuzzingWing).count() > 0;
+    let flap = if buzzing {
+        FlapParams::BUZZING.with_frequency(8.0)
+    } else {
+        FlapParams::FLAPPING
+    };
+    (flap, buzzing)
+}
+
+/// A flier's wing joints: each with its side's sign (+1 left) and its place along its wing
+/// (0 at the root).
+pub(super) fn wing_joints(c: &Creature) -> Vec<(usize, f32, usize)> {
+    let mut wings = Vec::new();
+    for (index, limb) in c.plan.limbs.iter().enumerate() {
+        if matches!(limb.kind, LimbKind::BuzzingWing | LimbKind::FlappingWing) {
+            let sign = side_sign(limb.side);
+            for (k, joint) in c.limb_joints(index).into_iter().enumerate() {
+                wings.push((joint, sign, k));
+            }
+        }
+    }
+    wings
+}
+
+/// A flier's damped chains: its legs and arms (hanging under gravity) and its tail (with the
+/// spine joint it hangs from as the tip), each with its gravity.
+pub(super) fn flight_chain_joints(c: &Creature) -> Vec<(Vec<usize>, f32)> {
+    let mut chains = Vec::new();
+    for (index, limb) in c.plan.limbs.iter().enumerate() {
+        if matches!(limb.kind, LimbKind::Leg | LimbKind::Arm) {
+            chains.push((c.limb_joints(index), 9.81));
+        }
+    }
+    let tail = c.tail_chain();
+    if let Some(&tip) = c.rig.spine.first()
+        && !tail.is_empty()
+    {
+        let mut joints = tail;
+        joints.push(tip);
+        chains.push((joints, 0.0));
+    }
+    chains
+}
+
+/// The local rotation of the wing joint `k` along its wing (0 the root, which beats by the
+/// flap motion; the others lag behind it) on the side of `sign`, at time `t` of `flap`'s beat.
+pub(super) fn wing_joint_rotation(flap: &FlapParams, t: f32, sign: f32, k: usize) -> Quat {
+    let rotation = if k == 0 {
+        flap.wing_rotation(t, if sign > 0.0 { Side::Left } else { Side::Right })
+    } else {
+        Quat::from_rotation_z(
+            sign * 0.25 * flap.amplitude * sin_turns(flap.frequency * t - 0.12 * k as f32),
+        )
+    };
+    rotation.normalize()
+}
+
+/// A damped chain joint's rotation bent no further than its share of the skin's `limit`: a
+/// spine joint (the tail) bends no further than its skin allows; a damped chain bends all its
+/// joints the same way at once, so each takes part of its limit (its neighbours' bends add up
+/// in the skin between them).
+pub(super) fn chain_bend_limited(rotation: Quat, limit: f32) -> Quat {
+    let limit = CHAIN_BEND_SHARE * limit;
+    let angle = rotation.angle_between(Quat::IDENTITY);
+    if angle > limit {
+        Quat::IDENTITY.slerp(rotation, limit / angle).normalize()
+    } else {
+        rotation
+    }
 }
 
 /// The part of its bend limit each joint of a flier's tail chain may take.
@@ -153,7 +186,8 @@ const FLIGHT_WARM_UP: f32 = 3.0;
 /// straight at rest along its limb (root to tip), pulled toward that rest by a spring, by
 /// gravity (legs and arms) and held back by damping, so it sways with the body's bob and
 /// trails in flight. Each bone turns by its segment's deflection from the rest direction.
-struct FlightChains {
+#[derive(Debug, Clone)]
+pub(super) struct FlightChains {
     controller: Controller,
     /// Per chain: its skeleton joints (root first, the tip last; all but the tip animated),
     /// its rest direction and its index in the controller.
@@ -161,7 +195,11 @@ struct FlightChains {
 }
 
 impl FlightChains {
-    fn new(c: &Creature, chains: &[(Vec<usize>, f32)], speed: f32) -> Result<Self, Error> {
+    pub(super) fn new(
+        c: &Creature,
+        chains: &[(Vec<usize>, f32)],
+        speed: f32,
+    ) -> Result<Self, Error> {
         let position = |j: usize| c.skeleton.joints.get(j).map_or(Vec3::ZERO, |j| j.position);
         let mut controller = Controller::chains_only(c.length.max(1e-3), &GaitOptions::DEFAULT)?;
         let mut out = Vec::with_capacity(chains.len());
@@ -205,14 +243,14 @@ impl FlightChains {
     }
 
     /// The animated joints, in the order of [`rotations`](Self::rotations).
-    fn animated(&self) -> impl Iterator<Item = usize> + '_ {
+    pub(super) fn animated(&self) -> impl Iterator<Item = usize> + '_ {
         self.chains
             .iter()
             .flat_map(|(joints, _, _)| joints.iter().take(joints.len().saturating_sub(1)))
             .copied()
     }
 
-    fn update(&mut self, dt: f32, position: Vec3) -> Result<(), Error> {
+    pub(super) fn update(&mut self, dt: f32, position: Vec3) -> Result<(), Error> {
         // No ground under a flier.
         let ground = Plane::horizontal(f32::MIN / 4.0);
         self.controller.update(
@@ -232,8 +270,26 @@ impl FlightChains {
     /// # Errors
     /// [`Error::Gait`] if the controller has no chain of an index it gave (never).
     fn rotations(&self, c: &Creature) -> Result<Vec<Quat>, Error> {
-        let joints = &c.skeleton.joints;
-        let mut global: Vec<Option<Quat>> = alloc::vec![None; joints.len()];
+        let parents: Vec<Option<usize>> = c.skeleton.joints.iter().map(|j| j.parent).collect();
+        let mut global = alloc::vec![None; parents.len()];
+        let mut out = alloc::vec![Quat::IDENTITY; self.animated().count()];
+        self.rotations_into(&parents, &mut global, &mut out)?;
+        Ok(out)
+    }
+
+    /// [`rotations`](Self::rotations) into `out` (in the order of
+    /// [`animated`](Self::animated)) for a skeleton of `parents` (each joint's), with `global`
+    /// (a slot per joint) to work in: allocates nothing.
+    ///
+    /// # Errors
+    /// As [`rotations`](Self::rotations).
+    pub(super) fn rotations_into(
+        &self,
+        parents: &[Option<usize>],
+        global: &mut [Option<Quat>],
+        out: &mut [Quat],
+    ) -> Result<(), Error> {
+        global.fill(None);
         for (chain_joints, direction, index) in &self.chains {
             let points = self.controller.chain(*index)?;
             // A point per joint: the chain was made with a segment between each two.
@@ -246,26 +302,24 @@ impl FlightChains {
             }
         }
         let ancestor = |j: usize| {
-            let mut at = joints.get(j).and_then(|j| j.parent);
+            let mut at = parents.get(j).copied().flatten();
             let mut hops = 0;
             while let Some(p) = at {
                 if let Some(Some(g)) = global.get(p) {
                     return *g;
                 }
                 hops += 1;
-                if hops > joints.len() {
+                if hops > parents.len() {
                     break;
                 }
-                at = joints.get(p).and_then(|j| j.parent);
+                at = parents.get(p).copied().flatten();
             }
             Quat::IDENTITY
         };
-        Ok(self
-            .animated()
-            .map(|j| {
-                let g = global.get(j).copied().flatten().unwrap_or(Quat::IDENTITY);
-                (ancestor(j).inverse() * g).normalize()
-            })
-            .collect())
+        for (slot, j) in out.iter_mut().zip(self.animated()) {
+            let g = global.get(j).copied().flatten().unwrap_or(Quat::IDENTITY);
+            *slot = (ancestor(j).inverse() * g).normalize();
+        }
+        Ok(())
     }
 }

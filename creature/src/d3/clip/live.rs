@@ -1,19 +1,23 @@
 //! The live animator: a walker driven every frame by the gait controller on any ground, its
 //! joints posed as the baked clips pose them (two-bone legs turning about their knee hinges,
-//! feet flat on the ground, neck and tail bent toward the turn), ready for a GPU.
+//! feet flat on the ground, neck and tail bent toward the turn), ready for a GPU; fliers and
+//! swimmers steered the same way, held above the ground (submodule `fly_swim`).
 
 use alloc::vec::Vec;
 
 use glam::{Affine3A, Mat4, Quat, Vec2, Vec3, Vec3A};
 
 use creature_gait::{Controller, Ground, LimbKind, Pose};
+use creature_limbs::CreatureKind;
 
 use super::floor::knee_above;
 use super::kinematics::{Hinge, rotation_arc};
 use super::walk::turn_bend_total;
 use super::{CLIP_FPS, Clip, Track};
 use crate::Error;
-use crate::d3::Creature;
+use crate::d3::{Creature, GaitSetup};
+
+mod fly_swim;
 
 /// What a live creature is asked to do in one update of an [`Animator`].
 ///
@@ -28,9 +32,10 @@ use crate::d3::Creature;
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[non_exhaustive]
 pub enum Intent {
-    /// Stand still (idle: breathing, the feet settling).
+    /// Stand still (idle: breathing, the feet settling; a flier lands, a swimmer sways).
     Stand,
-    /// Move at `velocity` (m/s, world; its vertical part is ignored) while turning at
+    /// Move at `velocity` (m/s, world; its vertical part is ignored: a flier or swimmer keeps
+    /// its own height over the ground) while turning at
     /// `turn_rate` (rad/s about +Y, positive toward +X from +Z). A speed above twice the
     /// creature's [`speed`](Creature::speed) is lowered to that, a turn rate faster than the
     /// animator's [`max_turn_rate`](Animator::max_turn_rate) to that.
@@ -40,9 +45,9 @@ pub enum Intent {
         /// Turn rate, rad/s.
         turn_rate: f32,
     },
-    /// Walk to a point (world; its height is ignored): turn toward it, walk at the creature's
-    /// speed (slower while facing away, and slowing to a stop on arrival, within
-    /// [`ARRIVAL_RADIUS`] of the body's length).
+    /// Walk (fly, swim) to a point (world; its height is ignored): turn toward it, go at the
+    /// creature's speed (slower while facing away, and slowing to a stop on arrival, within
+    /// [`ARRIVAL_RADIUS`] of the body's length; a flier then hovers until told to stand).
     GoTo(Vec3),
 }
 
@@ -50,7 +55,7 @@ pub enum Intent {
 /// and stands.
 pub const ARRIVAL_RADIUS: f32 = 0.25;
 
-/// A walker driven live: one [`update`](Self::update) per frame with a time step, an
+/// A creature driven live: one [`update`](Self::update) per frame with a time step, an
 /// [`Intent`] and any [`Ground`](creature_gait::Ground) (a
 /// [`HeightField`](creature_gait::HeightField), a [`Plane`](creature_gait::Plane), your own
 /// raycast). Each update runs the gait controller (feet placed by raycasts, steps, the body's
@@ -60,6 +65,29 @@ pub const ARRIVAL_RADIUS: f32 = 0.25;
 /// its parent's frame, the root in the world), [`world_transforms`](Self::world_transforms)
 /// and [`skinning_matrices`](Self::skinning_matrices) (joint world × inverse bind, for a GPU
 /// skinning shader). An update allocates nothing.
+///
+/// Fliers and swimmers are steered by the same intents (at most a quarter turn a second) and
+/// held above the ground under them:
+///
+/// - A flier keeps its model origin (its rest pose's ground level) three quarters of its body
+///   length above the highest ground under its reach now and ahead of it (where it will be in
+///   0.4 and 0.8 s), climbing faster than it sinks; every joint is kept at least as far above
+///   the ground under it as its skin reaches, plus 5% of the body length. It banks into its
+///   turns (its up axis tilts toward the side it turns to, up to 35° at its full turn rate and
+///   speed) and, flying forward, pitches up climbing, down diving. Its wings beat as in its
+///   baked `fly` clip,
+///   faster and wider the faster it flies (at 0.8 of the clip's beat hovering, the clip's at its
+///   speed, 1.2 times at twice it; see [`beat_frequency`](Self::beat_frequency)), and its
+///   legs, arms and tail are the clip's damped chains, trailing tucked back. Told to
+///   [`Stand`](Intent::Stand), it lands in 1.5 s: it comes down onto its rest pose on the
+///   ground under it (the highest under its reach: on a slope its downhill feet do not reach),
+///   its wings and chains settling to rest; told anything else, it takes off in 0.75 s, rising
+///   before it moves off.
+/// - A swimmer swims at the height of its baked `swim` clip (its fins clear of the bottom)
+///   plus 2% of its body length above the highest ground under and ahead of it. Its spine
+///   waves as in that clip, faster the faster it swims (half the clip's rate at rest, the
+///   clip's at its speed), blending into the idle sway below half its speed, and bends toward
+///   its turn as a walker's tail does; each joint keeps within the clip's bend limits.
 ///
 /// ```
 /// use creature::d3::{generate, Animator, Intent, Kind, Params};
@@ -74,11 +102,22 @@ pub const ARRIVAL_RADIUS: f32 = 0.25;
 /// }
 /// assert!(animator.position().distance(target) < walker.length);
 /// assert_eq!(animator.skinning_matrices().len(), walker.skeleton.joints.len());
+///
+/// // A flier crossing the same ground, above it.
+/// let bird = generate(7, &Params::DEFAULT.with_kind(Kind::Flier).with_clips(false))?;
+/// let mut flight = Animator::new(&bird)?;
+/// for _ in 0..30 * 20 {
+///     flight.update(1.0 / 30.0, Intent::GoTo(target), &Plane::GROUND)?;
+/// }
+/// assert!(flight.world_transforms().iter().all(|w| w.translation.y > 0.0));
+/// assert!(flight.beat_frequency().is_some());
 /// # Ok::<(), creature::Error>(())
 /// ```
 #[derive(Debug, Clone)]
 pub struct Animator {
     controller: Controller,
+    /// What moves the body: a walker's legs, a flier's wings, a swimmer's wave.
+    drive: Drive,
     /// The body's place on the ground (x, z; y the ground's height it follows) and heading.
     position: Vec3,
     heading: f32,
@@ -105,8 +144,8 @@ pub struct Animator {
     head: Option<usize>,
     /// Per joint, the leg (index into `legs`) whose hip it is.
     leg_at: Vec<Option<usize>>,
-    /// Per joint, whether its local transform turns (the root, the legs' joints, the neck's
-    /// and tail's bending joints); the others only sit at their rest offset.
+    /// Per joint, whether a walker's local transform turns (the root, the legs' joints, the
+    /// neck's and tail's bending joints); the others only sit at their rest offset.
     turns: Vec<bool>,
     /// The time step the smoothing shares were last computed for, and the shares (terrain,
     /// turn bend).
@@ -116,6 +155,17 @@ pub struct Animator {
     local: Vec<Affine3A>,
     world: Vec<Affine3A>,
     skinning: Vec<Mat4>,
+}
+
+/// What moves an [`Animator`]'s body.
+#[derive(Debug, Clone)]
+enum Drive {
+    /// A walker: the gait controller's legs (the animator's own fields).
+    Walk,
+    /// A flier: its wings, chains and flying height.
+    Fly(alloc::boxed::Box<fly_swim::Flight>),
+    /// A swimmer: its body wave and swimming height.
+    Swim(alloc::boxed::Box<fly_swim::Swimming>),
 }
 
 /// One leg's (or arm's) posing: its joints, its knee hinge and how far its knee's ring of
@@ -129,24 +179,87 @@ struct LiveLeg {
 }
 
 impl Animator {
-    /// An animator for `creature` standing at its rest place, facing +Z.
+    /// An animator for `creature` at its rest place, facing +Z: a walker standing, a flier
+    /// hovering, a swimmer at its swimming height (each over flat ground at `y = 0` until the
+    /// first update).
     ///
     /// # Errors
-    /// [`Error::NoGait`] for a creature without a gait set-up (fliers and swimmers);
-    /// [`Error::Gait`] if the gait controller rejects its set-up (an edited creature);
-    /// [`Error::BadParent`] for a skeleton whose parents form a cycle.
+    /// [`Error::NoGait`] for a walker without a gait set-up (or a kind this version does not
+    /// animate); [`Error::Gait`] if the gait controller rejects its set-up (an edited
+    /// creature); [`Error::BadParent`] for a skeleton whose parents form a cycle.
     pub fn new(creature: &Creature) -> Result<Self, Error> {
-        let setup = creature.gait.as_ref().ok_or(Error::NoGait)?;
-        let controller = setup.controller()?;
+        match (&creature.gait, creature.kind) {
+            (Some(setup), _) => Self::walker(creature, setup),
+            (None, CreatureKind::Flier) => Self::flier(creature),
+            (None, CreatureKind::Swimmer) => Self::swimmer(creature),
+            (None, _) => Err(Error::NoGait),
+        }
+    }
+
+    /// What every kind's animator shares: the skeleton's order and rest pose, driven by
+    /// `drive` through `controller`; no legs, no head turning, nothing bending to a turn.
+    fn bare(
+        creature: &Creature,
+        controller: Controller,
+        max_turn_rate: f32,
+        drive: Drive,
+    ) -> Result<Self, Error> {
         let joints = &creature.skeleton.joints;
         let n = joints.len();
         let parents: Vec<Option<usize>> = joints.iter().map(|j| j.parent).collect();
         let order = parents_first(&parents)?;
         let root = order.first().copied().unwrap_or(0);
         let rest_local = creature.skeleton.rest_translations();
-        let rest_position: Vec<Vec3> = joints.iter().map(|j| j.position).collect();
-        let rest = |j: usize| rest_position.get(j).copied().unwrap_or(Vec3::ZERO);
-        let mut leg_at = alloc::vec![None; n];
+        let local: Vec<Affine3A> = rest_local
+            .iter()
+            .map(|&t| Affine3A::from_translation(t))
+            .collect();
+        Ok(Self {
+            controller,
+            drive,
+            position: Vec3::ZERO,
+            heading: 0.0,
+            lean: Vec2::ZERO,
+            turn: 0.0,
+            speed: creature.speed,
+            max_turn_rate,
+            length: creature.length,
+            rest_root: creature.rest_root(),
+            root,
+            order,
+            parents,
+            rest_local,
+            rest_position: joints.iter().map(|j| j.position).collect(),
+            bends: Vec::new(),
+            legs: Vec::new(),
+            head: None,
+            leg_at: alloc::vec![None; n],
+            turns: alloc::vec![false; n],
+            smoothing: (0.0, 0.0, 0.0),
+            fresh: true,
+            world: local.clone(),
+            local,
+            skinning: alloc::vec![Mat4::IDENTITY; n],
+        })
+    }
+
+    /// A walker's animator: its legs driven by the gait controller.
+    fn walker(creature: &Creature, setup: &GaitSetup) -> Result<Self, Error> {
+        let mut controller = setup.controller()?;
+        let joints = &creature.skeleton.joints;
+        let head = joints.iter().position(|j| j.name == "head");
+        if let Some(head) = head {
+            controller.set_head(joints[head].position)?;
+        }
+        let mut animator = Self::bare(
+            creature,
+            controller,
+            creature.turn_rate(&setup.legs),
+            Drive::Walk,
+        )?;
+        let n = joints.len();
+        let parents = &animator.parents;
+        let rest = |j: usize| joints.get(j).map_or(Vec3::ZERO, |j| j.position);
         for (i, &hip) in setup.hip_joints.iter().enumerate() {
             // A leg's chain is its hip, knee and foot, one after the other.
             let chain =
@@ -157,25 +270,21 @@ impl Animator {
                     parent: parents.get(hip + 1).copied().flatten(),
                 });
             }
-            leg_at[hip] = Some(i);
+            animator.leg_at[hip] = Some(i);
         }
-        let mut controller = controller;
-        let head = joints.iter().position(|j| j.name == "head");
-        if let Some(head) = head {
-            controller.set_head(rest_position[head])?;
-        }
-        let bends = creature.turn_bend_shares();
-        let mut turns = alloc::vec![false; n];
+        animator.head = head;
+        animator.bends = creature.turn_bend_shares();
+        let turns = &mut animator.turns;
         if let Some(head) = head {
             turns[head] = true;
         }
-        for &(j, _, _) in &bends {
+        for &(j, _, _) in &animator.bends {
             turns[j] = true;
         }
         for &hip in &setup.hip_joints {
             turns[hip..hip + 3].fill(true);
         }
-        let legs = setup
+        animator.legs = setup
             .legs
             .iter()
             .zip(&setup.hip_joints)
@@ -190,36 +299,6 @@ impl Animator {
                 }
             })
             .collect();
-        let local: Vec<Affine3A> = rest_local
-            .iter()
-            .map(|&t| Affine3A::from_translation(t))
-            .collect();
-        let mut animator = Self {
-            controller,
-            position: Vec3::ZERO,
-            heading: 0.0,
-            lean: Vec2::ZERO,
-            turn: 0.0,
-            speed: creature.speed,
-            max_turn_rate: creature.turn_rate(&setup.legs),
-            length: creature.length,
-            rest_root: creature.rest_root(),
-            root,
-            order,
-            parents,
-            rest_local,
-            rest_position,
-            bends,
-            legs,
-            head,
-            leg_at,
-            turns,
-            smoothing: (0.0, 0.0, 0.0),
-            fresh: true,
-            world: local.clone(),
-            local,
-            skinning: alloc::vec![Mat4::IDENTITY; n],
-        };
         animator.pose_joints(
             &Pose::IDENTITY,
             Quat::IDENTITY,
@@ -245,26 +324,42 @@ impl Animator {
     /// # Errors
     /// [`Error::NonFinite`] for a NaN or infinite `dt` or intent, [`Error::OutOfRange`] for a
     /// negative `dt`; the pose is unchanged then. [`Error::Gait`] if the controller rejects a
-    /// position beyond its range (`creature_gait::MAX_COORDINATE`).
+    /// walker's position beyond its range (`creature_gait::MAX_COORDINATE`).
     pub fn update<G: Ground + ?Sized>(
         &mut self,
         dt: f32,
         intent: Intent,
         ground: &G,
     ) -> Result<(), Error> {
-        if !dt.is_finite() {
-            return Err(Error::NonFinite { what: "dt" });
-        }
-        if dt < 0.0 {
-            return Err(Error::OutOfRange {
-                what: "dt",
-                value: dt,
-                min: 0.0,
-                max: f32::INFINITY,
-            });
-        }
-        let dt = dt.min(MAX_STEP);
+        let dt = time_step(dt)?;
         let (velocity, turn_rate) = self.wanted(intent)?;
+        // The drive is taken out while it moves the body (a `Box` moved: no allocation) and put
+        // back whatever happens.
+        match core::mem::replace(&mut self.drive, Drive::Walk) {
+            Drive::Walk => self.walk(dt, intent, (velocity, turn_rate), ground),
+            Drive::Fly(mut flight) => {
+                let stand = matches!(intent, Intent::Stand);
+                let done = self.fly(&mut flight, dt, (velocity, turn_rate, stand), ground);
+                self.drive = Drive::Fly(flight);
+                done
+            }
+            Drive::Swim(mut swimming) => {
+                let done = self.swim(&mut swimming, dt, (velocity, turn_rate), ground);
+                self.drive = Drive::Swim(swimming);
+                done
+            }
+        }
+    }
+
+    /// A walker's update (see [`update`](Self::update)): `dt` already checked and capped,
+    /// the velocity and turn rate its intent asks.
+    fn walk<G: Ground + ?Sized>(
+        &mut self,
+        dt: f32,
+        intent: Intent,
+        (velocity, turn_rate): (Vec3, f32),
+        ground: &G,
+    ) -> Result<(), Error> {
         let heading = wrap(self.heading + turn_rate * dt);
         let mut position = self.position + velocity * dt;
         // The body follows the ground under its rest feet: height, pitch and roll; afresh, it
@@ -519,6 +614,11 @@ impl Animator {
                 None => *local,
             };
         }
+        self.skin();
+    }
+
+    /// Every joint's skinning matrix from its world transform.
+    fn skin(&mut self) {
         for ((skin, world), &rest) in self
             .skinning
             .iter_mut()
@@ -533,7 +633,8 @@ impl Animator {
         }
     }
 
-    /// Where the creature stands (x, z) and the ground height its body follows (y).
+    /// Where the creature stands (x, z) and the ground height its body follows (y); for a
+    /// flier or swimmer, the height of its model origin (its rest pose's ground level).
     #[must_use]
     pub const fn position(&self) -> Vec3 {
         self.position
@@ -545,8 +646,9 @@ impl Animator {
         self.heading
     }
 
-    /// The fastest the creature turns (rad/s): a quarter turn a second, slower for a long body
-    /// whose end feet would otherwise sweep round faster than it walks (as its `turn` clip).
+    /// The fastest the creature turns (rad/s): a quarter turn a second, slower for a long
+    /// walker whose end feet would otherwise sweep round faster than it walks (as its `turn`
+    /// clip).
     #[must_use]
     pub const fn max_turn_rate(&self) -> f32 {
         self.max_turn_rate
@@ -573,7 +675,8 @@ impl Animator {
         &self.skinning
     }
 
-    /// The gait controller driving the legs (its leg states, metrics and body reaction).
+    /// The gait controller driving the legs (its leg states, metrics and body reaction); a
+    /// flier's or swimmer's has no legs.
     #[must_use]
     pub const fn controller(&self) -> &Controller {
         &self.controller
@@ -598,6 +701,22 @@ const MAX_LEAN: f32 = core::f32::consts::FRAC_PI_6;
 /// The share `1 − e^(−dt/τ)` of the way a first-order follower goes in `dt`.
 fn smoothing(dt: f32, tau: f32) -> f32 {
     1.0 - crate::math::exp(-dt / tau)
+}
+
+/// `dt` checked (finite, not negative) and capped at [`MAX_STEP`].
+fn time_step(dt: f32) -> Result<f32, Error> {
+    if !dt.is_finite() {
+        return Err(Error::NonFinite { what: "dt" });
+    }
+    if dt < 0.0 {
+        return Err(Error::OutOfRange {
+            what: "dt",
+            value: dt,
+            min: 0.0,
+            max: f32::INFINITY,
+        });
+    }
+    Ok(dt.min(MAX_STEP))
 }
 
 /// `angle` wrapped into `[-π, π)`.
@@ -666,6 +785,9 @@ impl Creature {
                 min,
                 max: 600.0,
             });
+        }
+        if self.gait.is_none() {
+            return Err(Error::NoGait);
         }
         let mut animator = Animator::new(self)?;
         let animated: Vec<usize> = (0..animator.turns.len())

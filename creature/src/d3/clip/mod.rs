@@ -306,7 +306,17 @@ impl Creature {
     fn joint_reach(&self) -> Vec<f32> {
         let joints = &self.skeleton.joints;
         let mut reach = alloc::vec![0.0f32; joints.len()];
-        for ((p, js), ws) in self
+        self.for_each_skinned(|j, p| {
+            reach[j] = reach[j].max(p.distance(joints[j].position));
+        });
+        reach
+    }
+
+    /// Calls `visit(joint, position)` for each rest vertex and each joint (a valid index) that
+    /// moves it with some weight.
+    fn for_each_skinned(&self, mut visit: impl FnMut(usize, Vec3)) {
+        let joints = self.skeleton.joints.len();
+        for ((&p, js), ws) in self
             .mesh
             .positions
             .iter()
@@ -315,12 +325,11 @@ impl Creature {
         {
             for (&j, &w) in js.iter().zip(ws) {
                 let j = usize::from(j);
-                if w > 0.0 {
-                    reach[j] = reach[j].max(p.distance(joints[j].position));
+                if w > 0.0 && j < joints {
+                    visit(j, p);
                 }
             }
         }
-        reach
     }
 
     /// The spine joints from the root toward the tail tip that carry a bone (the tip itself

@@ -25,18 +25,7 @@ pub(crate) fn swim(c: &Creature, name: &'static str, speed: f32) -> Clip {
     let (frames, fps) = frames_for(seconds);
     let rest_root = c.rest_root();
     // Spine joints from the head (the root) toward the tail, with their place along it.
-    let spine: Vec<usize> = c.rig.spine.iter().rev().copied().collect();
-    let length = c.rig.spine_length().max(1e-6);
-    let mut along = Vec::with_capacity(spine.len());
-    let mut arc = 0.0f32;
-    for (i, &j) in spine.iter().enumerate() {
-        if i > 0 {
-            let previous = spine[i - 1];
-            let p = |j: usize| c.rig.joints.get(j).map_or(Vec3::ZERO, |j| j.position);
-            arc += p(previous).distance(p(j));
-        }
-        along.push(arc / length);
-    }
+    let (spine, along) = swim_spine(c);
     // Animated: spine joints carrying a bone (not the root, not the tail tip), then fins.
     let mut animated: Vec<(usize, Motion, f32, usize)> = spine
         .iter()
@@ -45,16 +34,7 @@ pub(crate) fn swim(c: &Creature, name: &'static str, speed: f32) -> Clip {
         .take(spine.len().saturating_sub(2))
         .map(|(i, &j)| (j, Motion::Spine, 0.0, i))
         .collect();
-    for (index, limb) in c.plan.limbs.iter().enumerate() {
-        let motion = if limb.kind == LimbKind::Tail {
-            Motion::TailFin
-        } else {
-            Motion::Fin
-        };
-        for (k, joint) in c.limb_joints(index).into_iter().enumerate() {
-            animated.push((joint, motion, side_sign(limb.side), k));
-        }
-    }
+    animated.extend(fin_joints(c));
     let joints: Vec<usize> = animated.iter().map(|a| a.0).collect();
     let mut clip = empty_clip(name, fps, frames, &joints);
     // The yaw at time `t` of the spine joint `i` (from the head); the head's is the first's (a
@@ -63,18 +43,11 @@ pub(crate) fn swim(c: &Creature, name: &'static str, speed: f32) -> Clip {
     // thick parts on short bones swim stiffer and thin tails keep their sweep, as fish do. The
     // largest bend of each joint over the clip against its limit.
     let limits = c.bend_limits();
-    let mut scale = alloc::vec![1.0f32; spine.len()];
-    for f in 0..frames {
+    let scale = bend_scale(&limits, &spine, frames, |f, i| {
         let t = f as f32 / fps;
-        for (i, &j) in spine.iter().enumerate().skip(1) {
-            let bend = (swim_params.bone_yaw(t, wave_speed, along[i])
-                - swim_params.bone_yaw(t, wave_speed, along[i - 1]))
-            .abs();
-            if bend * scale[i] > limits[j] {
-                scale[i] = limits[j] / bend;
-            }
-        }
-    }
+        swim_params.bone_yaw(t, wave_speed, along[i])
+            - swim_params.bone_yaw(t, wave_speed, along[i - 1])
+    });
     let yaw_at = |t: f32, i: usize| swim_params.bone_yaw(t, wave_speed, along[i]);
     let bend_at = |t: f32, i: usize| scale[i] * (yaw_at(t, i) - yaw_at(t, i - 1));
     let head_along = along.first().copied().unwrap_or(1.0);
@@ -88,16 +61,10 @@ pub(crate) fn swim(c: &Creature, name: &'static str, speed: f32) -> Clip {
             let rotation = match motion {
                 // Each bone's yaw relative to its parent's (the previous along the spine): `k`
                 // is from 1 to the spine's length − 2.
-                Motion::Spine => Quat::from_rotation_y(bend_at(t, k)),
-                Motion::TailFin => Quat::from_rotation_y(
-                    0.3 * swim_params.amplitude
-                        * sin_turns(rate * t - swim_params.wavelength - 0.2 * k as f32),
-                ),
-                _ => {
-                    Quat::from_rotation_z(sign * FIN_FLUTTER * sin_turns(rate * t - 0.3 * k as f32))
-                }
+                Motion::Spine => Quat::from_rotation_y(bend_at(t, k)).normalize(),
+                _ => fin_rotation(&swim_params, motion, rate * t, sign, k),
             };
-            track.rotations.push(rotation.normalize());
+            track.rotations.push(rotation);
         }
     }
     // Above the ground in every frame: a fin resting on it dips when it flutters. The whole
@@ -110,10 +77,86 @@ pub(crate) fn swim(c: &Creature, name: &'static str, speed: f32) -> Clip {
     clip
 }
 
+/// A swimmer's spine joints from the head (the root) toward the tail, with each one's place
+/// along it (0 at the head, 1 at the tail's tip).
+pub(super) fn swim_spine(c: &Creature) -> (Vec<usize>, Vec<f32>) {
+    let spine: Vec<usize> = c.rig.spine.iter().rev().copied().collect();
+    let length = c.rig.spine_length().max(1e-6);
+    let mut along = Vec::with_capacity(spine.len());
+    let mut arc = 0.0f32;
+    for (i, &j) in spine.iter().enumerate() {
+        if i > 0 {
+            let previous = spine[i - 1];
+            let p = |j: usize| c.rig.joints.get(j).map_or(Vec3::ZERO, |j| j.position);
+            arc += p(previous).distance(p(j));
+        }
+        along.push(arc / length);
+    }
+    (spine, along)
+}
+
+/// A swimmer's fin joints (each limb's): what moves each, its side's sign and its place along
+/// its fin.
+pub(super) fn fin_joints(c: &Creature) -> Vec<(usize, Motion, f32, usize)> {
+    let mut fins = Vec::new();
+    for (index, limb) in c.plan.limbs.iter().enumerate() {
+        let motion = if limb.kind == LimbKind::Tail {
+            Motion::TailFin
+        } else {
+            Motion::Fin
+        };
+        for (k, joint) in c.limb_joints(index).into_iter().enumerate() {
+            fins.push((joint, motion, side_sign(limb.side), k));
+        }
+    }
+    fins
+}
+
+/// Per place along the swimmer's `spine`, the share of the wave's bend it takes so that its
+/// joint bends no further than its skin allows (`limits`, per joint): thick parts on short
+/// bones swim stiffer and thin tails keep their sweep, as fish do. `bend(sample, i)` is the
+/// wave's bend at place `i` (from 1) in each of `samples`.
+pub(super) fn bend_scale(
+    limits: &[f32],
+    spine: &[usize],
+    samples: usize,
+    bend: impl Fn(usize, usize) -> f32,
+) -> Vec<f32> {
+    let mut scale = alloc::vec![1.0f32; spine.len()];
+    for f in 0..samples {
+        for (i, &j) in spine.iter().enumerate().skip(1) {
+            let bend = bend(f, i).abs();
+            if bend * scale[i] > limits[j] {
+                scale[i] = limits[j] / bend;
+            }
+        }
+    }
+    scale
+}
+
+/// A fin joint's rotation (`motion` a [`Motion::TailFin`] or a [`Motion::Fin`]; the tail fin
+/// following the wave with a lag, the others fluttering), at `turns` (the clip's rate times
+/// the time), on the side of `sign`, `k` along its fin.
+pub(super) fn fin_rotation(
+    params: &SwimParams,
+    motion: Motion,
+    turns: f32,
+    sign: f32,
+    k: usize,
+) -> Quat {
+    let rotation = match motion {
+        Motion::TailFin => Quat::from_rotation_y(
+            0.3 * params.amplitude * sin_turns(turns - params.wavelength - 0.2 * k as f32),
+        ),
+        _ => Quat::from_rotation_z(sign * FIN_FLUTTER * sin_turns(turns - 0.3 * k as f32)),
+    };
+    rotation.normalize()
+}
+
 /// The lowest height over the clip of any vertex a fluttering fin moves (0 if none goes below
 /// the ground), skinned as a viewer does. Only fins roll: the spine and the tail fin turn about
 /// the vertical, which keeps every other vertex at its rest height, on or above the ground.
-fn lowest_fin_vertex(c: &Creature, clip: &Clip) -> f32 {
+pub(super) fn lowest_fin_vertex(c: &Creature, clip: &Clip) -> f32 {
     // Per joint of a fin: its fin's root joint and the most its rolls can turn it (each of its
     // chain's joints rolls at most `FIN_FLUTTER`). A vertex at `p` turned by at most `angle`
     // about the root `r` drops by at most |p − r| · angle: only those that may reach the
@@ -172,7 +215,7 @@ const FIN_FLUTTER: f32 = 0.15;
 
 /// What drives an animated joint of a swimmer clip.
 #[derive(Debug, Clone, Copy, PartialEq)]
-enum Motion {
+pub(super) enum Motion {
     Spine,
     TailFin,
     Fin,

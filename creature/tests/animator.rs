@@ -44,17 +44,49 @@ fn skinned(c: &d3::Creature, animator: &Animator) -> Vec<Vec3> {
         .collect()
 }
 
-/// The world positions of the walker's foot joints, and whether each foot is planted.
-fn feet(c: &d3::Creature, animator: &Animator) -> Vec<(Vec3, bool)> {
+/// Per leg (not arm) of the walker, the vertices bound mostly to its foot joint.
+fn foot_vertices(c: &d3::Creature) -> Vec<Vec<usize>> {
     let setup = c.gait.as_ref().unwrap();
-    let world = animator.world_transforms();
+    let most = |v: usize| {
+        let (js, ws) = (&c.mesh.joints[v], &c.mesh.weights[v]);
+        let k = (0..4).fold(0, |k, i| if ws[i] > ws[k] { i } else { k });
+        usize::from(js[k])
+    };
     setup
         .hip_joints
         .iter()
-        .zip(animator.controller().leg_states())
         .zip(&setup.legs)
         .filter(|(_, leg)| leg.kind == creature::gait::LimbKind::Leg)
-        .map(|((&hip, state), _)| (Vec3::from(world[hip + 2].translation), state.planted))
+        .map(|(&hip, _)| {
+            (0..c.mesh.positions.len())
+                .filter(|&v| most(v) == hip + 2)
+                .collect()
+        })
+        .collect()
+}
+
+/// Per leg, how high its sole (its lowest foot vertex over the ground under it) is in the
+/// skinned `positions`.
+fn soles<G: Ground>(positions: &[Vec3], feet: &[Vec<usize>], ground: &G) -> Vec<f32> {
+    feet.iter()
+        .map(|vs| {
+            vs.iter()
+                .map(|&v| positions[v].y - height(ground, positions[v]))
+                .fold(f32::INFINITY, f32::min)
+        })
+        .collect()
+}
+
+/// Whether each of the walker's legs (not arms) is planted.
+fn planted(c: &d3::Creature, animator: &Animator) -> Vec<bool> {
+    let setup = c.gait.as_ref().unwrap();
+    animator
+        .controller()
+        .leg_states()
+        .iter()
+        .zip(&setup.legs)
+        .filter(|(_, leg)| leg.kind == creature::gait::LimbKind::Leg)
+        .map(|(state, _)| state.planted)
         .collect()
 }
 
@@ -65,18 +97,17 @@ fn height<G: Ground>(ground: &G, p: Vec3) -> f32 {
         .y
 }
 
-/// A foot joint at `foot` is never below `ground` (by 0.5% of the body `length`), and on it
-/// (within 1%) when `planted`.
-fn foot_on<G: Ground>(ground: &G, foot: Vec3, planted: bool, length: f32, label: &str) {
-    let under = height(ground, foot);
+/// A sole `sole` high over the ground is never in it (by 0.5% of the body `length`), and on
+/// it (within 1%) when `planted`.
+fn foot_on(sole: f32, planted: bool, length: f32, label: &str) {
     assert!(
-        foot.y > under - 0.005 * length,
-        "{label}: foot {foot} under the ground at {under}"
+        sole > -0.005 * length,
+        "{label}: a sole {sole} in the ground"
     );
     if planted {
         assert!(
-            (foot.y - under).abs() < 0.01 * length,
-            "{label}: planted foot {foot}, ground {under}"
+            sole.abs() < 0.01 * length,
+            "{label}: a planted sole {sole} over the ground"
         );
     }
 }
@@ -97,22 +128,21 @@ fn walks_to<G: Ground>(c: &d3::Creature, ground: &G, target: Vec3, label: &str) 
             })
         })
         .collect();
+    let feet = foot_vertices(c);
     let mut animator = Animator::new(c).unwrap().with_pose(Vec3::ZERO, 0.0);
     for frame in 0..30 * 240 {
         animator
             .update(1.0 / 30.0, Intent::GoTo(target), ground)
             .unwrap();
-        for (foot, planted) in feet(c, &animator) {
-            foot_on(
-                ground,
-                foot,
-                planted,
-                c.length,
-                &format!("{label} frame {frame}"),
-            );
+        let posed = skinned(c, &animator);
+        for (sole, planted) in soles(&posed, &feet, ground)
+            .into_iter()
+            .zip(planted(c, &animator))
+        {
+            foot_on(sole, planted, c.length, &format!("{label} frame {frame}"));
         }
         if frame % 5 == 0 {
-            for (v, p) in skinned(c, &animator).into_iter().enumerate() {
+            for (v, p) in posed.into_iter().enumerate() {
                 if body[v] {
                     let under = height(ground, p);
                     assert!(
@@ -265,25 +295,16 @@ fn a_walk_baked_over_terrain_keeps_its_planted_feet_on_it_as_a_viewer_plays_it()
             clip.frames
         );
         let setup = c.gait.as_ref().unwrap();
+        let feet = foot_vertices(&c);
         for f in 0..clip.frames {
-            let pose = c.pose(&clip, f);
-            for ((&hip, &planted), leg) in setup
-                .hip_joints
+            let posed = c.posed_positions(&clip, f).unwrap();
+            let contacts = clip.contacts[f]
                 .iter()
-                .zip(&clip.contacts[f])
                 .zip(&setup.legs)
-            {
-                if leg.kind != creature::gait::LimbKind::Leg {
-                    continue;
-                }
-                let foot = Vec3::from(pose[hip + 2].translation);
-                foot_on(
-                    &ground,
-                    foot,
-                    planted,
-                    c.length,
-                    &format!("seed {seed} frame {f}"),
-                );
+                .filter(|(_, leg)| leg.kind == creature::gait::LimbKind::Leg)
+                .map(|(&planted, _)| planted);
+            for (sole, planted) in soles(&posed, &feet, &ground).into_iter().zip(contacts) {
+                foot_on(sole, planted, c.length, &format!("seed {seed} frame {f}"));
             }
         }
     }

@@ -582,30 +582,18 @@ fn terrain_walk_report(seed: u64) -> creature_audit::Report {
 }
 
 /// The audit on terrain (a walk to a point 10 body lengths away over hills, a slope and
-/// steps, as `--terrain` exports it): the stance checks hold — every planted foot on the
-/// terrain and still, none held in the air, no crossing or intersecting legs — and the skin
-/// stays within its stretch (regression: the head, turned on its own joint to look at the
-/// target and wrenched round to it on arrival, stretched the neck's skin to 1.78× and squashed
-/// it to 0.31×). Printed, not yet enforced: on the steps' edges a sole tilted to the ground's
-/// normal under its middle dips up to 2.7% of the body's length into the terrain, and the
-/// foot's tilt jumps up to 55° between two keys there.
+/// steps, as `--terrain` exports it) holds every check, as on flat ground. Regressions: the
+/// head, turned on its own joint to look at the target and wrenched round to it on arrival,
+/// stretched the neck's skin to 1.78× and squashed it to 0.31×; a sole tilted to the ground's
+/// normal under its middle dipped up to 2.7% of the body's length into a step's edge, and
+/// tilted 55° between two keys crossing one; an arm's elbow flipped between two keys.
 #[test]
-fn walks_over_terrain_keep_their_feet_planted_on_the_terrain() {
-    let enforced = [
-        Check::FootInAir,
-        Check::FootNeverDown,
-        Check::FootSlides,
-        Check::FeetCross,
-        Check::LegsIntersect,
-        Check::Stretch,
-        Check::Squash,
-    ];
-    for seed in [3, 7, 12] {
+fn walks_over_terrain_pass_the_audit_on_the_terrain() {
+    // 107: a sole raised for ground beyond its rim stood in the air; 170: an elbow flicked
+    // 88° between two keys as the hand passed its pole.
+    for seed in [3, 7, 12, 107, 170] {
         let report = terrain_walk_report(seed);
         assert!(report.walker);
-        println!("seed {seed}: {}", listed(&report));
-        for check in enforced {
-            assert!(!report.fails(check), "seed {seed}: {}", listed(&report));
-        }
+        assert!(report.passes(), "seed {seed}: {}", listed(&report));
     }
 }

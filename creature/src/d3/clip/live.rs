@@ -7,12 +7,12 @@ use alloc::vec::Vec;
 
 use glam::{Affine3A, Mat4, Quat, Vec2, Vec3, Vec3A};
 
-use creature_gait::{Controller, Ground, LimbKind, Pose};
+use creature_gait::{Controller, Ground, LimbKind, Pose, solve_two_bone};
 use creature_limbs::CreatureKind;
 
 use super::floor::knee_above;
 use super::kinematics::{Hinge, rotation_arc};
-use super::walk::turn_bend_total;
+use super::walk::{MAX_ARM_TURN_RATE, turn_bend_total};
 use super::{CLIP_FPS, Clip, Track};
 use crate::Error;
 use crate::d3::{Creature, GaitSetup};
@@ -176,6 +176,12 @@ struct LiveLeg {
     rest_lower: Vec3,
     hinge: Hinge,
     knee_radius: f32,
+    /// The sole's radius about the foot joint.
+    foot_radius: f32,
+    /// The sole's rim: the foot's farthest vertices from its joint, at rest (level, facing
+    /// +Z), in eight directions (ahead, behind, left, right and between them), relative to the
+    /// joint.
+    sole: [Vec3; 8],
 }
 
 impl Animator {
@@ -296,6 +302,8 @@ impl Animator {
                     rest_lower,
                     hinge: Hinge::new((rest_upper, rest_lower), leg.pole),
                     knee_radius: creature.ring_radius(hip + 1),
+                    foot_radius: creature.ring_radius(hip + 2),
+                    sole: sole_rim(creature, hip + 2),
                 }
             })
             .collect();
@@ -303,6 +311,7 @@ impl Animator {
             &Pose::IDENTITY,
             Quat::IDENTITY,
             None::<&creature_gait::Plane>,
+            f32::INFINITY,
         );
         Ok(animator)
     }
@@ -405,11 +414,18 @@ impl Animator {
         self.controller.set_look_target(look)?;
         self.controller
             .update(dt, pose, velocity, Vec3::Y * turn_rate, ground)?;
+        // Arms hang free, damped: no joint of theirs turns faster than the baked clips' do
+        // (the two-bone solution flips an elbow as the hand passes its pole).
+        let arm_turn = if self.fresh {
+            f32::INFINITY
+        } else {
+            MAX_ARM_TURN_RATE * dt
+        };
         self.fresh = false;
         (self.position, self.heading, self.lean) = (position, heading, lean);
         self.turn += (turn_rate - self.turn) * self.smoothing(dt).1;
         let body = self.controller.reacted_pose();
-        self.pose_joints(&body, yaw, Some(ground));
+        self.pose_joints(&body, yaw, Some(ground), arm_turn);
         Ok(())
     }
 
@@ -524,7 +540,13 @@ impl Animator {
     /// pose) with its legs as the controller solved them, their knees above `ground` (none:
     /// nothing to keep them above), their feet level with `heading` and tilted to the ground
     /// under them.
-    fn pose_joints<G: Ground + ?Sized>(&mut self, body: &Pose, heading: Quat, ground: Option<&G>) {
+    fn pose_joints<G: Ground + ?Sized>(
+        &mut self,
+        body: &Pose,
+        heading: Quat,
+        ground: Option<&G>,
+        arm_turn: f32,
+    ) {
         // Neck and tail bent toward the turn, as the baked clips bend them; the neck turned on
         // toward the look, its rest shared among the neck's joints, none past what its skin
         // allows (a head turned alone on its joint tore the neck's skin).
@@ -569,31 +591,73 @@ impl Animator {
                 // body space.
                 let solved = &state.joints;
                 let to_body = |p: Vec3| unturn * (p - body.translation);
-                let (root, end) = (to_body(solved.root), to_body(solved.end));
+                let (root, mut end) = (to_body(solved.root), to_body(solved.end));
+                let mut middle = to_body(solved.middle);
+                // The sole fitted to the ground across its width, and raised off it where an
+                // edge would be in it (a step's edge under a foot).
+                let mut normal = state.normal;
+                if let Some(g) = ground
+                    && let Some(fit) = fit_sole(g, solved.end, heading, &live.sole, leg.size)
+                {
+                    // A swinging foot levels off as it rises from the ground.
+                    let level = if state.planted {
+                        1.0
+                    } else {
+                        (1.0 - fit.height / (2.0 * live.foot_radius)).clamp(0.0, 1.0)
+                    };
+                    normal = Vec3::Y.lerp(fit.normal, level).normalize_or(Vec3::Y);
+                    let lift = fit.lift(normal);
+                    if lift > 0.0 {
+                        end = to_body(solved.end + Vec3::Y * lift);
+                        middle = solve_two_bone(root, end, leg.upper, leg.lower, leg.pole).middle;
+                    }
+                }
                 let floor = ground.map_or(f32::NEG_INFINITY, |g| {
-                    let knee = solved.middle;
+                    let knee = body.transform_point(middle);
                     let above = Vec3::new(knee.x, knee.y + leg.size, knee.z);
                     g.cast_down_point(above, 2.0 * leg.size)
                         .map_or(f32::NEG_INFINITY, |hit| {
                             hit.y + live.knee_radius - body.translation.y
                         })
                 });
-                let middle = knee_above(root, to_body(solved.middle), end, up, floor);
+                let middle = knee_above(root, middle, end, up, floor);
                 let upper = (middle - root).normalize_or(live.rest_upper);
                 let lower = (end - middle).normalize_or(live.rest_lower);
                 let (hip, knee) = live.hinge.rotations((upper, lower));
                 let hip_world =
                     Affine3A::from_rotation_translation(body.rotation * hip, solved.root);
-                self.local[j] = parent.map_or(hip_world, |p| p.inverse() * hip_world);
+                let arm = leg.kind == LimbKind::Arm;
+                // An arm's joint turned from its last pose no more than `arm_turn`.
+                let damped = |old: &Affine3A, new: Quat| {
+                    let old = Quat::from_mat3a(&old.matrix3).normalize();
+                    let angle = old.angle_between(new);
+                    if arm && angle > arm_turn {
+                        old.slerp(new, arm_turn / angle).normalize()
+                    } else {
+                        new
+                    }
+                };
+                let hip_local = parent.map_or(hip_world, |p| p.inverse() * hip_world);
+                self.local[j] = Affine3A::from_rotation_translation(
+                    damped(
+                        &self.local[j],
+                        Quat::from_mat3a(&hip_local.matrix3).normalize(),
+                    ),
+                    hip_local.translation.into(),
+                );
                 let (knee_joint, foot_joint) = (j + 1, j + 2);
-                self.local[knee_joint] =
-                    Affine3A::from_rotation_translation(knee, self.rest_local[knee_joint]);
+                self.local[knee_joint] = Affine3A::from_rotation_translation(
+                    damped(&self.local[knee_joint], knee),
+                    self.rest_local[knee_joint],
+                );
                 // The sole flat on the ground: level, turned with the heading, tilted to the
                 // ground's normal.
-                let sole = rotation_arc(Vec3::Y, state.normal) * heading;
+                let sole = rotation_arc(Vec3::Y, normal) * heading;
                 let foot_rotation = ((body.rotation * hip * knee).inverse() * sole).normalize();
-                self.local[foot_joint] =
-                    Affine3A::from_rotation_translation(foot_rotation, self.rest_local[foot_joint]);
+                self.local[foot_joint] = Affine3A::from_rotation_translation(
+                    damped(&self.local[foot_joint], foot_rotation),
+                    self.rest_local[foot_joint],
+                );
             }
             if Some(j) == self.head && look == Quat::IDENTITY {
                 // No neck to share it: the look, a rotation in body space, as the head's world
@@ -691,6 +755,140 @@ const TERRAIN_TIME: f32 = 0.15;
 
 /// How fast the neck and tail bend follows the turn rate (seconds).
 const TURN_BEND_TIME: f32 = 0.3;
+
+/// The most a sole tilts to fit the ground under it (radians): a step's edge under a foot
+/// is a steep ramp across it.
+const MAX_SOLE_TILT: f32 = 0.45;
+
+/// The eight directions a sole's rim is sampled in: ahead, behind, left, right, then between.
+const RIM: [Vec3; 8] = {
+    let d = core::f32::consts::FRAC_1_SQRT_2;
+    [
+        Vec3::Z,
+        Vec3::NEG_Z,
+        Vec3::X,
+        Vec3::NEG_X,
+        Vec3::new(d, 0.0, d),
+        Vec3::new(-d, 0.0, -d),
+        Vec3::new(-d, 0.0, d),
+        Vec3::new(d, 0.0, -d),
+    ]
+};
+
+/// The rim of the sole of foot joint `foot` at rest: in each of [`RIM`]'s directions, the
+/// vertex bound mostly to the foot that reaches farthest that way (its offset from the joint,
+/// horizontal); the joint itself where the foot has no vertex.
+fn sole_rim(creature: &Creature, foot: usize) -> [Vec3; 8] {
+    let centre = creature
+        .skeleton
+        .joints
+        .get(foot)
+        .map_or(Vec3::ZERO, |j| j.position);
+    let mut rim = [(0.0f32, Vec3::ZERO); 8];
+    for ((p, js), ws) in creature
+        .mesh
+        .positions
+        .iter()
+        .zip(&creature.mesh.joints)
+        .zip(&creature.mesh.weights)
+    {
+        let most = js.iter().zip(ws).fold(
+            (0u16, 0.0f32),
+            |m, (&j, &w)| if w > m.1 { (j, w) } else { m },
+        );
+        if usize::from(most.0) != foot {
+            continue;
+        }
+        let d = Vec3::new(p.x - centre.x, 0.0, p.z - centre.z);
+        for (k, dir) in RIM.iter().enumerate() {
+            let reach = d.dot(*dir);
+            if reach > rim[k].0 {
+                rim[k] = (reach, d);
+            }
+        }
+    }
+    rim.map(|(_, d)| d)
+}
+
+/// The ground under a sole, sampled on its rim: ahead of, behind, to either side of its
+/// middle and between them.
+struct SoleFit {
+    /// The plane through the samples' normal, tilted at most [`MAX_SOLE_TILT`].
+    normal: Vec3,
+    /// The sole's middle above the samples' mean.
+    height: f32,
+    /// Each sample's offset from the middle (horizontal) and how high the ground is there
+    /// above the middle: ahead, behind, left, right, then the four between them.
+    samples: [(Vec3, f32); 8],
+}
+
+impl SoleFit {
+    /// How far the sole, tilted to `normal` about its middle, must rise for none of the
+    /// samples to be above it.
+    fn lift(&self, normal: Vec3) -> f32 {
+        self.samples
+            .iter()
+            .map(|&(d, ground)| ground + (normal.x * d.x + normal.z * d.z) / normal.y)
+            .fold(0.0, f32::max)
+    }
+}
+
+/// The ground under a sole of `radius` at `foot` (world) turned with `heading`: `None` when a
+/// ray misses.
+fn fit_sole<G: Ground + ?Sized>(
+    ground: &G,
+    foot: Vec3,
+    heading: Quat,
+    rim: &[Vec3; 8],
+    reach: f32,
+) -> Option<SoleFit> {
+    let at = |d: Vec3| {
+        let d = heading * d;
+        let above = Vec3::new(foot.x + d.x, foot.y + reach, foot.z + d.z);
+        ground
+            .cast_down_point(above, 2.0 * reach)
+            .map(|hit| (d, hit.y - foot.y))
+    };
+    let samples = [
+        at(rim[0])?,
+        at(rim[1])?,
+        at(rim[2])?,
+        at(rim[3])?,
+        at(rim[4])?,
+        at(rim[5])?,
+        at(rim[6])?,
+        at(rim[7])?,
+    ];
+    // The slope along and across the heading, from the rim's ends.
+    let slope = |(da, a): (Vec3, f32), (db, b): (Vec3, f32)| {
+        let run = da - db;
+        let length = run.length_squared();
+        if length > 0.0 {
+            run * ((a - b) / length)
+        } else {
+            Vec3::ZERO
+        }
+    };
+    let normal = (Vec3::Y - slope(samples[0], samples[1]) - slope(samples[2], samples[3]))
+        .normalize_or(Vec3::Y);
+    // At most the steepest tilt: the normal's horizontal part scaled down.
+    let (sin, cos) = (
+        crate::math::sin(MAX_SOLE_TILT),
+        crate::math::cos(MAX_SOLE_TILT),
+    );
+    let normal = if normal.y >= cos {
+        normal
+    } else {
+        let flat = Vec3::new(normal.x, 0.0, normal.z).normalize_or(Vec3::X);
+        flat * sin + Vec3::Y * cos
+    };
+    let mean = samples.iter().map(|s| s.1).sum::<f32>() / 8.0;
+    Some(SoleFit {
+        normal,
+        height: -mean,
+        samples,
+    })
+}
 
 /// Turn rate (rad/s) per radian a [`Intent::GoTo`] target is off the heading.
 const TURN_GAIN: f32 = 2.0;

@@ -25,6 +25,9 @@ const WARM_UP: f32 = 1.0;
 /// [`CLIP_FPS`]).
 const MAX_ARM_TURN_PER_FRAME: f32 = 0.4;
 
+/// [`MAX_ARM_TURN_PER_FRAME`] in radians per second: the live animator's arms turn no faster.
+pub(crate) const MAX_ARM_TURN_RATE: f32 = MAX_ARM_TURN_PER_FRAME * CLIP_FPS;
+
 /// Each rotation turned no further than `max` radians from the one before it, following the
 /// track as closely as that allows.
 fn limit_turn_rate(rotations: &mut [Quat], max: f32) {

@@ -8,6 +8,7 @@
 
 mod tally;
 
+use creature::Span;
 use creature::d3::{self, Kind};
 use creature::export::glb_3d;
 use creature_audit::{Check, Limits, audit_glb};
@@ -596,4 +597,136 @@ fn walks_over_terrain_pass_the_audit_on_the_terrain() {
         assert!(report.walker);
         assert!(report.passes(), "seed {seed}: {}", listed(&report));
     }
+}
+
+#[test]
+fn regression_legs_on_a_coarse_body_grow_from_their_own_sockets() {
+    // Four rings under up to 33 spine bones: several bones took the same ring's vertices as
+    // their sockets, and the planner, which saw the bones' middles 10 m apart, put two pairs
+    // of legs on one ring: ten legs grew from six points and two of them passed through each
+    // other at rest (0.025 of the body length). The planner now sees each socket where it is,
+    // once.
+    let params = drawn(
+        Kind::Random,
+        (2, 4, 6, 6, false),
+        [
+            (0.616_603_7, 1.541_992_9),
+            (1.005_354_9, 2.073_105_6),
+            (2.779_494_3, 2.852_187_4),
+        ],
+        (7.240_580_6, 9.536_671),
+        (3.111_096_9, 3.124_008_4),
+        0.331_744_22,
+        (10, 33),
+        65.0615,
+        (0.503_178_54, 1.336_021_2),
+        (0.073_901_66, 0.749_087_9),
+    )
+    .with_eye_size(Span::new(0.174_666_51, 0.192_548))
+    .with_snout_length(Span::new(1.527_606_8, 4.519_441))
+    .with_ornaments(Span::new(1.097_268_7, 1.812_374_2), 0.096_638_404);
+    let seed = 3_328_320_640_590_428_760;
+    let c = d3::generate(seed, &params).unwrap();
+    let hips: Vec<_> = c
+        .skeleton
+        .joints
+        .iter()
+        .filter(|j| j.name.starts_with("leg_") && j.name.ends_with("_hip"))
+        .map(|j| j.position)
+        .collect();
+    assert!(hips.len() >= 2);
+    for (a, p) in hips.iter().enumerate() {
+        for q in &hips[a + 1..] {
+            assert!(p.distance(*q) > 0.01 * c.length, "two hips at {p}");
+        }
+    }
+    passes(seed, &params, &[Check::LegsIntersect]);
+}
+
+#[test]
+fn regression_a_lopsided_front_pair_steps_forward_together() {
+    // A heavy head ahead of the feet: the front feet step forward under it. Only the front-most
+    // foot did, and its mirror, a little behind it, stayed, under the hind pair's knees: the
+    // right legs passed through each other in `walk` and `turn` (0.054 and 0.061 of the body
+    // length). A pair now steps together.
+    let params = drawn(
+        Kind::Random,
+        (3, 6, 15, 3, false),
+        [
+            (1.423_797_6, 2.454_077_5),
+            (0.323_339_58, 1.559_009_2),
+            (0.350_691_85, 1.310_309_8),
+        ],
+        (6.716_143, 6.868_582),
+        (2.681_01, 3.116_035_5),
+        0.250_626_83,
+        (16, 31),
+        119.682_67,
+        (0.706_489_6, 1.648_291_5),
+        (0.601_043_6, 0.622_355_46),
+    )
+    .with_eye_size(Span::new(0.462_305_13, 0.585_680_5))
+    .with_snout_length(Span::new(4.043_108_5, 4.650_486))
+    .with_ornaments(Span::new(0.162_090_94, 2.487_76), 0.085_426_98);
+    passes(9_794_981_786_070_673_381, &params, &[Check::LegsIntersect]);
+}
+
+#[test]
+fn regression_a_retimed_swing_stays_above_the_ground_when_the_body_lurches() {
+    // A wide biped turning shifts its body onto its stance foot between two frames (0.9 m on
+    // a 20 m walker); the swing, retimed along its path in the body's frame, was carried down
+    // with it: the swinging foot went 0.028 of the body length under the ground in `turn`.
+    // A retimed frame that would come down to the ground keeps the gait's own.
+    let params = drawn(
+        Kind::Walker,
+        (9, 9, 11, 3, true),
+        [
+            (2.703_210_8, 2.943_948_7),
+            (0.339_541_58, 0.731_376_1),
+            (0.416_009_9, 2.441_887_1),
+        ],
+        (4.193_389, 8.083_549_5),
+        (0.293_502_48, 2.352_748_2),
+        0.157_278_69,
+        (23, 40),
+        19.542_784,
+        (0.921_866_06, 1.177_133_2),
+        (0.030_366_527, 0.460_567_8),
+    )
+    .with_eye_size(Span::new(0.428_844_6, 0.504_285_7))
+    .with_snout_length(Span::new(2.824_727_8, 3.347_311_3))
+    .with_ornaments(Span::new(1.179_151_4, 1.838_340_6), 0.215_361_06);
+    passes(7_689_786_250_423_442_917, &params, &[Check::BelowGround]);
+}
+
+#[test]
+fn regression_a_foot_lifting_off_behind_a_rising_body_does_not_flick_its_knee() {
+    // A fast walker's rear foot lifted off as the body rose in its bob: the leg, nearly
+    // straight at the end of its stance, was pulled straight in the air, then bent again, its
+    // knee turning 39° between two keys of `walk` (20.6 rad/s). A foot in the air now stops
+    // softly short of a straight leg.
+    let params = drawn(
+        Kind::Walker,
+        (5, 12, 3, 6, false),
+        [
+            (0.395_800_83, 1.607_863_9),
+            (1.936_680_8, 2.311_951_4),
+            (1.525_831_6, 1.750_294_6),
+        ],
+        (0.693_888_07, 3.704_585),
+        (3.442_911_1, 3.719_795_2),
+        0.251_549_15,
+        (23, 34),
+        33.982_647,
+        (1.087_947_1, 1.747_150_3),
+        (0.200_450_14, 0.250_805_5),
+    )
+    .with_eye_size(Span::new(0.209_969_45, 0.249_091_2))
+    .with_snout_length(Span::new(2.395_431_5, 3.641_475_2))
+    .with_ornaments(Span::new(0.693_299_6, 1.167_318_5), 0.132_839_84);
+    passes(
+        1_957_023_710_239_692_180,
+        &params,
+        &[Check::KeyTurn, Check::AngularSpeed],
+    );
 }

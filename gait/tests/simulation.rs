@@ -842,3 +842,52 @@ fn regression_a_chain_on_a_body_moving_far_per_update_stays_behind_its_root() {
         worst.to_degrees()
     );
 }
+
+#[test]
+fn regression_a_fast_step_lands_short_of_a_straight_leg() {
+    // A long-strided walker (speed multiplier 3) put its feet down at the full length of its
+    // legs ahead of the hip: the leg landed straight, and a straight knee turns fast for the
+    // least shortening as the body comes over the foot (a knee turned 42° between two frames
+    // of a baked walk). A step now lands within 95% of the leg's length from its hip.
+    // Legs whose feet stand ahead of their hips, as a generated walker's can.
+    let legs: Vec<Leg> = creature_legs(2, 1.0)
+        .into_iter()
+        .map(|l| {
+            Leg::new(
+                l.hip,
+                l.hip + Vec3::new(0.1 * l.hip.x.signum(), -0.6, 0.45),
+                0.5,
+                0.5,
+            )
+            .with_pole(Vec3::Z)
+        })
+        .collect();
+    let o = GaitOptions::DEFAULT.with_speed_multiplier(3.0);
+    let mut controller = Controller::new(&legs, &o).unwrap();
+    let ground = Plane::GROUND;
+    let speed = 2.5;
+    let mut pose = Pose::new(Vec3::new(0.0, 0.6, 0.0), Quat::IDENTITY);
+    controller.reset(pose, &ground).unwrap();
+    let mut was: Vec<bool> = controller.leg_states().iter().map(|s| s.planted).collect();
+    let (mut landings, mut worst) = (0, 0.0f32);
+    for _ in 0..(10.0 / DT) as usize {
+        pose.translation.z += speed * DT;
+        controller
+            .update(DT, pose, Vec3::Z * speed, Vec3::ZERO, &ground)
+            .unwrap();
+        let body = controller.reacted_pose();
+        for ((leg, state), was) in legs.iter().zip(controller.leg_states()).zip(&mut was) {
+            if state.planted && !*was {
+                landings += 1;
+                let hip = body.transform_point(leg.hip);
+                worst = worst.max(hip.distance(state.foot) / (leg.upper + leg.lower));
+            }
+            *was = state.planted;
+        }
+    }
+    assert!(landings >= 20, "{landings}");
+    assert!(
+        worst <= 0.95 + 1e-3,
+        "a foot landed {worst} of its leg's length away"
+    );
+}

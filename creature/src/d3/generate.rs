@@ -488,9 +488,15 @@ fn add_limbs(
 ) -> Result<BuiltLimbs, Error> {
     let body_rig = &body.rig;
     let positions = &body.positions;
-    let bones = limb_body(body_rig, positions, ground);
+    let (bones, sockets) = limb_body(body_rig, positions, ground);
     let limb_body = Body::new(bones, body.length, HeadEnd::Last);
     let mut limb_plan = plan(&limb_body, spec.limbs, &params.limbs, rng)?;
+    // The planner's bones are the distinct sockets: each limb on its rig socket.
+    for limb in &mut limb_plan.limbs {
+        limb.bone = sockets[limb.bone];
+        limb.span.first_bone = sockets[limb.span.first_bone];
+        limb.span.last_bone = sockets[limb.span.last_bone];
+    }
     let (body_vertices, body_triangles) = (mesh.positions.len(), mesh.indices.len());
 
     // The limbs as planned, then, while the mesh's real centre of mass is not well inside the
@@ -695,7 +701,23 @@ fn feet_under_mass(
     // `want` inside them.
     let ahead = (centre.z + want - front).max(0.0);
     let behind = (centre.z - want - back).min(0.0);
-    for limb in &mut plan.limbs {
+    // A pair steps together: a foot whose mirror is at the front (back) is a front (hind)
+    // foot too, so a lopsided pair does not leave one foot behind under the next pair's.
+    let at = |limb: &creature_limbs::Limb, edge: f32| {
+        let near =
+            |l: &creature_limbs::Limb| l.foot.is_some_and(|f| (f.z - edge).abs() <= 1e-3 * length);
+        near(limb)
+            || limb
+                .mirror
+                .and_then(|m| plan.limbs.get(m))
+                .is_some_and(near)
+    };
+    let ends: Vec<(bool, bool)> = plan
+        .limbs
+        .iter()
+        .map(|l| (at(l, front), at(l, back)))
+        .collect();
+    for (limb, &(is_front, is_back)) in plan.limbs.iter_mut().zip(&ends) {
         let reach = limb.length;
         let Some(foot) = limb.foot.as_mut() else {
             continue;
@@ -703,9 +725,9 @@ fn feet_under_mass(
         let shift = if front - back < want {
             // One pair (or feet nearly abreast): under the mass.
             centre.z - foot.z
-        } else if foot.z >= front - 1e-3 * length {
+        } else if is_front {
             ahead
-        } else if foot.z <= back + 1e-3 * length {
+        } else if is_back {
             behind
         } else {
             // What the front (or hind) feet cannot reach, the rest of the stance follows.
@@ -1073,9 +1095,21 @@ fn add_fish_face(
     Some(head::add_fish_face(mesh, front, shape, colouring, nearest))
 }
 
-/// The planner's view of the body: one bone per socket, `along` the arc length at the bone's
-/// middle, heights above `ground`.
-fn limb_body(body: &creature_autorig::Rig, positions: &[Vec3], ground: f32) -> Vec<SpineBone> {
+/// The planner's view of the body: one bone per distinct socket, `along` the arc length along
+/// the spine where the socket is (its side vertices' middle), heights above `ground`; and, for
+/// each of the planner's bones, the rig's socket it stands for.
+///
+/// A coarse body (few rings under many bones) gives several bones the same side vertices as
+/// their socket, a ring away from the bone's middle: limbs planned on two of them, apart along
+/// the spine as the planner would see them by their bones, would grow from one point, or closer
+/// than their sweeps allow, and pass through each other. Of the bones sharing a side vertex (or
+/// not further along the spine) the planner sees only one, the one whose middle is nearest to
+/// its socket.
+fn limb_body(
+    body: &creature_autorig::Rig,
+    positions: &[Vec3],
+    ground: f32,
+) -> (Vec<SpineBone>, Vec<usize>) {
     let spine_bones = body.spine_bones();
     let mut arc = Vec::with_capacity(spine_bones.len());
     let mut total = 0.0f32;
@@ -1084,17 +1118,58 @@ fn limb_body(body: &creature_autorig::Rig, positions: &[Vec3], ground: f32) -> V
         arc.push(total + 0.5 * len);
         total += len;
     }
-    body.sockets
-        .iter()
-        .map(|s| {
-            let left = positions[s.left_vertex as usize];
-            let right = positions[s.right_vertex as usize];
-            let top = positions[s.top_vertex as usize];
-            let along = arc[s.bone];
-            let clearance = (left.y.min(right.y) - ground).max(0.0);
-            SpineBone::from_sockets(along, left, right, top, clearance)
-        })
-        .collect()
+    // Arc length along the spine of the point on it nearest to `p`.
+    let arc_of = |p: Vec3| {
+        let mut best = (f32::INFINITY, 0.0f32);
+        let mut start = 0.0f32;
+        for b in &spine_bones {
+            let d = b[1] - b[0];
+            let len = d.length();
+            let t = if len > 0.0 {
+                ((p - b[0]).dot(d) / (len * len)).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            let distance = p.distance_squared(b[0] + t * d);
+            if distance < best.0 {
+                best = (distance, start + t * len);
+            }
+            start += len;
+        }
+        best.1
+    };
+    let mut bones: Vec<SpineBone> = Vec::with_capacity(body.sockets.len());
+    let mut kept: Vec<usize> = Vec::with_capacity(body.sockets.len());
+    for (index, s) in body.sockets.iter().enumerate() {
+        let left = positions[s.left_vertex as usize];
+        let right = positions[s.right_vertex as usize];
+        let top = positions[s.top_vertex as usize];
+        let along = arc_of(0.5 * (left + right));
+        let clearance = (left.y.min(right.y) - ground).max(0.0);
+        let bone = SpineBone::from_sockets(along, left, right, top, clearance);
+        let n = bones.len();
+        let conflict = n > 0 && {
+            let other = &body.sockets[kept[n - 1]];
+            other.left_vertex == s.left_vertex
+                || other.right_vertex == s.right_vertex
+                || bones[n - 1].along >= along
+        };
+        if !conflict {
+            bones.push(bone);
+            kept.push(index);
+            continue;
+        }
+        // One place on the body: the bone whose middle is nearer to it stands for it, as long
+        // as the bones stay in order along the spine.
+        let in_order = n < 2 || bones[n - 2].along < along;
+        let nearer = (arc[s.bone] - along).abs()
+            < (arc[body.sockets[kept[n - 1]].bone] - bones[n - 1].along).abs();
+        if in_order && nearer {
+            bones[n - 1] = bone;
+            kept[n - 1] = index;
+        }
+    }
+    (bones, kept)
 }
 
 /// Normals (flat: every triangle its own vertices; with `face_colours`, in one colour:

@@ -395,6 +395,9 @@ fn down_ray(point: Vec3, size: f32, o: &GaitOptions) -> (Vec3, f32) {
     (point + Vec3::Y * above, above + o.cast_depth * size)
 }
 
+/// The farthest a step lands from its hip, × the leg's length (upper + lower).
+const LANDING_REACH: f32 = 0.95;
+
 /// Where a step should land: ahead of the anchor along the anchor's horizontal `motion`, by the
 /// reach in that direction × overshoot (ramped in with speed, × the speed multiplier, capped at
 /// the reach), kept on the leg's own side of the body's midline (see
@@ -452,6 +455,19 @@ fn step_target<G: Ground + ?Sized>(
             target,
             (body, rotation),
         );
+    }
+    // Landing no further from the hip than `landing_reach` of the leg's length: a leg that
+    // lands straight bends fast as the body comes over it.
+    {
+        let hip = *rotation * leg.hip + body;
+        let most = LANDING_REACH * (leg.upper + leg.lower);
+        let drop = hip.y - target.y;
+        let across = horizontal(target - hip);
+        let room = most * most - drop * drop;
+        let far = across.length_squared();
+        if room > 0.0 && far > room {
+            target = Vec3::new(hip.x, target.y, hip.z) + across * sqrt(room / far);
+        }
     }
     if target == anchor {
         return (anchor, anchor_normal());

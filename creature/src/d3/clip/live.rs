@@ -12,7 +12,7 @@ use creature_limbs::CreatureKind;
 
 use super::floor::knee_above;
 use super::kinematics::{Hinge, rotation_arc};
-use super::walk::{MAX_ARM_TURN_RATE, turn_bend_total};
+use super::walk::{MAX_ARM_TURN_RATE, soft_reach, turn_bend_total};
 use super::{CLIP_FPS, Clip, Track};
 use crate::Error;
 use crate::d3::{Creature, GaitSetup};
@@ -609,6 +609,14 @@ impl Animator {
                     let lift = fit.lift(normal);
                     if lift > 0.0 {
                         end = to_body(solved.end + Vec3::Y * lift);
+                        middle = solve_two_bone(root, end, leg.upper, leg.lower, leg.pole).middle;
+                    }
+                }
+                // A foot in the air short of a straight leg, as the baked clips hold it.
+                if !state.planted {
+                    let soft = soft_reach(root, end, leg.upper + leg.lower, up);
+                    if soft != end {
+                        end = soft;
                         middle = solve_two_bone(root, end, leg.upper, leg.lower, leg.pole).middle;
                     }
                 }

@@ -111,8 +111,13 @@ impl Swing<'_> {
             } else {
                 0.0
             };
-            let at = path[segment].lerp(path[segment + 1], t);
-            feet[f * self.legs + self.index] = bodies[f].transform_point(at);
+            let at = bodies[f].transform_point(path[segment].lerp(path[segment + 1], t));
+            // The path is the body's: a body lurching between two frames (a biped shifting
+            // onto its other foot) can carry a point of it down to the ground, where the gait's
+            // own frame (high, as every retimed frame is) stays.
+            if at.y > self.band {
+                feet[f * self.legs + self.index] = at;
+            }
         }
     }
 }

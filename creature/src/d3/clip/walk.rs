@@ -85,6 +85,37 @@ fn limit_free_turn_rate(rotations: &mut [Quat], free: &[bool], max: f32) {
     }
 }
 
+/// Where a foot off the ground reaching `to` from `hip` goes on a leg `length` long: short of
+/// the target, softly, once it is beyond [`SOFT_REACH`] of the length, so the leg never
+/// straightens fully in the air (a straight knee turns fast for the least change of distance:
+/// a foot lifting off behind a body that rises flicked the knee 39° between two keys). The
+/// foot rises toward the hip (`up`, in the same frame) rather than moving across the ground,
+/// so a foot just lifting off does not slide; only one too far out for that comes in toward
+/// the hip.
+pub(super) fn soft_reach(hip: Vec3, to: Vec3, length: f32, up: Vec3) -> Vec3 {
+    let (start, span) = (SOFT_REACH * length, SOFT_SPAN * length);
+    let v = to - hip;
+    let d = v.length();
+    if !(d > start && span > 0.0) {
+        return to;
+    }
+    let soft = start + span * (1.0 - crate::math::exp(-(d - start) / span));
+    let below = v.dot(up);
+    let across = v - up * below;
+    let room = soft * soft - across.length_squared();
+    if below < 0.0 && room >= 0.0 {
+        hip + across - up * crate::math::sqrt(room)
+    } else {
+        hip + v * (soft / d)
+    }
+}
+
+/// Where (× leg length) [`soft_reach`] begins to hold a foot in the air short of its target.
+const SOFT_REACH: f32 = 0.9;
+
+/// How far (× leg length) beyond [`SOFT_REACH`] a foot in the air reaches at most.
+const SOFT_SPAN: f32 = 0.08;
+
 /// How near the ground (× body length) a foot counts as on it, and how far a planted foot may
 /// slide, as the audit of delivered creatures counts them.
 const GROUND_CONTACT: f32 = 0.005;
@@ -442,7 +473,10 @@ impl Creature {
             for (i, tracks) in legs.iter_mut().enumerate() {
                 let (leg, parent) = (tracks.leg, tracks.parent);
                 let (rest_upper, rest_lower) = (tracks.rest_upper, tracks.rest_lower);
-                let foot = body.inverse_transform_point(feet[frame * run.legs + i]);
+                let mut foot = body.inverse_transform_point(feet[frame * run.legs + i]);
+                if !run.planted(frame, i) {
+                    foot = soft_reach(leg.hip, foot, leg.upper + leg.lower, up);
+                }
                 let ik = solve_two_bone(leg.hip, foot, leg.upper, leg.lower, leg.pole);
                 let floor = tracks.knee_radius - body.translation.y;
                 let middle = knee_above(ik.root, ik.middle, ik.end, up, floor);
@@ -679,6 +713,42 @@ impl LegTracks<'_> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_foot_in_the_air_stops_softly_short_of_a_straight_leg() {
+        let hip = Vec3::new(0.1, 1.0, 0.0);
+        let toward = Vec3::new(0.0, -0.6, 0.8);
+        let at = |d: f32| soft_reach(hip, hip + toward * d, 2.0, Vec3::Y);
+        // Within 90% of the length: the target itself.
+        assert_eq!(at(1.7), hip + toward * 1.7);
+        // Beyond: short of it, never further than 98%, nearer the farther, and straight above
+        // the target (it does not slide across the ground).
+        let mut before = 1.8f32;
+        for k in 1..200 {
+            let d = 1.8 + 0.01 * k as f32;
+            let (target, reached) = (hip + toward * d, at(d));
+            let r = reached.distance(hip);
+            assert!(r <= d && r < 0.98 * 2.0, "{d}: {r}");
+            assert!(r >= before - 1e-5, "{d}: {r} < {before}");
+            if 0.8 * d < 1.8 {
+                assert!(reached.y >= target.y);
+                assert!((reached.x - target.x).abs() < 1e-6);
+                assert!((reached.z - target.z).abs() < 1e-5);
+            }
+            before = r;
+        }
+        // Continuous where it begins.
+        assert!((at(1.8 + 1e-4).distance(hip) - 1.8).abs() < 2e-4);
+        // Too far out to rise to its reach: in toward the hip.
+        let out = soft_reach(hip, hip + Vec3::new(0.0, -0.1, 2.5), 2.0, Vec3::Y);
+        assert!(out.distance(hip) < 0.98 * 2.0);
+        assert!(
+            (out - hip)
+                .normalize()
+                .dot(Vec3::new(0.0, -0.1, 2.5).normalize())
+                > 0.9999
+        );
+    }
 
     #[test]
     fn free_frames_turn_within_the_limit_and_kept_frames_stay() {

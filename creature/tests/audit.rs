@@ -730,3 +730,70 @@ fn regression_a_foot_lifting_off_behind_a_rising_body_does_not_flick_its_knee() 
         &[Check::KeyTurn, Check::AngularSpeed],
     );
 }
+
+#[test]
+fn regression_a_walkers_legs_stand_on_its_sides() {
+    // A socket near a pointed end (or on a narrow, bent neck) has its "left" vertex on the
+    // midline or past it: a pair of legs grew from one point on the midline, and stood through
+    // each other at rest (0.033 of the body length), and a "left" foot stood right of the
+    // midline. A walker's limbs now go only on sockets whose sides are its sides.
+    let pointed = drawn(
+        Kind::Walker,
+        (3, 4, 6, 5, true),
+        [
+            (0.444_557_6, 0.535_536_2),
+            (1.016_834_4, 1.180_852_5),
+            (0.885_604_8, 2.334_824),
+        ],
+        (7.988_452, 9.883_803),
+        (3.825_549_8, 3.917_542),
+        0.129_191_18,
+        (34, 40),
+        158.052_86,
+        (0.634_932_8, 1.168_202_2),
+        (0.606_042_44, 0.635_191_6),
+    )
+    .with_eye_size(Span::new(0.445_613_24, 0.555_924_3))
+    .with_snout_length(Span::new(0.017_155_867, 3.390_631_4))
+    .with_ornaments(Span::new(1.158_044_3, 2.632_665_2), 0.014_055_995);
+    let narrow = drawn(
+        Kind::Walker,
+        (1, 13, 11, 5, false),
+        [
+            (0.959_071_5, 1.831_038_6),
+            (0.832_827_87, 2.914_273_7),
+            (0.519_394_3, 0.880_000_95),
+        ],
+        (3.059_110_4, 9.564_991),
+        (2.863_166, 3.442_652_5),
+        0.285_698_56,
+        (9, 17),
+        152.486_79,
+        (1.009_275, 1.815_916_5),
+        (0.383_933_6, 0.402_652_77),
+    )
+    .with_eye_size(Span::new(0.368_042_53, 0.518_224_95))
+    .with_snout_length(Span::new(1.059_300_8, 3.696_033_5))
+    .with_ornaments(Span::new(1.559_793_6, 1.686_687_4), 0.674_563_94);
+    for (seed, params) in [
+        (5_287_661_177_873_974_911, pointed),
+        (7_150_111_178_774_173_641, narrow),
+    ] {
+        let c = d3::generate(seed, &params).unwrap();
+        for j in c
+            .skeleton
+            .joints
+            .iter()
+            .filter(|j| j.name.ends_with("_foot"))
+        {
+            let side = if j.name.contains("_l") { 1.0 } else { -1.0 };
+            assert!(
+                j.position.x * side > 0.0,
+                "seed {seed}: {} at {}",
+                j.name,
+                j.position
+            );
+        }
+        passes(seed, &params, &[Check::FeetCross, Check::LegsIntersect]);
+    }
+}

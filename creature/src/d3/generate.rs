@@ -488,7 +488,7 @@ fn add_limbs(
 ) -> Result<BuiltLimbs, Error> {
     let body_rig = &body.rig;
     let positions = &body.positions;
-    let (bones, sockets) = limb_body(body_rig, positions, ground);
+    let (bones, sockets) = limb_body(body_rig, positions, ground, spec.walks);
     let limb_body = Body::new(bones, body.length, HeadEnd::Last);
     let mut limb_plan = plan(&limb_body, spec.limbs, &params.limbs, rng)?;
     // The planner's bones are the distinct sockets: each limb on its rig socket.
@@ -1095,6 +1095,10 @@ fn add_fish_face(
     Some(head::add_fish_face(mesh, front, shape, colouring, nearest))
 }
 
+/// How far (× the spine's length) a walker's socket's side vertices must be on their own sides
+/// of the midline for the planner to see it (see [`limb_body`]).
+const SIDED_SOCKET_MARGIN: f32 = 0.005;
+
 /// The planner's view of the body: one bone per distinct socket, `along` the arc length along
 /// the spine where the socket is (its side vertices' middle), heights above `ground`; and, for
 /// each of the planner's bones, the rig's socket it stands for.
@@ -1104,11 +1108,13 @@ fn add_fish_face(
 /// the spine as the planner would see them by their bones, would grow from one point, or closer
 /// than their sweeps allow, and pass through each other. Of the bones sharing a side vertex (or
 /// not further along the spine) the planner sees only one, the one whose middle is nearest to
-/// its socket.
+/// its socket. For a walker (`sided`), it sees only sockets whose side vertices are on their
+/// own sides of the midline by [`SIDED_SOCKET_MARGIN`] (all of them if none is).
 fn limb_body(
     body: &creature_autorig::Rig,
     positions: &[Vec3],
     ground: f32,
+    sided: bool,
 ) -> (Vec<SpineBone>, Vec<usize>) {
     let spine_bones = body.spine_bones();
     let mut arc = Vec::with_capacity(spine_bones.len());
@@ -1140,7 +1146,18 @@ fn limb_body(
     };
     let mut bones: Vec<SpineBone> = Vec::with_capacity(body.sockets.len());
     let mut kept: Vec<usize> = Vec::with_capacity(body.sockets.len());
+    // A walker's limbs stand on the body's sides: a socket whose "left" vertex is not left of
+    // the midline (a pointed end, a narrow bent neck) would plant a foot on or across it.
+    let margin = SIDED_SOCKET_MARGIN * body.spine_length();
+    let beside = |s: &creature_autorig::Socket| {
+        positions[s.left_vertex as usize].x > margin
+            && positions[s.right_vertex as usize].x < -margin
+    };
+    let sided = sided && body.sockets.iter().any(beside);
     for (index, s) in body.sockets.iter().enumerate() {
+        if sided && !beside(s) {
+            continue;
+        }
         let left = positions[s.left_vertex as usize];
         let right = positions[s.right_vertex as usize];
         let top = positions[s.top_vertex as usize];

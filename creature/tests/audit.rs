@@ -797,3 +797,114 @@ fn regression_a_walkers_legs_stand_on_its_sides() {
         passes(seed, &params, &[Check::FeetCross, Check::LegsIntersect]);
     }
 }
+
+#[test]
+fn regression_a_body_of_odd_rings_stands_on_its_legs_midline() {
+    // Found by the audit over valid params (case 2773): a ring of 3 segments started beside
+    // the body, so the body was wider on one side and its spine stood 1 m (12% of its length)
+    // off the midline its legs are mirrored about; in the body's frame a right foot lifting
+    // off in `turn` crossed it. Every ring is now symmetric about the midline.
+    let params = drawn(
+        Kind::Walker,
+        (7, 10, 3, 4, false),
+        [
+            (2.716_044_7, 2.821_567_3),
+            (0.754_861_1, 2.307_473_7),
+            (0.374_761_4, 0.720_983_2),
+        ],
+        (5.398_502_3, 8.137_73),
+        (4.138_1, 4.346_852_3),
+        0.437_313_26,
+        (21, 27),
+        69.007_32,
+        (1.471_515_8, 1.853_493_7),
+        (0.661_944_87, 0.997_731_2),
+    )
+    .with_eye_size(Span::new(0.088_975_07, 0.584_538_9))
+    .with_snout_length(Span::new(2.558_503, 4.968_017_6))
+    .with_ornaments(Span::new(0.374_553_8, 1.966_423), 0.129_422_25);
+    let seed = 4_642_089_095_425_433_596;
+    let c = d3::generate(seed, &params).unwrap();
+    for joint in c
+        .skeleton
+        .joints
+        .iter()
+        .filter(|j| j.name.starts_with("spine"))
+    {
+        assert!(
+            joint.position.x.abs() < 1e-4 * c.length,
+            "{} at x = {}",
+            joint.name,
+            joint.position.x
+        );
+    }
+    passes(seed, &params, &[Check::FeetCross]);
+}
+
+#[test]
+fn regression_a_tall_narrow_walker_does_not_sway_its_feet_across() {
+    // Found by the audit over valid params (case 5001): a 27 m walker on 26 m legs with front
+    // hips 0.61 m off the midline, 17 m ahead of its origin. Turning in place, the sway (up to
+    // 0.3 rad) turned the body 3.6° in a key, carrying a planted front foot 1 m across the
+    // body's frame and over the midline. The gait now sways no further than keeps the feet at
+    // rest on their sides.
+    let params = drawn(
+        Kind::Walker,
+        (2, 24, 4, 8, false),
+        [
+            (0.328_505_25, 1.395_186_5),
+            (2.162_314_4, 2.836_322_5),
+            (2.140_524, 2.659_603_6),
+        ],
+        (5.450_493, 6.547_758_6),
+        (0.144_784_02, 0.652_867_44),
+        0.298_312_28,
+        (21, 31),
+        132.852_16,
+        (0.729_697_7, 1.776_309_7),
+        (0.045_260_19, 0.806_076_17),
+    )
+    .with_eye_size(Span::new(0.068_981_096, 0.599_020_9))
+    .with_snout_length(Span::new(0.444_855, 1.867_586_1))
+    .with_ornaments(Span::new(0.589_865_5, 1.130_940_8), 0.468_370_74);
+    passes(14_018_834_416_006_655_849, &params, &[Check::FeetCross]);
+}
+
+#[test]
+fn regression_legs_on_a_fliers_tail_do_not_whirl() {
+    // Found by the audit over valid params (case 2067, once its rings of 11 were symmetric): a
+    // flier's hind legs hang from its tail, whose damped chain the tracks hold to its skin's
+    // bend limits; the legs hung from the tail as it was simulated, not as the tracks turn it,
+    // so a hip whirled through the tail's swing (72° between two keys of `hover`). A chain
+    // hanging from another now hangs from it as its tracks turn it.
+    let params = drawn(
+        Kind::Flier,
+        (2, 15, 11, 4, true),
+        [
+            (1.926_589_3, 2.056_185),
+            (2.435_380_2, 2.946_805_2),
+            (1.027_310_8, 1.409_368_9),
+        ],
+        (0.215_320_53, 1.541_805_6),
+        (0.730_527_76, 4.733_236_3),
+        0.160_564_82,
+        (22, 38),
+        55.271_187,
+        (1.002_684_4, 1.151_605_5),
+        (0.116_262_645, 0.514_046_67),
+    )
+    .with_eye_size(Span::new(0.065_051_86, 0.433_630_2))
+    .with_snout_length(Span::new(2.557_860_1, 4.205_465))
+    .with_ornaments(Span::new(1.549_262_2, 1.848_271_4), 0.140_088_66);
+    let seed = 18_041_021_384_657_769_040;
+    let c = d3::generate(seed, &params).unwrap();
+    let tail = |j: Option<usize>| j.is_some_and(|j| c.skeleton.joints[j].name.starts_with("tail"));
+    assert!(
+        c.skeleton
+            .joints
+            .iter()
+            .any(|j| j.name.ends_with("_hip") && tail(j.parent)),
+        "a leg hangs from the tail"
+    );
+    passes(seed, &params, &[Check::KeyTurn, Check::AngularSpeed]);
+}

@@ -67,7 +67,10 @@ pub struct GaitOptions {
     /// Body sway/roll/pitch as a fraction of the feet's average angle offsets, `[0, 2]`.
     /// Default 0.5.
     pub sway_gain: f32,
-    /// Largest sway, roll or pitch angle, radians, `[0, π/2]`. Default 0.3.
+    /// Largest sway, roll or pitch angle, radians, `[0, π/2]`. Default 0.3. The sway is held
+    /// further to what keeps every walking foot at rest on its side of the body's midline: at
+    /// most the narrowest foot's distance from it over the farthest foot's distance ahead or
+    /// behind the body's origin.
     pub sway_limit: f32,
     /// Time constant of the bob and sway damping, seconds, `[0, 10]` (0 = no damping).
     /// Default 0.1.

@@ -646,6 +646,35 @@ fn regression_a_foot_lifting_off_near_the_midline_is_not_carried_across_it() {
     );
 }
 
+#[test]
+fn regression_a_long_narrow_body_sways_no_foot_across_the_midline() {
+    // A generated walker's legs (creature property case 5001: a 27 m body on 26 m legs, front
+    // hips 0.61 m off the midline 17.3 m ahead of the body's origin) turning in place: the
+    // sway (up to 0.3 rad) turned the body 3.6° in one update, and with it a planted front
+    // foot 1 m across the body's frame and over the midline. The sway is now held to what
+    // keeps the feet at rest on their sides: 0.61 / 17.3 rad here.
+    let legs = mirrored_legs(&[
+        (Vec3::new(0.613, 19.796, 17.315), 12.868),
+        (Vec3::new(1.020, 16.251, -1.111), 10.563),
+    ]);
+    let options = GaitOptions::DEFAULT.with_speed_multiplier(0.3);
+    let limit = 0.613 / 17.315;
+    let (mut sway, mut worst) = (0.0f32, f32::INFINITY);
+    drive(&legs, &options, (0.0, 0.546), |controller| {
+        sway = sway.max(controller.body().yaw.abs());
+        let shown = controller.reacted_pose();
+        for (leg, state) in legs.iter().zip(controller.leg_states()) {
+            let local = shown.rotation.inverse() * (state.foot - shown.translation);
+            worst = worst.min(local.x * leg.rest.x.signum() / leg.rest.x.abs());
+        }
+    });
+    assert!(
+        sway <= limit * 1.0001,
+        "swayed {sway} rad, more than {limit}"
+    );
+    assert!(worst > 0.0, "a foot went {:.2} of its side across", -worst);
+}
+
 /// The least any foot keeps of its side of the midline in the body's frame as shown (its `x`
 /// as a fraction of its hip's distance from the midline), walking `legs` straight at `speed`
 /// for 10 s.

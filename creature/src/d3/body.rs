@@ -2,7 +2,7 @@
 //! three of them blended with random weights.
 
 use alloc::vec::Vec;
-use core::f32::consts::TAU;
+use core::f32::consts::{FRAC_PI_2, TAU};
 
 use glam::Vec3;
 use rand_core::Rng;
@@ -78,6 +78,11 @@ impl Profile {
     /// The profile's vertices on the shared pill topology (see [`pill_triangles`]).
     fn positions(&self, rings: usize, segments: usize, out: &mut Vec<Vec3>) {
         out.clear();
+        // Every ring symmetric about the body's midline (x = 0): an even ring starts beside
+        // the body (+X, with its mirror vertex at −X), an odd one on top (a ring of 5 starting
+        // beside it is wider on one side, and the whole body and its spine stood off the
+        // midline its legs are mirrored about).
+        let start = if segments % 2 == 1 { FRAC_PI_2 } else { 0.0 };
         out.push(Vec3::new(0.0, self.lift_at(0.0), -self.half_length));
         for i in 0..rings {
             let t = (i + 1) as f32 / (rings + 1) as f32;
@@ -89,7 +94,7 @@ impl Profile {
             let z = u * self.half_length;
             let y0 = self.lift_at(t);
             for j in 0..segments {
-                let a = TAU * j as f32 / segments as f32;
+                let a = start + TAU * j as f32 / segments as f32;
                 out.push(Vec3::new(
                     self.width * r * cos(a),
                     y0 + self.height * r * sin(a),
@@ -223,6 +228,30 @@ mod tests {
             assert_eq!(p.len(), 2 + rings * segments);
             assert!(p.iter().all(|v| v.is_finite()));
             assert!(signed_volume(&p, &tris) > 0.0, "inward triangles");
+        }
+    }
+
+    #[test]
+    fn regression_every_ring_is_symmetric_about_the_midline() {
+        // A ring of an odd number of segments started beside the body (+X): a pentagon's
+        // vertex on one side faced an edge on the other, the body was wider on its right, and
+        // its spine and hips stood off the midline its legs are mirrored about (case 2773 of
+        // the audit over valid params: spine 1 m left of it, a right foot crossing it in
+        // `turn`). Every ring now has a mirror vertex for each of its vertices.
+        let rings = 6;
+        let mut p = Vec::new();
+        for segments in 3..=12 {
+            for profile in &PROFILES {
+                profile.positions(rings, segments, &mut p);
+                for v in &p {
+                    let mirror = Vec3::new(-v.x, v.y, v.z);
+                    let nearest = p
+                        .iter()
+                        .map(|w| w.distance(mirror))
+                        .fold(f32::INFINITY, f32::min);
+                    assert!(nearest < 1e-5, "{segments} segments: {v} has no mirror");
+                }
+            }
         }
     }
 

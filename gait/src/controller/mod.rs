@@ -196,6 +196,10 @@ pub struct Controller {
     active_group: u8,
     turn_taken: bool,
     mean_size: f32,
+    /// The most the sway may turn the body (radians) before it carries a foot at rest across
+    /// the midline: the narrowest walking foot's distance from the midline over the farthest's
+    /// distance ahead or behind the body's origin (infinite with no such feet).
+    sway_side_limit: f32,
     swing_fraction: f32,
     pose: Pose,
     reaction: BodyReaction,

@@ -84,6 +84,8 @@ impl Controller {
         let slope = |num: f32, den: f32| if den > 1e-12 { atan2(num, den) } else { 0.0 };
         let (pitch, roll) = (-slope(ez, zz), slope(ex, xx));
         let k = self.react_k;
+        // The sway no further than keeps the feet at rest on their sides.
+        let yaw_limit = o.sway_limit.min(self.sway_side_limit);
         let (bob_t, yaw_t, pitch_t, roll_t) = if count == 0 {
             (0.0, 0.0, 0.0, 0.0)
         } else {
@@ -91,14 +93,14 @@ impl Controller {
             let bob_limit = o.bob_limit * self.mean_size;
             (
                 clamp_sym(o.bob_gain * height / n, bob_limit),
-                clamp_sym(o.sway_gain * yaw / n, o.sway_limit),
+                clamp_sym(o.sway_gain * yaw / n, yaw_limit),
                 clamp_sym(o.sway_gain * pitch, o.sway_limit),
                 clamp_sym(o.sway_gain * roll, o.sway_limit),
             )
         };
         let yaw = clamp_sym(
             self.reaction.yaw + (yaw_t - self.reaction.yaw) * k,
-            o.sway_limit,
+            yaw_limit,
         );
         let yaw = self.sway_keeping_sides(pose, rotation, yaw);
         let r = &mut self.reaction;

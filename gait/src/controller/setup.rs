@@ -92,6 +92,22 @@ impl Controller {
                 None => HipPair::None,
             })
             .collect();
+        // The sway turns the body about its origin, moving a foot across it by as much as the
+        // foot lies ahead or behind: a long body with a narrow stance would sway its end feet
+        // across the midline (and its stepping then chases them back over it).
+        let walking = || {
+            legs.iter()
+                .filter(|l| l.kind == LimbKind::Leg && l.rest.x != 0.0)
+        };
+        let narrowest = walking()
+            .map(|l| abs(l.rest.x))
+            .fold(f32::INFINITY, f32::min);
+        let farthest = walking().map(|l| abs(l.rest.z)).fold(0.0, f32::max);
+        let sway_side_limit = if farthest > 0.0 {
+            narrowest / farthest
+        } else {
+            f32::INFINITY
+        };
         Ok(Self {
             legs: legs.to_vec(),
             options: *options,
@@ -103,6 +119,7 @@ impl Controller {
             active_group: 0,
             turn_taken: false,
             mean_size,
+            sway_side_limit,
             swing_fraction,
             pose: Pose::IDENTITY,
             reaction: BodyReaction::NEUTRAL,

@@ -192,6 +192,8 @@ pub(super) struct FlightChains {
     /// Per chain: its skeleton joints (root first, the tip last; all but the tip animated),
     /// its rest direction and its index in the controller.
     chains: Vec<(Vec<usize>, Vec3, usize)>,
+    /// Each joint's bend limit ([`Creature::bend_limits`]), as the clips limit the chains.
+    limits: Vec<f32>,
 }
 
 impl FlightChains {
@@ -239,6 +241,7 @@ impl FlightChains {
         Ok(Self {
             controller,
             chains: out,
+            limits: c.bend_limits(),
         })
     }
 
@@ -301,12 +304,13 @@ impl FlightChains {
                 }
             }
         }
-        let ancestor = |j: usize| {
+        // The nearest animated ancestor of a joint.
+        let nearest = |j: usize| {
             let mut at = parents.get(j).copied().flatten();
             let mut hops = 0;
             while let Some(p) = at {
-                if let Some(Some(g)) = global.get(p) {
-                    return *g;
+                if let Some(Some(_)) = global.get(p) {
+                    return Some(p);
                 }
                 hops += 1;
                 if hops > parents.len() {
@@ -314,11 +318,46 @@ impl FlightChains {
                 }
                 at = parents.get(p).copied().flatten();
             }
-            Quat::IDENTITY
+            None
         };
+        let raw = |j: usize| global.get(j).copied().flatten().unwrap_or(Quat::IDENTITY);
+        let ancestor = |j: usize| nearest(j).map_or(Quat::IDENTITY, raw);
+        // A joint's rotation as its track has it: its deflection from its nearest animated
+        // ancestor's, limited.
+        let limit = |j: usize| self.limits.get(j).copied().unwrap_or(f32::INFINITY);
+        let local =
+            |j: usize| chain_bend_limited((ancestor(j).inverse() * raw(j)).normalize(), limit(j));
         for (slot, j) in out.iter_mut().zip(self.animated()) {
-            let g = global.get(j).copied().flatten().unwrap_or(Quat::IDENTITY);
-            *slot = (ancestor(j).inverse() * g).normalize();
+            *slot = (ancestor(j).inverse() * raw(j)).normalize();
+        }
+        // A chain hanging from another one (legs on a flier's tail) hangs from that chain as its
+        // tracks turn it (each bend limited), not as it was simulated: a tail held to its
+        // skin's limits would otherwise whirl the legs on it through its whole swing.
+        for (chain_joints, _, _) in &self.chains {
+            let Some(&root) = chain_joints.first() else {
+                continue;
+            };
+            let Some(mut at) = nearest(root) else {
+                continue;
+            };
+            // The ancestors' limited rotations, composed from the top down.
+            let mut applied = local(at);
+            let mut hops = 0;
+            while let Some(up) = nearest(at) {
+                applied = local(up) * applied;
+                at = up;
+                hops += 1;
+                if hops > parents.len() {
+                    break;
+                }
+            }
+            if let Some((slot, _)) = out
+                .iter_mut()
+                .zip(self.animated())
+                .find(|&(_, j)| j == root)
+            {
+                *slot = (applied.inverse() * raw(root)).normalize();
+            }
         }
         Ok(())
     }

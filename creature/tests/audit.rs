@@ -908,3 +908,37 @@ fn regression_legs_on_a_fliers_tail_do_not_whirl() {
     );
     passes(seed, &params, &[Check::KeyTurn, Check::AngularSpeed]);
 }
+
+#[test]
+fn regression_a_heavy_headed_walker_rakes_its_legs_no_further_than_it_must() {
+    // Found by the audit over valid params (case 1229): a walker whose centre of mass is 6 m
+    // ahead of its front hips (a heavy head on a long neck). With its front feet forward as far
+    // as they reach it still tipped, so its whole stance went under the mass, the feet's centre
+    // right below it: every foot 6.4 m ahead of its hip (3.2 m up), the hind feet under the
+    // front hips, and the legs of a side passed through each other. The stance now moves only
+    // as far as puts the mass inside the feet.
+    let params = drawn(
+        Kind::Walker,
+        (7, 16, 12, 3, false),
+        [
+            (2.455_258_6, 2.595_328_6),
+            (0.642_411_77, 1.336_081_7),
+            (0.357_616_66, 2.121_498_8),
+        ],
+        (0.567_409_75, 6.925_729_8),
+        (0.989_464_9, 1.304_557_1),
+        0.376_482_67,
+        (8, 11),
+        39.207_535,
+        (1.487_182_5, 1.710_061),
+        (0.003_151_273_6, 0.743_861_5),
+    )
+    .with_eye_size(Span::new(0.207_330_05, 0.509_561_5))
+    .with_snout_length(Span::new(2.343_797_4, 3.894_768_7))
+    .with_ornaments(Span::new(0.135_239_94, 2.359_578_6), 0.855_954_23);
+    passes(
+        6_648_856_961_646_856_361,
+        &params,
+        &[Check::LegsIntersect, Check::Tips, Check::FeetCross],
+    );
+}

@@ -656,7 +656,10 @@ const STABLE_MARGIN: f32 = 0.03;
 /// mass ahead, the front feet step forward (a heavy head's legs splay forward), with it behind,
 /// the hind feet back, and the other feet follow by what those cannot reach; a single pair
 /// goes under it. No foot moves more than its leg's length. From the third pass on (`pass` 2),
-/// the whole stance moves so the feet's centre is under the mass, up to twice a leg's length.
+/// the whole stance moves toward the mass (its feet's centre toward right below it, no foot
+/// more than twice its leg's length), only as far as puts the mass [`STABLE_MARGIN`] inside
+/// the feet: a stance moved all the way under a mass far ahead raked every leg forward, the
+/// hind feet under the front hips, and a side's legs passed through each other.
 fn feet_under_mass(
     mesh: &MeshBuilder,
     plan: &mut creature_limbs::Plan,
@@ -680,17 +683,51 @@ fn feet_under_mass(
     let want = STABLE_MARGIN * length;
     if pass >= 2 {
         // Growing the footprint was not enough (an odd layout, or a mass far off): the whole
-        // stance goes under the mass, its feet's centre right below it.
+        // stance goes toward the mass, its feet's centre toward right below it.
         let (mut sum, mut n) = (glam::Vec2::ZERO, 0.0f32);
         for foot in plan.limbs.iter().filter_map(|l| l.foot) {
             sum += glam::Vec2::new(foot.x, foot.z);
             n += 1.0;
         }
-        let shift = glam::Vec2::new(centre.x, centre.z) - sum / n;
-        for limb in &mut plan.limbs {
-            let reach = 2.0 * limb.length;
+        let mass = glam::Vec2::new(centre.x, centre.z);
+        let full = mass - sum / n;
+        // Each foot's move by a share `t` of the full shift, no more than twice its leg's length.
+        let moved = |t: f32| {
+            plan.limbs.iter().filter_map(move |limb| {
+                let s = (full * t).clamp_length_max(2.0 * limb.length);
+                limb.foot.map(|f| glam::Vec2::new(f.x + s.x, f.z + s.y))
+            })
+        };
+        // Only as far as puts the mass `want` inside the feet (their points: the footprint
+        // around them is larger), so the legs rake no more than they must.
+        let mut points: Vec<glam::Vec2> = Vec::with_capacity(plan.limbs.len());
+        let mut hull = Vec::new();
+        let mut enough = |t: f32| {
+            points.clear();
+            points.extend(moved(t));
+            creature_gait::support_margin(&mut points, &mut hull, mass).is_some_and(|m| m >= want)
+        };
+        let t = if enough(1.0) {
+            let (mut low, mut high) = (0.0f32, 1.0f32);
+            for _ in 0..12 {
+                let mid = 0.5 * (low + high);
+                if enough(mid) {
+                    high = mid;
+                } else {
+                    low = mid;
+                }
+            }
+            high
+        } else {
+            1.0
+        };
+        let shifts: Vec<glam::Vec2> = plan
+            .limbs
+            .iter()
+            .map(|limb| (full * t).clamp_length_max(2.0 * limb.length))
+            .collect();
+        for (limb, s) in plan.limbs.iter_mut().zip(shifts) {
             if let Some(foot) = limb.foot.as_mut() {
-                let s = shift.clamp_length_max(reach);
                 foot.x += s.x;
                 foot.z += s.y;
             }

@@ -32,22 +32,41 @@ pub(crate) use walk::MAX_LEG_TURN_RATE;
 pub(crate) use flight::flight;
 pub(crate) use kinematics::{pose, skinned};
 pub(crate) use swim::swim;
-pub(crate) use walk::{gait, turn, walk_loop};
+pub(crate) use walk::{AtRest, gait, turn, walk_loop};
 
 /// How far a spine joint may bend, in radians per unit of its bone length over the body's
 /// half-thickness (see `Creature::bend_limits`): linear-blend skinning over whole-bone blends
 /// stretches the outer skin by about this much over 1 per radian.
 const BEND_PER_THICKNESS: f32 = 0.15;
 
-/// The distance from `p` to the segment `a b`.
-fn distance_to_segment(p: Vec3, a: Vec3, b: Vec3) -> f32 {
-    let ab = b - a;
-    let t = if ab.length_squared() > 0.0 {
-        ((p - a).dot(ab) / ab.length_squared()).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    p.distance(a + ab * t)
+/// A segment `a b`, set up once for the distances to it of many points.
+#[derive(Clone, Copy)]
+struct Segment {
+    a: Vec3,
+    ab: Vec3,
+    length_squared: f32,
+}
+
+impl Segment {
+    fn new(a: Vec3, b: Vec3) -> Self {
+        let ab = b - a;
+        Self {
+            a,
+            ab,
+            length_squared: ab.length_squared(),
+        }
+    }
+
+    /// The distance from `p` to the segment.
+    fn distance(&self, p: Vec3) -> f32 {
+        let (a, ab) = (self.a, self.ab);
+        let t = if self.length_squared > 0.0 {
+            ((p - a).dot(ab) / self.length_squared).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        p.distance(a + ab * t)
+    }
 }
 
 /// Frames per second of baked clips.
@@ -162,6 +181,11 @@ impl Creature {
         for (k, &j) in spine.iter().enumerate() {
             place[j] = k;
         }
+        // The spine's bones: `bones[k]` from place `k` to place `k + 1`.
+        let bones: Vec<Segment> = points
+            .windows(2)
+            .map(|w| Segment::new(w[0], w[1]))
+            .collect();
         let mut thickness = alloc::vec![0.0f32; joints.len()];
         for ((p, js), ws) in self
             .mesh
@@ -187,12 +211,10 @@ impl Creature {
                 continue;
             }
             let k = most.1;
-            let before = k.checked_sub(1).map_or(f32::INFINITY, |i| {
-                distance_to_segment(*p, points[i], points[k])
-            });
-            let after = points.get(k + 1).map_or(f32::INFINITY, |&next| {
-                distance_to_segment(*p, points[k], next)
-            });
+            let before = k
+                .checked_sub(1)
+                .map_or(f32::INFINITY, |i| bones[i].distance(*p));
+            let after = bones.get(k).map_or(f32::INFINITY, |b| b.distance(*p));
             let d = before.min(after);
             for (&j, &w) in js.iter().zip(ws) {
                 if w > 0.0 {
@@ -262,6 +284,8 @@ impl Creature {
                 .map(|&(_, w)| w)
                 .sum()
         };
+        // Per place from an edge's first, whether its two ends carry different weights there.
+        let mut differs: Vec<bool> = Vec::with_capacity(count);
         for t in &mesh.indices {
             for (a, b) in [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])] {
                 let (a, b) = (a as usize, b as usize);
@@ -279,8 +303,11 @@ impl Creature {
                 let (b0, b1) = sb.range();
                 let (first, last) = (a0.min(b0).max(1), a1.max(b1).min(count - 2));
                 let mut moved = 0.0f32;
+                differs.clear();
                 for (k, &at) in points.iter().enumerate().take(last + 1).skip(first) {
-                    let apart = (carried(sa, k) - carried(sb, k)).abs();
+                    let (ca, cb) = (carried(sa, k), carried(sb, k));
+                    differs.push(ca != cb);
+                    let apart = (ca - cb).abs();
                     if apart > 0.0 {
                         let lever = pa.distance_squared(at).max(pb.distance_squared(at));
                         moved += apart * crate::math::sqrt(lever);
@@ -290,8 +317,8 @@ impl Creature {
                     continue;
                 }
                 let limit = BEND_PER_THICKNESS * edge / moved;
-                for (k, l) in limits.iter_mut().enumerate().take(last + 1).skip(first) {
-                    if *l > limit && carried(sa, k) != carried(sb, k) {
+                for (l, &differ) in limits.iter_mut().take(last + 1).skip(first).zip(&differs) {
+                    if *l > limit && differ {
                         *l = limit;
                     }
                 }

@@ -41,12 +41,27 @@ impl GaitRun {
     /// its first place relative to the body (metres), the root's height change and its tilt
     /// (radians) change, the heading aside. `end` is a frame of the run.
     pub(super) fn mismatch(&self, end: usize) -> f32 {
-        let (a, b) = (&self.bodies[0], &self.bodies[end]);
-        let level = |p: &Pose| heading(p.rotation).inverse() * p.rotation;
-        let mut error = angle_between(level(a), level(b));
-        error = error.max((a.translation.y - b.translation.y).abs());
-        for leg in 0..self.legs {
-            let pa = a.inverse_transform_point(self.foot(0, leg));
+        self.mismatch_from(&self.first_frame(), end)
+    }
+
+    /// Frame 0 as [`mismatch`](Self::mismatch) compares a frame with it, for many frames.
+    pub(super) fn first_frame(&self) -> FirstFrame {
+        let a = &self.bodies[0];
+        FirstFrame {
+            level: level(a),
+            height: a.translation.y,
+            feet: (0..self.legs)
+                .map(|leg| a.inverse_transform_point(self.foot(0, leg)))
+                .collect(),
+        }
+    }
+
+    /// [`mismatch`](Self::mismatch) with frame 0 as `first` gives it (of this run).
+    pub(super) fn mismatch_from(&self, first: &FirstFrame, end: usize) -> f32 {
+        let b = &self.bodies[end];
+        let mut error = angle_between(first.level, level(b));
+        error = error.max((first.height - b.translation.y).abs());
+        for (leg, &pa) in first.feet.iter().enumerate() {
             let pb = b.inverse_transform_point(self.foot(end, leg));
             error = error.max(pa.distance(pb));
         }
@@ -279,6 +294,19 @@ impl GaitRun {
     }
 }
 
+/// Frame 0 of a run as [`GaitRun::mismatch`] compares other frames with it: its body's tilt
+/// (its rotation with the heading taken off), its height and the feet in its frame.
+pub(super) struct FirstFrame {
+    level: Quat,
+    height: f32,
+    feet: Vec<Vec3>,
+}
+
+/// A body's rotation with its heading taken off: its tilt.
+fn level(p: &Pose) -> Quat {
+    heading(p.rotation).inverse() * p.rotation
+}
+
 /// The rotation about the vertical that turns +Z to where `rotation` points it (the heading,
 /// lean and roll aside).
 pub(super) fn heading(rotation: Quat) -> Quat {
@@ -301,7 +329,11 @@ pub(super) fn best_cut(
 ) -> usize {
     let last = run.frames().saturating_sub(1);
     let range = range.start.min(last).max(1)..range.end.min(last + 1);
-    let score = |f: usize| run.mismatch(f) + penalty(f);
+    if range.is_empty() {
+        return last;
+    }
+    let first = run.first_frame();
+    let score = |f: usize| run.mismatch_from(&first, f) + penalty(f);
     // Frames of the range are frames of the run (from 1: frame 0 is there too).
     let same = |f: &usize| run.frame_contacts(*f) == run.frame_contacts(0);
     let best = |candidates: &mut dyn Iterator<Item = usize>| {
@@ -328,11 +360,15 @@ pub(super) fn ranked_cuts(
 ) -> Vec<usize> {
     let last = run.frames().saturating_sub(1);
     let range = range.start.min(last).max(1)..range.end.min(last + 1);
+    if range.is_empty() {
+        return Vec::new();
+    }
+    let first = run.first_frame();
     let mut scored: Vec<(bool, f32, usize)> = range
         .map(|f| {
             (
                 run.frame_contacts(f) != run.frame_contacts(0),
-                run.mismatch(f) + penalty(f),
+                run.mismatch_from(&first, f) + penalty(f),
                 f,
             )
         })

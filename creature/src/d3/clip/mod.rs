@@ -186,25 +186,30 @@ impl Creature {
             .windows(2)
             .map(|w| Segment::new(w[0], w[1]))
             .collect();
+        // Per vertex, its spine joints' places and weights.
+        let spines: Vec<SpineWeights> = self
+            .mesh
+            .joints
+            .iter()
+            .zip(&self.mesh.weights)
+            .map(|(js, ws)| SpineWeights::of(js, ws, &place))
+            .collect();
         let mut thickness = alloc::vec![0.0f32; joints.len()];
-        for ((p, js), ws) in self
+        for (((p, js), ws), spined) in self
             .mesh
             .positions
             .iter()
             .zip(&self.mesh.joints)
             .zip(&self.mesh.weights)
+            .zip(&spines)
         {
             // Body vertices: blended between spine joints; the distance to the bones on either
             // side of the most weighted one.
-            let mut blended = 0;
+            let blended = spined.len;
             let mut most = (0.0f32, usize::MAX);
-            for (&j, &w) in js.iter().zip(ws) {
-                let k = place[usize::from(j)];
-                if w > 0.0 && k != usize::MAX {
-                    blended += 1;
-                    if w > most.0 {
-                        most = (w, k);
-                    }
+            for &(k, w) in &spined.entries[..spined.len] {
+                if w > most.0 {
+                    most = (w, k);
                 }
             }
             if blended < 2 {
@@ -230,7 +235,7 @@ impl Creature {
         // jump where the spine bends up into the neck, or a coarse mesh has fewer rings than
         // joints) is stretched by all their bends together, each as far as it moves one end
         // more than the other: each joint of such an edge keeps within the edge's share.
-        let by_edges = self.edge_bend_limits(&place, &points);
+        let by_edges = self.edge_bend_limits(&place, &points, &spines);
         for k in 1..points.len() - 1 {
             let shorter = points[k]
                 .distance(points[k - 1])
@@ -244,13 +249,19 @@ impl Creature {
     }
 
     /// Per spine place (`place` maps a skeleton joint to its place on the spine, `usize::MAX`
-    /// off it; `points` the spine joints' rest positions), the most that joint may bend for
+    /// off it; `points` the spine joints' rest positions; `spines` each vertex's
+    /// [`SpineWeights`]), the most that joint may bend for
     /// the mesh edges around it: a joint's bend turns the skin it carries (its own and its
     /// descendants' weights) about it, so it moves an edge's two ends apart by the angle times
     /// their distance from it times the difference of those weights at the two ends. Bending
     /// every such joint of an edge alike, their sum stays within [`BEND_PER_THICKNESS`] of the
     /// edge's rest length. `f32::INFINITY` where no edge limits a joint.
-    fn edge_bend_limits(&self, place: &[usize], points: &[Vec3]) -> Vec<f32> {
+    fn edge_bend_limits(
+        &self,
+        place: &[usize],
+        points: &[Vec3],
+        spines: &[SpineWeights],
+    ) -> Vec<f32> {
         let mesh = &self.mesh;
         let count = points.len();
         let mut limits = alloc::vec![f32::INFINITY; count];
@@ -258,23 +269,6 @@ impl Creature {
             .rig
             .root()
             .map_or(usize::MAX, |r| place.get(r).copied().unwrap_or(usize::MAX));
-        // Per vertex, its spine joints' places and weights (the rest are off the spine).
-        let spines: Vec<SpineWeights> = mesh
-            .joints
-            .iter()
-            .zip(&mesh.weights)
-            .map(|(js, ws)| {
-                let mut out = SpineWeights::default();
-                for (&j, &w) in js.iter().zip(ws) {
-                    let k = place[usize::from(j)];
-                    if w > 0.0 && k != usize::MAX {
-                        out.entries[out.len] = (k, w);
-                        out.len += 1;
-                    }
-                }
-                out
-            })
-            .collect();
         // The skin weight a bend at place `k` carries: the tail side's joints from the tip to
         // `k`, the head side's from `k` on (the root's own rotation moves the whole body).
         let carried = |v: &SpineWeights, k: usize| -> f32 {
@@ -379,6 +373,20 @@ struct SpineWeights {
 }
 
 impl SpineWeights {
+    /// The spine joints among a vertex's joints `js` with weights `ws` (`place` maps a skeleton
+    /// joint to its place on the spine, `usize::MAX` off it): those weighted, in their order.
+    fn of(js: &[u16; 4], ws: &[f32; 4], place: &[usize]) -> Self {
+        let mut out = Self::default();
+        for (&j, &w) in js.iter().zip(ws) {
+            let k = place[usize::from(j)];
+            if w > 0.0 && k != usize::MAX {
+                out.entries[out.len] = (k, w);
+                out.len += 1;
+            }
+        }
+        out
+    }
+
     /// The first and last of the places (some entry there).
     fn range(&self) -> (usize, usize) {
         self.entries[..self.len]

@@ -47,6 +47,43 @@ pub struct TwoBone {
 /// ```
 #[must_use]
 pub fn solve_two_bone(root: Vec3, target: Vec3, upper: f32, lower: f32, pole: Vec3) -> TwoBone {
+    let (root, target, upper, lower, pole) = sanitise(root, target, upper, lower, pole);
+    solve_finite(root, target, upper, lower, pole)
+}
+
+/// [`solve_two_bone`]'s joints alone, bit for bit: the root, the middle joint and the end,
+/// without the bone rotations (for a caller that turns its own bones: a third of the work).
+///
+/// ```
+/// use creature_gait::{glam::Vec3, solve_two_bone, solve_two_bone_joints};
+///
+/// let (hip, foot) = (Vec3::new(0.0, 1.0, 0.0), Vec3::new(0.0, 0.2, 0.3));
+/// let leg = solve_two_bone(hip, foot, 0.5, 0.5, Vec3::Z);
+/// assert_eq!(solve_two_bone_joints(hip, foot, 0.5, 0.5, Vec3::Z), [leg.root, leg.middle, leg.end]);
+/// ```
+#[must_use]
+pub fn solve_two_bone_joints(
+    root: Vec3,
+    target: Vec3,
+    upper: f32,
+    lower: f32,
+    pole: Vec3,
+) -> [Vec3; 3] {
+    let (root, target, upper, lower, pole) = sanitise(root, target, upper, lower, pole);
+    let mut shape = Shape::aim(root, target, pole);
+    shape.bend(upper, lower);
+    [shape.root, shape.middle, shape.end]
+}
+
+/// [`solve_two_bone`]'s inputs made finite, its lengths non-negative.
+#[inline]
+fn sanitise(
+    root: Vec3,
+    target: Vec3,
+    upper: f32,
+    lower: f32,
+    pole: Vec3,
+) -> (Vec3, Vec3, f32, f32, Vec3) {
     let root = if root.is_finite() { root } else { Vec3::ZERO };
     let upper = if upper.is_finite() && upper > 0.0 {
         upper
@@ -64,7 +101,7 @@ pub fn solve_two_bone(root: Vec3, target: Vec3, upper: f32, lower: f32, pole: Ve
         root - Vec3::Y * (upper + lower)
     };
     let pole = if pole.is_finite() { pole } else { Vec3::ZERO };
-    solve_finite(root, target, upper, lower, pole)
+    (root, target, upper, lower, pole)
 }
 
 /// [`solve_two_bone`] for inputs already known to be finite with lengths `>= 0` (the

@@ -33,7 +33,7 @@ pub use controller::{
 pub use curve::{HeightCurve, ReachCurve};
 pub use error::GaitError;
 pub use ground::{FnGround, Ground, HeightField, Plane, RayHit};
-pub use ik::{TwoBone, solve_two_bone};
+pub use ik::{TwoBone, solve_two_bone, solve_two_bone_joints};
 pub use leg::{Chain, Leg, LimbKind, MAX_CHAIN_SEGMENTS, Pose};
 pub use metrics::{GaitMetrics, support_margin};
 pub use motion::{FlapParams, Side, SwimParams, WingKind};

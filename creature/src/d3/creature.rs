@@ -191,7 +191,14 @@ impl Creature {
     /// [`Error::OutOfRange`] for `seconds` outside `[1/30, 60]` or NaN, and the controller's
     /// errors as [`Error::Gait`].
     pub fn bake_walk(&self, seconds: f32) -> Result<Clip, Error> {
-        clip::gait(self, "walk", seconds, self.speed, 0.0)
+        clip::gait(
+            self,
+            "walk",
+            seconds,
+            self.speed,
+            0.0,
+            &mut clip::AtRest::default(),
+        )
     }
 
     /// Bakes a looping `walk`: 4 s are simulated as by [`bake_walk`](Self::bake_walk), then
@@ -217,7 +224,7 @@ impl Creature {
     /// # Errors
     /// As [`bake_walk`](Self::bake_walk).
     pub fn bake_walk_loop(&self) -> Result<Clip, Error> {
-        clip::walk_loop(self)
+        clip::walk_loop(self, &mut clip::AtRest::default())
     }
 
     /// Bakes a walker's `idle` clip: standing still, breathing (one breath: the gait's
@@ -226,12 +233,17 @@ impl Creature {
     /// # Errors
     /// As [`bake_walk`](Self::bake_walk).
     pub fn bake_idle(&self) -> Result<Clip, Error> {
+        self.bake_idle_with(&mut clip::AtRest::default())
+    }
+
+    /// [`bake_idle`](Self::bake_idle) with what the clips baked together share.
+    fn bake_idle_with(&self, at_rest: &mut clip::AtRest) -> Result<Clip, Error> {
         let rate = self
             .gait
             .as_ref()
             .map_or(0.25, |g| g.options.breathe_rate)
             .max(1.0 / 60.0);
-        clip::gait(self, "idle", 1.0 / rate, 0.0, 0.0)
+        clip::gait(self, "idle", 1.0 / rate, 0.0, 0.0, at_rest)
     }
 
     /// Bakes a walker's `turn` clip: turning in place to its left at about a quarter turn per
@@ -261,7 +273,7 @@ impl Creature {
     /// # Errors
     /// As [`bake_walk`](Self::bake_walk).
     pub fn bake_turn(&self) -> Result<Clip, Error> {
-        clip::turn(self)
+        clip::turn(self, &mut clip::AtRest::default())
     }
 
     /// The joints' model-space transforms at frame `frame` of `clip` (clamped to its last
@@ -336,7 +348,14 @@ impl Creature {
     pub fn bake_clips(&self) -> Result<Vec<Clip>, Error> {
         Ok(match self.kind {
             CreatureKind::Walker => {
-                alloc::vec![self.bake_idle()?, self.bake_walk_loop()?, self.bake_turn()?]
+                // As `bake_idle`, `bake_walk_loop` and `bake_turn` bake them, sharing what
+                // they measure of the creature at rest.
+                let mut at_rest = clip::AtRest::default();
+                alloc::vec![
+                    self.bake_idle_with(&mut at_rest)?,
+                    clip::walk_loop(self, &mut at_rest)?,
+                    clip::turn(self, &mut at_rest)?
+                ]
             }
             CreatureKind::Flier => {
                 alloc::vec![

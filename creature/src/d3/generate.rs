@@ -1235,7 +1235,16 @@ fn finish_mesh(b: MeshBuilder, flat: bool, face_colours: Option<&[Vec3]>) -> Mes
         (c - a).cross(d - a)
     };
     if flat {
-        let mut m = Mesh::default();
+        // Three vertices per triangle, each list allocated once.
+        let (triangles, vertices) = (b.indices.len(), 3 * b.indices.len());
+        let mut m = Mesh {
+            positions: Vec::with_capacity(vertices),
+            normals: Vec::with_capacity(vertices),
+            colours: Vec::with_capacity(vertices),
+            indices: Vec::with_capacity(triangles),
+            joints: Vec::with_capacity(vertices),
+            weights: Vec::with_capacity(vertices),
+        };
         for (k, t) in b.indices.iter().enumerate() {
             let n = face_normal(t).normalize_or(Vec3::Y);
             let base = m.positions.len() as u32;

@@ -318,6 +318,39 @@ impl Controller {
         angular_velocity: Vec3,
         ground: &G,
     ) -> Result<(), GaitError> {
+        self.advance(dt, pose, velocity, angular_velocity, ground, true)
+    }
+
+    /// [`update`](Self::update) without the layers that only read out: the feet, steps and body
+    /// reaction are the same, bit for bit, but the head's look-at, the chains and the legs'
+    /// joints ([`LegState::joints`], and the overstretch [`metrics`](Self::metrics) measures
+    /// from them) are left as they were. For a caller that only records the feet and the
+    /// reacted body (a baked clip solves its legs itself): it skips a fifth of an update's
+    /// work.
+    ///
+    /// # Errors
+    /// As [`update`](Self::update).
+    pub fn update_feet_and_body<G: Ground + ?Sized>(
+        &mut self,
+        dt: f32,
+        pose: Pose,
+        velocity: Vec3,
+        angular_velocity: Vec3,
+        ground: &G,
+    ) -> Result<(), GaitError> {
+        self.advance(dt, pose, velocity, angular_velocity, ground, false)
+    }
+
+    /// [`update`](Self::update), with the look-at, chains and IK only if `read_outs`.
+    fn advance<G: Ground + ?Sized>(
+        &mut self,
+        dt: f32,
+        pose: Pose,
+        velocity: Vec3,
+        angular_velocity: Vec3,
+        ground: &G,
+        read_outs: bool,
+    ) -> Result<(), GaitError> {
         finite(dt, "dt", 0)?;
         if dt < 0.0 {
             return Err(GaitError::NegativeTimeStep { dt });
@@ -372,6 +405,12 @@ impl Controller {
         self.keep_within_reach(&pose);
         if self.keep_swings_on_their_sides(&pose) {
             self.gather_feet();
+        }
+        if !read_outs {
+            // The hips `keep_within_reach` kept are this update's only (as `solve_joints`
+            // would have taken them).
+            self.reacted_rotation = None;
+            return Ok(());
         }
         self.intend(&pose, angular_velocity);
         for i in 0..self.chains.len() {
@@ -440,7 +479,80 @@ fn validate_pose(pose: Pose) -> Result<Pose, GaitError> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::ground::Plane;
     use crate::math::{cos, quat_yxz};
+
+    #[test]
+    fn feet_and_body_alone_are_those_of_a_full_update() {
+        // A six-legged walker turning while it walks, with a leg stretched far enough that the
+        // reaction is scaled back at times: every update's feet, steps, reaction and metrics
+        // are the same bit for bit with or without the read-out layers.
+        let legs: Vec<Leg> = [
+            (0.3, 0.6),
+            (-0.3, 0.6),
+            (0.35, 0.0),
+            (-0.35, 0.0),
+            (0.3, -0.6),
+        ]
+        .iter()
+        .map(|&(x, z)| {
+            Leg::new(
+                Vec3::new(x, 0.0, z),
+                Vec3::new(1.3 * x, -0.8, z),
+                0.45,
+                0.45,
+            )
+        })
+        .chain([Leg::new(
+            Vec3::new(-0.3, 0.0, -0.6),
+            Vec3::new(-0.5, -0.8, -0.7),
+            0.45,
+            0.45,
+        )])
+        .collect();
+        let mut full = Controller::new(&legs, &GaitOptions::DEFAULT).unwrap();
+        let mut lean = full.clone();
+        let dt = 1.0 / 30.0;
+        for f in 0..300 {
+            let t = f as f32 * dt;
+            let pose = Pose::from_yaw(Vec3::new(0.0, 0.8, 0.9 * t), 0.7 * t);
+            let (velocity, spin) = (Vec3::Z * 0.9, Vec3::Y * 0.7);
+            full.update(dt, pose, velocity, spin, &Plane::GROUND)
+                .unwrap();
+            lean.update_feet_and_body(dt, pose, velocity, spin, &Plane::GROUND)
+                .unwrap();
+            assert_eq!(full.reacted_pose(), lean.reacted_pose(), "frame {f}");
+            assert_eq!(full.body(), lean.body(), "frame {f}");
+            let (a, b) = (full.metrics(), lean.metrics());
+            assert_eq!(
+                (
+                    a.steps_started,
+                    a.escapes_started,
+                    a.max_skate,
+                    a.legs_in_air
+                ),
+                (
+                    b.steps_started,
+                    b.escapes_started,
+                    b.max_skate,
+                    b.legs_in_air
+                ),
+                "frame {f}"
+            );
+            for (a, b) in full.leg_states().iter().zip(lean.leg_states()) {
+                assert_eq!(
+                    (
+                        a.foot, a.planted, a.stepping, a.progress, a.steps, a.escapes
+                    ),
+                    (
+                        b.foot, b.planted, b.stepping, b.progress, b.steps, b.escapes
+                    ),
+                    "frame {f}"
+                );
+            }
+        }
+        assert!(full.leg_states().iter().all(|l| l.steps > 2));
+    }
 
     #[test]
     fn validate_pose_skips_exactly_the_square_roots_that_are_one() {

@@ -3,7 +3,7 @@
 
 use alloc::vec::Vec;
 
-use glam::{Affine3A, Quat, Vec3};
+use glam::{Affine3A, Quat, Vec3, Vec4};
 
 use creature_gait::{Leg, Pose};
 
@@ -32,18 +32,9 @@ impl Creature {
             .fold(0.0f32, f32::max)
     }
 
-    /// The run's body poses, each changed as little as needed so that no vertex of the body
-    /// (the part of the mesh skinned to spine joints only, bent by `body_global`, the clip's
-    /// constant spine pose in body space) is below the floor `y = 0`: first its lean (the
-    /// rotation's swing away from the vertical axis) is scaled back toward none, then, if the
-    /// upright body still dips, it is raised, but never so far that a planted foot leaves its
-    /// leg's reach (`legs`, the run's). Frames that do not dip are returned unchanged, bit for bit.
-    pub(super) fn above_the_floor(
-        &self,
-        body_global: &[Affine3A],
-        run: &GaitRun,
-        legs: &[Leg],
-    ) -> Result<Vec<Pose>, Error> {
+    /// The body's vertices, bent by `body_global` (the clip's constant spine pose in body
+    /// space): the part of the mesh skinned to spine joints only.
+    pub(super) fn body_shape(&self, body_global: &[Affine3A]) -> Result<Vec<Vec3>, Error> {
         let joints = &self.skeleton.joints;
         let spine = |j: u16| {
             joints
@@ -51,7 +42,7 @@ impl Creature {
                 .is_some_and(|j| j.part == Part::Spine)
         };
         let mesh = &self.mesh;
-        let mut shape: Vec<Vec3> = super::skinned(self, body_global)?
+        Ok(super::skinned(self, body_global)?
             .into_iter()
             .zip(mesh.joints.iter().zip(&mesh.weights))
             .filter(|(_, (js, ws))| {
@@ -60,7 +51,21 @@ impl Creature {
                     .all(|(&j, &w)| w == 0.0 || spine(j))
             })
             .map(|(s, _)| s)
-            .collect();
+            .collect())
+    }
+
+    /// The run's body poses, each changed as little as needed so that no vertex of the body
+    /// (`shape`, as [`body_shape`](Self::body_shape) gives it for the clip's spine pose) is
+    /// below the floor `y = 0`: first its lean (the rotation's swing away from the vertical
+    /// axis) is scaled back toward none, then, if the upright body still dips, it is raised,
+    /// but never so far that a planted foot leaves its leg's reach (`legs`, the run's). Frames
+    /// that do not dip are returned unchanged, bit for bit.
+    pub(super) fn above_the_floor(
+        &self,
+        mut shape: Vec<Vec3>,
+        run: &GaitRun,
+        legs: &[Leg],
+    ) -> Vec<Pose> {
         // A vertex s of the body is at height (R s).y + t.y = u · s + t.y with u = Rᵀ ŷ. With
         // |u − ŷ| ≤ δ over the clip (less lean only brings u closer to ŷ), u · s lies within
         // δ|s| of s.y: only the vertices that can be lowest in some frame are kept.
@@ -74,16 +79,32 @@ impl Creature {
             .map(|s| s.y + delta * s.length())
             .fold(f32::INFINITY, f32::min);
         shape.retain(|s| s.y - delta * s.length() <= bound);
+        // Four vertices at a time, one per SIMD lane (the last four padded with their first):
+        // each lane's `up · s` is the scalar dot product, bit for bit, and the least of them
+        // the same whatever the order.
+        let lanes: Vec<[Vec4; 3]> = shape
+            .chunks(4)
+            .map(|four| {
+                let at = |k: usize| four.get(k).unwrap_or(&four[0]);
+                let lane = |axis: fn(&Vec3) -> f32| {
+                    Vec4::new(axis(at(0)), axis(at(1)), axis(at(2)), axis(at(3)))
+                };
+                [lane(|v| v.x), lane(|v| v.y), lane(|v| v.z)]
+            })
+            .collect();
         let low = |rotation: Quat, height: f32| {
             let up = rotation.inverse() * Vec3::Y;
-            shape
+            let (ux, uy, uz) = (Vec4::splat(up.x), Vec4::splat(up.y), Vec4::splat(up.z));
+            // `min` keeps the running least (a NaN height is passed over, as `f32::min` does).
+            let least = lanes
                 .iter()
-                .map(|s| up.dot(*s))
-                .fold(f32::INFINITY, f32::min)
-                + height
+                .fold(Vec4::INFINITY, |least, [x, y, z]| {
+                    (ux * *x + uy * *y + uz * *z).min(least)
+                })
+                .min_element();
+            least + height
         };
-        Ok(run
-            .bodies
+        run.bodies
             .iter()
             .enumerate()
             .map(|(frame, &body)| {
@@ -140,7 +161,7 @@ impl Creature {
                 }
                 pose
             })
-            .collect())
+            .collect()
     }
 }
 

@@ -41,12 +41,27 @@ impl GaitRun {
     /// its first place relative to the body (metres), the root's height change and its tilt
     /// (radians) change, the heading aside. `end` is a frame of the run.
     pub(super) fn mismatch(&self, end: usize) -> f32 {
-        let (a, b) = (&self.bodies[0], &self.bodies[end]);
-        let level = |p: &Pose| heading(p.rotation).inverse() * p.rotation;
-        let mut error = angle_between(level(a), level(b));
-        error = error.max((a.translation.y - b.translation.y).abs());
-        for leg in 0..self.legs {
-            let pa = a.inverse_transform_point(self.foot(0, leg));
+        self.mismatch_from(&self.first_frame(), end)
+    }
+
+    /// Frame 0 as [`mismatch`](Self::mismatch) compares a frame with it, for many frames.
+    pub(super) fn first_frame(&self) -> FirstFrame {
+        let a = &self.bodies[0];
+        FirstFrame {
+            level: level(a),
+            height: a.translation.y,
+            feet: (0..self.legs)
+                .map(|leg| a.inverse_transform_point(self.foot(0, leg)))
+                .collect(),
+        }
+    }
+
+    /// [`mismatch`](Self::mismatch) with frame 0 as `first` gives it (of this run).
+    pub(super) fn mismatch_from(&self, first: &FirstFrame, end: usize) -> f32 {
+        let b = &self.bodies[end];
+        let mut error = angle_between(first.level, level(b));
+        error = error.max((first.height - b.translation.y).abs());
+        for (leg, &pa) in first.feet.iter().enumerate() {
             let pb = b.inverse_transform_point(self.foot(end, leg));
             error = error.max(pa.distance(pb));
         }
@@ -194,33 +209,46 @@ impl GaitRun {
         self.contacts[frame * self.legs + leg]
     }
 
-    /// How far (metres) the farthest planted foot is beyond its leg's reach (`legs`, the run's).
-    /// Only walking legs: an arm holding its place is not on the ground, and may lag out of
-    /// reach.
-    pub(super) fn overreach(&self, legs: &[Leg]) -> f32 {
+    /// Over the first `frames` frames, in one pass (each foot taken into the body's frame once
+    /// for both): the midline margin, how far (metres) the foot nearest the body's midline is
+    /// on its own side of it (negative: a foot crossed to the other side; only walking legs
+    /// off the midline), and the overreach, how far (metres) the farthest planted foot is
+    /// beyond its leg's reach (only walking legs: an arm holding its place is not on the
+    /// ground, and may lag out of reach). `legs`: the run's.
+    pub(super) fn margin_and_overreach(&self, frames: usize, legs: &[Leg]) -> (f32, f32) {
+        let mut least = f32::INFINITY;
         let mut worst = 0.0f32;
-        for (frame, body) in self.bodies.iter().enumerate() {
+        for (frame, body) in self.bodies.iter().enumerate().take(frames) {
             for (i, leg) in legs.iter().enumerate() {
-                if leg.kind == LimbKind::Leg && self.planted(frame, i) {
-                    let d = body
-                        .inverse_transform_point(self.foot(frame, i))
-                        .distance(leg.hip);
-                    worst = worst.max(d - (leg.upper + leg.lower));
+                if leg.kind != LimbKind::Leg {
+                    continue;
+                }
+                let (off_midline, planted) = (leg.rest.x != 0.0, self.planted(frame, i));
+                if !(off_midline || planted) {
+                    continue;
+                }
+                let local = body.inverse_transform_point(self.foot(frame, i));
+                if off_midline {
+                    least = least.min(local.x * leg.rest.x.signum());
+                }
+                if planted {
+                    worst = worst.max(local.distance(leg.hip) - (leg.upper + leg.lower));
                 }
             }
         }
-        worst
+        (least, worst)
     }
 }
 
 impl GaitRun {
     /// The farthest (metres) any foot moves across the ground while it is on it (no higher
-    /// than `ground`), from where it came down: a slide, planted or not.
-    pub(super) fn ground_slide(&self, ground: f32) -> f32 {
+    /// than `ground`), from where it came down, over the first `frames` frames: a slide,
+    /// planted or not.
+    pub(super) fn ground_slide(&self, frames: usize, ground: f32) -> f32 {
         let mut worst = 0.0f32;
         for leg in 0..self.legs {
             let mut down: Option<Vec3> = None;
-            for f in 0..self.frames() {
+            for f in 0..frames.min(self.frames()) {
                 let p = self.foot(f, leg);
                 if p.y <= ground {
                     let d = p - *down.get_or_insert(p);
@@ -232,29 +260,13 @@ impl GaitRun {
         }
         worst
     }
-
-    /// How far (metres) the foot nearest the body's midline is on its own side of it, over
-    /// every frame (negative: a foot crossed to the other side). Only walking legs off the
-    /// midline (`legs`, the run's).
-    pub(super) fn midline_margin(&self, legs: &[Leg]) -> f32 {
-        let mut least = f32::INFINITY;
-        for (frame, body) in self.bodies.iter().enumerate() {
-            for (i, leg) in legs.iter().enumerate() {
-                if leg.kind == LimbKind::Leg && leg.rest.x != 0.0 {
-                    let x = body.inverse_transform_point(self.foot(frame, i)).x;
-                    least = least.min(x * leg.rest.x.signum());
-                }
-            }
-        }
-        least
-    }
 }
 
 impl GaitRun {
     /// How far (metres) the two nearest feet of walking legs on the same side are apart along
-    /// the body, in their rest positions' order, over every frame (negative: a foot passed the
+    /// the body, in their rest positions' order, over the first `frames` frames (negative: a foot passed the
     /// other; `legs`, the run's). Infinite with no two legs on a side.
-    pub(super) fn foot_spacing(&self, legs: &[Leg]) -> f32 {
+    pub(super) fn foot_spacing(&self, frames: usize, legs: &[Leg]) -> f32 {
         // The pairs: a leg ahead of another on its side.
         let pairs: Vec<(usize, usize)> = (0..legs.len())
             .flat_map(|i| (0..legs.len()).map(move |j| (i, j)))
@@ -270,7 +282,7 @@ impl GaitRun {
         if pairs.is_empty() {
             return least;
         }
-        for (frame, body) in self.bodies.iter().enumerate() {
+        for (frame, body) in self.bodies.iter().enumerate().take(frames) {
             // Along the body: its forward axis.
             let forward = body.rotation * Vec3::Z;
             let along = |leg: usize| forward.dot(self.foot(frame, leg) - body.translation);
@@ -280,6 +292,19 @@ impl GaitRun {
         }
         least
     }
+}
+
+/// Frame 0 of a run as [`GaitRun::mismatch`] compares other frames with it: its body's tilt
+/// (its rotation with the heading taken off), its height and the feet in its frame.
+pub(super) struct FirstFrame {
+    level: Quat,
+    height: f32,
+    feet: Vec<Vec3>,
+}
+
+/// A body's rotation with its heading taken off: its tilt.
+fn level(p: &Pose) -> Quat {
+    heading(p.rotation).inverse() * p.rotation
 }
 
 /// The rotation about the vertical that turns +Z to where `rotation` points it (the heading,
@@ -304,7 +329,11 @@ pub(super) fn best_cut(
 ) -> usize {
     let last = run.frames().saturating_sub(1);
     let range = range.start.min(last).max(1)..range.end.min(last + 1);
-    let score = |f: usize| run.mismatch(f) + penalty(f);
+    if range.is_empty() {
+        return last;
+    }
+    let first = run.first_frame();
+    let score = |f: usize| run.mismatch_from(&first, f) + penalty(f);
     // Frames of the range are frames of the run (from 1: frame 0 is there too).
     let same = |f: &usize| run.frame_contacts(*f) == run.frame_contacts(0);
     let best = |candidates: &mut dyn Iterator<Item = usize>| {
@@ -331,11 +360,15 @@ pub(super) fn ranked_cuts(
 ) -> Vec<usize> {
     let last = run.frames().saturating_sub(1);
     let range = range.start.min(last).max(1)..range.end.min(last + 1);
+    if range.is_empty() {
+        return Vec::new();
+    }
+    let first = run.first_frame();
     let mut scored: Vec<(bool, f32, usize)> = range
         .map(|f| {
             (
                 run.frame_contacts(f) != run.frame_contacts(0),
-                run.mismatch(f) + penalty(f),
+                run.mismatch_from(&first, f) + penalty(f),
                 f,
             )
         })
@@ -412,11 +445,11 @@ mod tests {
     #[test]
     fn ground_slide_measures_a_foot_moving_on_the_ground() {
         let mut run = one_leg_run();
-        assert_eq!(run.ground_slide(1e-3), 0.0);
+        assert_eq!(run.ground_slide(run.frames(), 1e-3), 0.0);
         // Frame 3 brought down to the ground: 3 to 4 moves across on it.
         run.feet[3].y = 0.0;
         let d = run.foot(4, 0) - run.foot(3, 0);
         let expected = glam::Vec2::new(d.x, d.z).length();
-        assert!((run.ground_slide(1e-3) - expected).abs() < 1e-6);
+        assert!((run.ground_slide(run.frames(), 1e-3) - expected).abs() < 1e-6);
     }
 }

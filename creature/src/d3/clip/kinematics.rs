@@ -4,7 +4,7 @@
 
 use alloc::vec::Vec;
 
-use glam::{Affine3A, Mat3, Quat, Vec3};
+use glam::{Affine3A, Mat3, Mat3A, Quat, Vec3};
 
 use super::Clip;
 use crate::Error;
@@ -126,8 +126,9 @@ pub(super) fn angle_between(p: Quat, q: Quat) -> f32 {
 pub(super) struct Hinge {
     /// The lower segment's rest direction.
     rest_lower: Vec3,
-    /// The rest frame (upper segment, bend normal, their cross product), inverted.
-    unframe: Mat3,
+    /// The rest frame (upper segment, bend normal, their cross product), inverted (in SIMD
+    /// lanes: the product with it is the same, lane for lane, as with a `Mat3`).
+    unframe: Mat3A,
     /// The knee's pole (the bend plane of a nearly straight limb).
     pole: Vec3,
 }
@@ -137,14 +138,15 @@ impl Hinge {
     pub(super) fn new(rest: (Vec3, Vec3), pole: Vec3) -> Self {
         Self {
             rest_lower: rest.1,
-            unframe: bend_frame(rest, pole).transpose(),
+            unframe: Mat3A::from(bend_frame(rest, pole).transpose()),
             pole,
         }
     }
 
     /// The hip's and knee's rotations turning the limb's segments to `now`.
     pub(super) fn rotations(&self, now: (Vec3, Vec3)) -> (Quat, Quat) {
-        let hip = Quat::from_mat3(&(bend_frame(now, self.pole) * self.unframe)).normalize();
+        let hip =
+            Quat::from_mat3a(&(Mat3A::from(bend_frame(now, self.pole)) * self.unframe)).normalize();
         let knee = rotation_arc(self.rest_lower, hip.inverse() * now.1);
         (hip, knee)
     }

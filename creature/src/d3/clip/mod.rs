@@ -32,22 +32,41 @@ pub(crate) use walk::MAX_LEG_TURN_RATE;
 pub(crate) use flight::flight;
 pub(crate) use kinematics::{pose, skinned};
 pub(crate) use swim::swim;
-pub(crate) use walk::{gait, turn, walk_loop};
+pub(crate) use walk::{AtRest, gait, turn, walk_loop};
 
 /// How far a spine joint may bend, in radians per unit of its bone length over the body's
 /// half-thickness (see `Creature::bend_limits`): linear-blend skinning over whole-bone blends
 /// stretches the outer skin by about this much over 1 per radian.
 const BEND_PER_THICKNESS: f32 = 0.15;
 
-/// The distance from `p` to the segment `a b`.
-fn distance_to_segment(p: Vec3, a: Vec3, b: Vec3) -> f32 {
-    let ab = b - a;
-    let t = if ab.length_squared() > 0.0 {
-        ((p - a).dot(ab) / ab.length_squared()).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    p.distance(a + ab * t)
+/// A segment `a b`, set up once for the distances to it of many points.
+#[derive(Clone, Copy)]
+struct Segment {
+    a: Vec3,
+    ab: Vec3,
+    length_squared: f32,
+}
+
+impl Segment {
+    fn new(a: Vec3, b: Vec3) -> Self {
+        let ab = b - a;
+        Self {
+            a,
+            ab,
+            length_squared: ab.length_squared(),
+        }
+    }
+
+    /// The distance from `p` to the segment.
+    fn distance(&self, p: Vec3) -> f32 {
+        let (a, ab) = (self.a, self.ab);
+        let t = if self.length_squared > 0.0 {
+            ((p - a).dot(ab) / self.length_squared).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        p.distance(a + ab * t)
+    }
 }
 
 /// Frames per second of baked clips.
@@ -162,37 +181,45 @@ impl Creature {
         for (k, &j) in spine.iter().enumerate() {
             place[j] = k;
         }
+        // The spine's bones: `bones[k]` from place `k` to place `k + 1`.
+        let bones: Vec<Segment> = points
+            .windows(2)
+            .map(|w| Segment::new(w[0], w[1]))
+            .collect();
+        // Per vertex, its spine joints' places and weights.
+        let spines: Vec<SpineWeights> = self
+            .mesh
+            .joints
+            .iter()
+            .zip(&self.mesh.weights)
+            .map(|(js, ws)| SpineWeights::of(js, ws, &place))
+            .collect();
         let mut thickness = alloc::vec![0.0f32; joints.len()];
-        for ((p, js), ws) in self
+        for (((p, js), ws), spined) in self
             .mesh
             .positions
             .iter()
             .zip(&self.mesh.joints)
             .zip(&self.mesh.weights)
+            .zip(&spines)
         {
             // Body vertices: blended between spine joints; the distance to the bones on either
             // side of the most weighted one.
-            let mut blended = 0;
+            let blended = spined.len;
             let mut most = (0.0f32, usize::MAX);
-            for (&j, &w) in js.iter().zip(ws) {
-                let k = place[usize::from(j)];
-                if w > 0.0 && k != usize::MAX {
-                    blended += 1;
-                    if w > most.0 {
-                        most = (w, k);
-                    }
+            for &(k, w) in &spined.entries[..spined.len] {
+                if w > most.0 {
+                    most = (w, k);
                 }
             }
             if blended < 2 {
                 continue;
             }
             let k = most.1;
-            let before = k.checked_sub(1).map_or(f32::INFINITY, |i| {
-                distance_to_segment(*p, points[i], points[k])
-            });
-            let after = points.get(k + 1).map_or(f32::INFINITY, |&next| {
-                distance_to_segment(*p, points[k], next)
-            });
+            let before = k
+                .checked_sub(1)
+                .map_or(f32::INFINITY, |i| bones[i].distance(*p));
+            let after = bones.get(k).map_or(f32::INFINITY, |b| b.distance(*p));
             let d = before.min(after);
             for (&j, &w) in js.iter().zip(ws) {
                 if w > 0.0 {
@@ -208,7 +235,7 @@ impl Creature {
         // jump where the spine bends up into the neck, or a coarse mesh has fewer rings than
         // joints) is stretched by all their bends together, each as far as it moves one end
         // more than the other: each joint of such an edge keeps within the edge's share.
-        let by_edges = self.edge_bend_limits(&place, &points);
+        let by_edges = self.edge_bend_limits(&place, &points, &spines);
         for k in 1..points.len() - 1 {
             let shorter = points[k]
                 .distance(points[k - 1])
@@ -222,13 +249,19 @@ impl Creature {
     }
 
     /// Per spine place (`place` maps a skeleton joint to its place on the spine, `usize::MAX`
-    /// off it; `points` the spine joints' rest positions), the most that joint may bend for
+    /// off it; `points` the spine joints' rest positions; `spines` each vertex's
+    /// [`SpineWeights`]), the most that joint may bend for
     /// the mesh edges around it: a joint's bend turns the skin it carries (its own and its
     /// descendants' weights) about it, so it moves an edge's two ends apart by the angle times
     /// their distance from it times the difference of those weights at the two ends. Bending
     /// every such joint of an edge alike, their sum stays within [`BEND_PER_THICKNESS`] of the
     /// edge's rest length. `f32::INFINITY` where no edge limits a joint.
-    fn edge_bend_limits(&self, place: &[usize], points: &[Vec3]) -> Vec<f32> {
+    fn edge_bend_limits(
+        &self,
+        place: &[usize],
+        points: &[Vec3],
+        spines: &[SpineWeights],
+    ) -> Vec<f32> {
         let mesh = &self.mesh;
         let count = points.len();
         let mut limits = alloc::vec![f32::INFINITY; count];
@@ -236,23 +269,6 @@ impl Creature {
             .rig
             .root()
             .map_or(usize::MAX, |r| place.get(r).copied().unwrap_or(usize::MAX));
-        // Per vertex, its spine joints' places and weights (the rest are off the spine).
-        let spines: Vec<SpineWeights> = mesh
-            .joints
-            .iter()
-            .zip(&mesh.weights)
-            .map(|(js, ws)| {
-                let mut out = SpineWeights::default();
-                for (&j, &w) in js.iter().zip(ws) {
-                    let k = place[usize::from(j)];
-                    if w > 0.0 && k != usize::MAX {
-                        out.entries[out.len] = (k, w);
-                        out.len += 1;
-                    }
-                }
-                out
-            })
-            .collect();
         // The skin weight a bend at place `k` carries: the tail side's joints from the tip to
         // `k`, the head side's from `k` on (the root's own rotation moves the whole body).
         let carried = |v: &SpineWeights, k: usize| -> f32 {
@@ -262,6 +278,8 @@ impl Creature {
                 .map(|&(_, w)| w)
                 .sum()
         };
+        // Per place from an edge's first, whether its two ends carry different weights there.
+        let mut differs: Vec<bool> = Vec::with_capacity(count);
         for t in &mesh.indices {
             for (a, b) in [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])] {
                 let (a, b) = (a as usize, b as usize);
@@ -279,8 +297,11 @@ impl Creature {
                 let (b0, b1) = sb.range();
                 let (first, last) = (a0.min(b0).max(1), a1.max(b1).min(count - 2));
                 let mut moved = 0.0f32;
+                differs.clear();
                 for (k, &at) in points.iter().enumerate().take(last + 1).skip(first) {
-                    let apart = (carried(sa, k) - carried(sb, k)).abs();
+                    let (ca, cb) = (carried(sa, k), carried(sb, k));
+                    differs.push(ca != cb);
+                    let apart = (ca - cb).abs();
                     if apart > 0.0 {
                         let lever = pa.distance_squared(at).max(pb.distance_squared(at));
                         moved += apart * crate::math::sqrt(lever);
@@ -290,8 +311,8 @@ impl Creature {
                     continue;
                 }
                 let limit = BEND_PER_THICKNESS * edge / moved;
-                for (k, l) in limits.iter_mut().enumerate().take(last + 1).skip(first) {
-                    if *l > limit && carried(sa, k) != carried(sb, k) {
+                for (l, &differ) in limits.iter_mut().take(last + 1).skip(first).zip(&differs) {
+                    if *l > limit && differ {
                         *l = limit;
                     }
                 }
@@ -352,6 +373,20 @@ struct SpineWeights {
 }
 
 impl SpineWeights {
+    /// The spine joints among a vertex's joints `js` with weights `ws` (`place` maps a skeleton
+    /// joint to its place on the spine, `usize::MAX` off it): those weighted, in their order.
+    fn of(js: &[u16; 4], ws: &[f32; 4], place: &[usize]) -> Self {
+        let mut out = Self::default();
+        for (&j, &w) in js.iter().zip(ws) {
+            let k = place[usize::from(j)];
+            if w > 0.0 && k != usize::MAX {
+                out.entries[out.len] = (k, w);
+                out.len += 1;
+            }
+        }
+        out
+    }
+
     /// The first and last of the places (some entry there).
     fn range(&self) -> (usize, usize) {
         self.entries[..self.len]

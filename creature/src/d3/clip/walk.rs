@@ -7,7 +7,7 @@ use alloc::vec::Vec;
 
 use glam::{Affine3A, Quat, Vec3};
 
-use creature_gait::{Leg, LimbKind, Plane, Pose, solve_two_bone};
+use creature_gait::{Leg, LimbKind, Plane, Pose, solve_two_bone_joints};
 
 use super::floor::knee_above;
 use super::gait_run::{GaitRun, best_cut, heading, ranked_cuts};
@@ -127,8 +127,8 @@ const MAX_TURN_SECONDS: f32 = 12.0;
 const TURN_CUTS: usize = 8;
 
 /// What a closing is judged by, for a run (see [`Creature::closed_or_cut`]): its feet's
-/// [`midline_margin`](GaitRun::midline_margin), [`foot_spacing`](GaitRun::foot_spacing),
-/// [`ground_slide`](GaitRun::ground_slide) and [`overreach`](GaitRun::overreach).
+/// midline margin and overreach ([`margin_and_overreach`](GaitRun::margin_and_overreach)),
+/// [`foot_spacing`](GaitRun::foot_spacing) and [`ground_slide`](GaitRun::ground_slide).
 struct Figures {
     midline: f32,
     apart: f32,
@@ -137,29 +137,31 @@ struct Figures {
 }
 
 impl Figures {
-    fn of(run: &GaitRun, legs: &[Leg], ground: f32) -> Self {
+    /// The figures of the first `frames` frames of `run`.
+    fn of(run: &GaitRun, frames: usize, legs: &[Leg], ground: f32) -> Self {
+        let (midline, overreach) = run.margin_and_overreach(frames, legs);
         Self {
-            midline: run.midline_margin(legs),
-            apart: run.foot_spacing(legs),
-            slide: run.ground_slide(ground),
-            overreach: run.overreach(legs),
+            midline,
+            apart: run.foot_spacing(frames, legs),
+            slide: run.ground_slide(frames, ground),
+            overreach,
         }
     }
 }
 
 /// A looping `walk` (see [`Creature::bake_walk_loop`]).
-pub(crate) fn walk_loop(c: &Creature) -> Result<Clip, Error> {
+pub(crate) fn walk_loop(c: &Creature, at_rest: &mut AtRest) -> Result<Clip, Error> {
     let setup = c.gait.as_ref().ok_or(Error::NoGait)?;
     let run = c.simulate_gait(4.0, c.speed, 0.0)?;
     let first = CLIP_FPS as usize;
     let end = best_cut(&run, first..run.frames(), |_| 0.0);
     let travel = Pose::from_yaw(Vec3::Z * (c.speed * end as f32 / CLIP_FPS), 0.0);
     let run = c.closed_or_cut(run, end, &travel, &setup.legs);
-    c.clip_from_run("walk", &run, 0.0)
+    c.clip_from_run("walk", &run, 0.0, at_rest)
 }
 
 /// A full `turn` in place (see [`Creature::bake_turn`]).
-pub(crate) fn turn(c: &Creature) -> Result<Clip, Error> {
+pub(crate) fn turn(c: &Creature, at_rest: &mut AtRest) -> Result<Clip, Error> {
     let setup = c.gait.as_ref().ok_or(Error::NoGait)?;
     let full = core::f32::consts::TAU;
     let mut rate = c.turn_rate(&setup.legs);
@@ -216,7 +218,7 @@ pub(crate) fn turn(c: &Creature) -> Result<Clip, Error> {
         .min_by(|&a, &b| shortfall(a).total_cmp(&shortfall(b)))
         .unwrap_or(end);
     let run = c.closed_or_cut_among(run, &ends, plain, &Pose::IDENTITY, &setup.legs);
-    c.clip_from_run("turn", &run, rate)
+    c.clip_from_run("turn", &run, rate, at_rest)
 }
 
 /// A clip of `seconds` moving forward at `speed` and turning at `yaw_rate` (see
@@ -227,9 +229,23 @@ pub(crate) fn gait(
     seconds: f32,
     speed: f32,
     yaw_rate: f32,
+    at_rest: &mut AtRest,
 ) -> Result<Clip, Error> {
     let run = c.simulate_gait(seconds, speed, yaw_rate)?;
-    c.clip_from_run(name, &run, yaw_rate)
+    c.clip_from_run(name, &run, yaw_rate, at_rest)
+}
+
+/// What baking a walker's clips measures of the creature at rest, the same for every clip:
+/// measured by the first clip that needs it and kept for the others baked with it
+/// ([`Creature::bake_clips`]).
+#[derive(Debug, Default)]
+pub(crate) struct AtRest {
+    /// Per skeleton joint, how far the vertices it moves reach from it
+    /// ([`Creature::joint_reach`]: for a knee or a foot, the radius of its ring).
+    reach: Option<Vec<f32>>,
+    /// The body's vertices (those skinned to spine joints only) with the spine unbent, as a
+    /// clip that does not turn holds it ([`Creature::body_shape`]).
+    unbent_body: Option<Vec<Vec3>>,
 }
 
 impl Creature {
@@ -273,10 +289,9 @@ impl Creature {
         motion: &Pose,
         legs: &[Leg],
     ) -> Option<GaitRun> {
-        let mut cut = run.clone();
-        cut.truncate(end + 1);
+        // The plain cut's figures: those of the run's frames up to `end`.
         let ground = GROUND_CONTACT * self.length;
-        let plain = Figures::of(&cut, legs, ground);
+        let plain = Figures::of(run, end + 1, legs, ground);
         [false, true]
             .into_iter()
             .find_map(|hold_seam| self.closed_well(run, &plain, end, motion, legs, hold_seam))
@@ -297,7 +312,7 @@ impl Creature {
         let ground = GROUND_CONTACT * self.length;
         let planted_shift = closed.close_loop(end, motion, hold_seam, ground);
         let tolerance = 1e-4 * self.length;
-        let now = Figures::of(&closed, legs, ground);
+        let now = Figures::of(&closed, closed.frames(), legs, ground);
         // Closing must not bring a foot nearer the midline than the plain cut does, past it, or
         // nearer than half its margin.
         let side_kept = now.midline >= (0.5 * cut.midline).min(cut.midline - tolerance);
@@ -355,7 +370,8 @@ impl Creature {
         let relative = |p: Vec3| unstart * (p - start.translation);
         for step in 0..warm_up + frames {
             let time = step as f32 * dt;
-            controller.update(
+            // Only the feet and the reacted body are recorded (the legs are solved from them).
+            controller.update_feet_and_body(
                 dt,
                 Pose::from_yaw(Vec3::Z * (time * speed), time * yaw_rate),
                 velocity,
@@ -393,6 +409,7 @@ impl Creature {
         name: &'static str,
         run: &GaitRun,
         yaw_rate: f32,
+        at_rest: &mut AtRest,
     ) -> Result<Clip, Error> {
         let setup = self.gait.as_ref().ok_or(Error::NoGait)?;
         let frames = run.frames();
@@ -432,6 +449,8 @@ impl Creature {
         };
         // Per leg: the hip's parent (a spine joint, maybe bent) in body space, the rest
         // directions of the leg's two segments, and its three tracks.
+        let reach: &[f32] = at_rest.reach.get_or_insert_with(|| self.joint_reach());
+        let ring_radius = |joint: usize| reach.get(joint).copied().unwrap_or(0.0);
         let mut legs: Vec<LegTracks<'_>> = setup
             .legs
             .iter()
@@ -448,11 +467,12 @@ impl Creature {
                     leg,
                     hip,
                     parent,
+                    unparent: parent.inverse(),
                     parent_rotation: Quat::from_mat3a(&parent.matrix3).normalize(),
                     rest_upper,
                     rest_lower,
                     hinge: Hinge::new((rest_upper, rest_lower), leg.pole),
-                    knee_radius: self.ring_radius(hip + 1),
+                    knee_radius: ring_radius(hip + 1),
                     translations: Vec::with_capacity(frames),
                     rotations: core::array::from_fn(|_| Vec::with_capacity(frames)),
                 }
@@ -461,7 +481,16 @@ impl Creature {
         // Nothing under the floor: a frame whose body would dip below it (its lean, bob or
         // breathing, on a body that reaches down to the ground) leans less and, if need be,
         // rises, before the legs are solved, so the feet stay planted.
-        let bodies = self.above_the_floor(&body_global, run, &setup.legs)?;
+        // The body as this clip bends it (a clip that does not turn: unbent, as measured once).
+        let shape = if spine_rotations.is_empty() {
+            if at_rest.unbent_body.is_none() {
+                at_rest.unbent_body = Some(self.body_shape(&body_global)?);
+            }
+            at_rest.unbent_body.clone().unwrap_or_default()
+        } else {
+            self.body_shape(&body_global)?
+        };
+        let bodies = self.above_the_floor(shape, run, &setup.legs);
         // Each swing's frames spaced by its joints' turn, so they turn at an even rate.
         let feet = even_swings(run, &bodies, &setup.legs, GROUND_CONTACT * self.length);
         for (frame, body) in bodies.iter().enumerate() {
@@ -471,22 +500,21 @@ impl Creature {
             let heading = heading(body.rotation);
             let up = body.rotation.inverse() * Vec3::Y;
             for (i, tracks) in legs.iter_mut().enumerate() {
-                let (leg, parent) = (tracks.leg, tracks.parent);
+                let (leg, unparent) = (tracks.leg, tracks.unparent);
                 let (rest_upper, rest_lower) = (tracks.rest_upper, tracks.rest_lower);
                 let mut foot = body.inverse_transform_point(feet[frame * run.legs + i]);
                 if !run.planted(frame, i) {
                     foot = soft_reach(leg.hip, foot, leg.upper + leg.lower, up);
                 }
-                let ik = solve_two_bone(leg.hip, foot, leg.upper, leg.lower, leg.pole);
+                let [root, middle, end] =
+                    solve_two_bone_joints(leg.hip, foot, leg.upper, leg.lower, leg.pole);
                 let floor = tracks.knee_radius - body.translation.y;
-                let middle = knee_above(ik.root, ik.middle, ik.end, up, floor);
-                let upper = (middle - ik.root).normalize_or(rest_upper);
-                let lower = (ik.end - middle).normalize_or(rest_lower);
+                let middle = knee_above(root, middle, end, up, floor);
+                let upper = (middle - root).normalize_or(rest_upper);
+                let lower = (end - middle).normalize_or(rest_lower);
                 let (hip_rotation, knee_rotation) = tracks.hinge.rotations((upper, lower));
                 let parent_rotation = tracks.parent_rotation;
-                tracks
-                    .translations
-                    .push(parent.inverse().transform_point3(ik.root));
+                tracks.translations.push(unparent.transform_point3(root));
                 let [hip, knee, foot] = &mut tracks.rotations;
                 hip.push((parent_rotation.inverse() * hip_rotation).normalize());
                 knee.push(knee_rotation.normalize());
@@ -538,7 +566,7 @@ impl Creature {
                     let unlimited = tracks.foot_at(f, hip_0, knee_0);
                     let side = tracks.leg.rest.x;
                     let foot_radius =
-                        *foot_radius.get_or_insert_with(|| self.ring_radius(tracks.hip + 2));
+                        *foot_radius.get_or_insert_with(|| ring_radius(tracks.hip + 2));
                     let safe = |h: Quat, k: Quat, o: Quat| {
                         let at = tracks.foot_at_with(f, h, k);
                         let kept_side = side == 0.0
@@ -680,6 +708,8 @@ struct LegTracks<'a> {
     hip: usize,
     /// The hip's parent (a spine joint, maybe bent) in body space, and its rotation.
     parent: Affine3A,
+    /// `parent`'s inverse: body space into the hip's parent's frame.
+    unparent: Affine3A,
     parent_rotation: Quat,
     /// The rest directions of the leg's upper and lower segments.
     rest_upper: Vec3,

@@ -42,6 +42,21 @@ fn soak(
     ))
     .map_err(|e| TestCaseError::fail(e.to_string()))?;
     let ride = legs.iter().map(|l| -l.rest.y).fold(0.0, f32::max);
+    // The sway keeps the feet at rest on their sides: no more than the narrowest walking
+    // foot's distance from the midline over the farthest one's distance ahead or behind.
+    let walking = || {
+        legs.iter()
+            .filter(|l| l.kind == creature_gait::LimbKind::Leg && l.rest.x != 0.0)
+    };
+    let narrowest = walking()
+        .map(|l| l.rest.x.abs())
+        .fold(f32::INFINITY, f32::min);
+    let farthest = walking().map(|l| l.rest.z.abs()).fold(0.0, f32::max);
+    let sway_bound = if farthest > 0.0 {
+        GaitOptions::DEFAULT.sway_limit.min(narrowest / farthest)
+    } else {
+        GaitOptions::DEFAULT.sway_limit
+    };
     let reach = legs.iter().map(|l| l.length()).fold(0.0, f32::max);
     let (mut position, mut yaw, mut seconds) = (Vec3::ZERO, 0.0f32, 0.0f32);
     for step in motion {
@@ -73,6 +88,11 @@ fn soak(
                 prop_assert!(s.foot.distance(pose.translation) <= 10.0 * reach + 30.0);
             }
             prop_assert!(c.body().offset.is_finite() && c.body().rotation.is_finite());
+            prop_assert!(
+                c.body().yaw.abs() <= sway_bound * (1.0 + 1e-6),
+                "swayed {} rad, more than {sway_bound}",
+                c.body().yaw
+            );
             prop_assert!(c.look().rotation.is_finite());
             for p in c.chain(0).map_err(|e| TestCaseError::fail(e.to_string()))? {
                 prop_assert!(p.is_finite());

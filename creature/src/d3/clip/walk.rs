@@ -483,10 +483,14 @@ impl Creature {
         // rises, before the legs are solved, so the feet stay planted.
         // The body as this clip bends it (a clip that does not turn: unbent, as measured once).
         let shape = if spine_rotations.is_empty() {
-            if at_rest.unbent_body.is_none() {
-                at_rest.unbent_body = Some(self.body_shape(&body_global)?);
+            match &at_rest.unbent_body {
+                Some(shape) => shape.clone(),
+                None => {
+                    let shape = self.body_shape(&body_global)?;
+                    at_rest.unbent_body = Some(shape.clone());
+                    shape
+                }
             }
-            at_rest.unbent_body.clone().unwrap_or_default()
         } else {
             self.body_shape(&body_global)?
         };

@@ -897,16 +897,19 @@ fn regression_legs_on_a_fliers_tail_do_not_whirl() {
     .with_snout_length(Span::new(2.557_860_1, 4.205_465))
     .with_ornaments(Span::new(1.549_262_2, 1.848_271_4), 0.140_088_66);
     let seed = 18_041_021_384_657_769_040;
-    let c = d3::generate(seed, &params).unwrap();
-    let tail = |j: Option<usize>| j.is_some_and(|j| c.skeleton.joints[j].name.starts_with("tail"));
-    assert!(
-        c.skeleton
-            .joints
-            .iter()
-            .any(|j| j.name.ends_with("_hip") && tail(j.parent)),
-        "a leg hangs from the tail"
-    );
+    assert!(a_leg_hangs_from_the_tail(
+        &d3::generate(seed, &params).unwrap()
+    ));
     passes(seed, &params, &[Check::KeyTurn, Check::AngularSpeed]);
+}
+
+/// Whether a leg's hip hangs from a tail joint of `c`.
+fn a_leg_hangs_from_the_tail(c: &d3::Creature) -> bool {
+    let tail = |j: Option<usize>| j.is_some_and(|j| c.skeleton.joints[j].name.starts_with("tail"));
+    c.skeleton
+        .joints
+        .iter()
+        .any(|j| j.name.ends_with("_hip") && tail(j.parent))
 }
 
 #[test]
@@ -941,4 +944,65 @@ fn regression_a_heavy_headed_walker_rakes_its_legs_no_further_than_it_must() {
         &params,
         &[Check::LegsIntersect, Check::Tips, Check::FeetCross],
     );
+}
+
+#[test]
+fn regression_legs_on_a_fliers_long_tail_turn_no_faster_than_a_leg_may() {
+    // Found by the audit over valid params (case 14805 of 20,000): a flier whose hind legs hang
+    // from the end of a 12-joint tail. The tail's joints each bend little, but together they
+    // swing its end round fast, and the hips, hanging from it, turned 55° between two keys
+    // of `hover` (29 rad/s). The chains' joints now turn no faster than a leg's may, round the
+    // clip's loop.
+    let params = drawn(
+        Kind::Random,
+        (1, 24, 6, 4, true),
+        [
+            (1.067_235_4, 1.371_128_7),
+            (0.792_939_9, 2.324_391_1),
+            (1.325_594, 2.758_476_3),
+        ],
+        (0.163_732_7, 0.311_202_76),
+        (1.585_937, 3.050_422_7),
+        0.172_719_63,
+        (15, 39),
+        42.234_51,
+        (1.312_135_1, 1.879_967_5),
+        (0.331_440_33, 0.567_984_9),
+    )
+    .with_eye_size(Span::new(0.184_983_63, 0.359_926_88))
+    .with_snout_length(Span::new(2.152_501_3, 4.507_331))
+    .with_ornaments(Span::new(1.464_800_6, 1.749_664_4), 0.738_865_44);
+    let seed = 10_211_869_299_900_184_870;
+    let c = d3::generate(seed, &params).unwrap();
+    assert_eq!(c.kind, creature::limbs::CreatureKind::Flier);
+    assert!(a_leg_hangs_from_the_tail(&c));
+    passes(seed, &params, &[Check::KeyTurn, Check::AngularSpeed]);
+}
+
+#[test]
+fn regression_a_narrow_walker_turns_slower_rather_than_pass_its_front_legs_through_each_other() {
+    // Found by the audit over valid params (case 11542 of 20,000): a walker on long legs (1.8 m
+    // under a 1.5 m body) whose front feet stand 0.7 m apart. Turning in place at its full
+    // rate, its front legs passed through each other (1% of the body length deep) while one
+    // foot bore the body. A turn whose legs pass through each other is now tried slower.
+    let params = drawn(
+        Kind::Walker,
+        (6, 5, 8, 8, true),
+        [
+            (2.021_461_7, 2.783_694),
+            (1.342_532_2, 2.024_165_9),
+            (1.255_227_1, 2.139_709_2),
+        ],
+        (0.444_005_13, 0.499_152_1),
+        (2.222_739_2, 3.547_838_7),
+        0.352_325_9,
+        (9, 12),
+        166.684_98,
+        (0.705_612_24, 1.543_471),
+        (0.546_669_5, 0.864_212_16),
+    )
+    .with_eye_size(Span::new(0.145_306_74, 0.347_324_04))
+    .with_snout_length(Span::new(1.230_476_1, 1.394_398_7))
+    .with_ornaments(Span::new(0.795_256_56, 2.069_260_1), 0.772_013_4);
+    passes(13_725_262_081_713_939_660, &params, &Check::ALL);
 }

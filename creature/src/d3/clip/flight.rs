@@ -76,6 +76,13 @@ pub(crate) fn flight(c: &Creature, name: &'static str, speed: f32) -> Result<Cli
                 .push(chain_bend_limited(rotation, limits[track.joint]));
         }
     }
+    // The chains' joints turn no faster than a leg's may (round the loop): a chain hanging
+    // from another (legs on a long tail) is turned by the whole tail above it, and its hip
+    // would otherwise whip round as the tail swings.
+    let max_turn = super::walk::MAX_LEG_TURN_RATE / fps;
+    for track in clip.tracks.iter_mut().skip(wings.len()) {
+        super::limit_looping_turn_rate(&mut track.rotations, max_turn);
+    }
     // Clear of the ground in every frame: the lowest any vertex can be (each joint's height
     // less the reach of the vertices it moves), lifted to the clearance.
     let reach = c.joint_reach();

@@ -337,6 +337,18 @@ impl Creature {
     /// moves it with some weight.
     fn for_each_skinned(&self, mut visit: impl FnMut(usize, Vec3)) {
         let joints = self.skeleton.joints.len();
+        self.for_each_vertex(|p, js, ws| {
+            for (&j, &w) in js.iter().zip(ws) {
+                let j = usize::from(j);
+                if w > 0.0 && j < joints {
+                    visit(j, p);
+                }
+            }
+        });
+    }
+
+    /// Calls `visit(position, joints, weights)` for each rest vertex of the mesh.
+    fn for_each_vertex(&self, mut visit: impl FnMut(Vec3, &[u16; 4], &[f32; 4])) {
         for ((&p, js), ws) in self
             .mesh
             .positions
@@ -344,12 +356,7 @@ impl Creature {
             .zip(&self.mesh.joints)
             .zip(&self.mesh.weights)
         {
-            for (&j, &w) in js.iter().zip(ws) {
-                let j = usize::from(j);
-                if w > 0.0 && j < joints {
-                    visit(j, p);
-                }
-            }
+            visit(p, js, ws);
         }
     }
 
@@ -433,6 +440,38 @@ fn loop_error(clip: &Clip) -> f32 {
 }
 
 /// Frames for `seconds` at about [`CLIP_FPS`], and the exact rate that fits them.
+/// Each rotation of a looping track (its last frame the first's again) turned no further than
+/// `max` radians from the one before it, round the loop: the track is followed as closely as
+/// that allows, from the end of the loop into its start, until the limited loop repeats
+/// itself; the last frame is then the first again. A track that turns no faster is kept.
+pub(super) fn limit_looping_turn_rate(rotations: &mut [Quat], max: f32) {
+    let n = rotations.len();
+    // Two unit quaternions are within `max` of each other when their dot product's size is
+    // at least cos(max / 2).
+    let near = crate::math::cos(0.5 * max);
+    if n < 3 || (1..n).all(|k| rotations[k].dot(rotations[k - 1]).abs() >= near) {
+        return;
+    }
+    let cycle = n - 1;
+    let wanted: Vec<Quat> = rotations[..cycle].to_vec();
+    let mut before = rotations[cycle - 1];
+    // The limited track settles once it has caught up with the wanted one; three times round
+    // is plenty for a rate that catches up within a loop.
+    for _ in 0..3 {
+        for (slot, &want) in rotations[..cycle].iter_mut().zip(&wanted) {
+            let angle = before.angle_between(want);
+            let q = if angle > max {
+                before.slerp(want, max / angle).normalize()
+            } else {
+                want
+            };
+            *slot = q;
+            before = q;
+        }
+    }
+    rotations[cycle] = rotations[0];
+}
+
 fn frames_for(seconds: f32) -> (usize, f32) {
     let frames = ((seconds * CLIP_FPS + 0.5) as usize).max(1) + 1;
     (frames, (frames - 1) as f32 / seconds.max(1e-6))
@@ -468,5 +507,40 @@ fn side_sign(side: creature_limbs::Side) -> f32 {
         creature_limbs::Side::Left => 1.0,
         creature_limbs::Side::Right => -1.0,
         creature_limbs::Side::Center => 1.0,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_looping_track_turns_within_the_limit_round_its_seam() {
+        // A loop of 12 frames about Y that jumps 1.2 rad at frame 5 and back at the seam.
+        let mut track: Vec<Quat> = (0..13)
+            .map(|f| Quat::from_rotation_y(if (5..12).contains(&f) { 1.2 } else { 0.0 }))
+            .collect();
+        let max = 0.5;
+        limit_looping_turn_rate(&mut track, max);
+        for k in 1..track.len() {
+            assert!(
+                track[k - 1].angle_between(track[k]) <= max + 1e-5,
+                "frame {k}"
+            );
+        }
+        assert_eq!(track[0], track[12], "the last frame is the first again");
+        // It follows the wanted track as soon as it has caught up.
+        assert!(track[8].angle_between(Quat::from_rotation_y(1.2)) < 1e-5);
+        assert!(track[3].angle_between(Quat::IDENTITY) < 1e-5);
+    }
+
+    #[test]
+    fn a_looping_track_within_the_limit_is_kept() {
+        let track: Vec<Quat> = (0..13)
+            .map(|f| Quat::from_rotation_x(0.4 * sin_turns(f as f32 / 12.0)))
+            .collect();
+        let mut limited = track.clone();
+        limit_looping_turn_rate(&mut limited, 0.5);
+        assert_eq!(limited, track);
     }
 }

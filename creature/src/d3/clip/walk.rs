@@ -126,6 +126,12 @@ const MAX_TURN_SECONDS: f32 = 12.0;
 /// How many cuts of its window a turn tries to close its loop at.
 const TURN_CUTS: usize = 8;
 
+/// How many times a turn whose legs pass through each other is tried slower.
+const TURN_SLOWDOWNS: usize = 2;
+
+/// Each slower turn's rate, as a fraction of the one before.
+const TURN_SLOWDOWN: f32 = 0.7;
+
 /// What a closing is judged by, for a run (see [`Creature::closed_or_cut`]): its feet's
 /// midline margin and overreach ([`margin_and_overreach`](GaitRun::margin_and_overreach)),
 /// [`foot_spacing`](GaitRun::foot_spacing) and [`ground_slide`](GaitRun::ground_slide).
@@ -157,14 +163,40 @@ pub(crate) fn walk_loop(c: &Creature, at_rest: &mut AtRest) -> Result<Clip, Erro
     let end = best_cut(&run, first..run.frames(), |_| 0.0);
     let travel = Pose::from_yaw(Vec3::Z * (c.speed * end as f32 / CLIP_FPS), 0.0);
     let run = c.closed_or_cut(run, end, &travel, &setup.legs);
-    c.clip_from_run("walk", &run, 0.0, at_rest)
+    c.clip_from_run("walk", &run, 0.0, at_rest, None)
 }
 
-/// A full `turn` in place (see [`Creature::bake_turn`]).
+/// A full `turn` in place (see [`Creature::bake_turn`]): at the creature's turn rate, or, if
+/// its legs pass through each other there (as capsules of their skin's radius, as the audit
+/// of delivered creatures measures them), at up to [`TURN_SLOWDOWNS`] slower rates, each
+/// [`TURN_SLOWDOWN`] of the one before, until they do not: the turn with the legs least
+/// deep in each other.
 pub(crate) fn turn(c: &Creature, at_rest: &mut AtRest) -> Result<Clip, Error> {
     let setup = c.gait.as_ref().ok_or(Error::NoGait)?;
-    let full = core::f32::consts::TAU;
     let mut rate = c.turn_rate(&setup.legs);
+    // Legs nearer each other than this (× body length) count as touching: what is measured
+    // here and on the exported file differs by float rounding.
+    let touching = -1e-4 * c.length;
+    let mut best = turn_at(c, rate, at_rest)?;
+    for _ in 0..TURN_SLOWDOWNS {
+        if best.1 <= touching {
+            break;
+        }
+        rate *= TURN_SLOWDOWN;
+        let slower = turn_at(c, rate, at_rest)?;
+        if slower.1 < best.1 {
+            best = slower;
+        }
+    }
+    Ok(best.0)
+}
+
+/// A full `turn` in place at `rate` (rad/s, about), with how deep its legs overlap (as
+/// [`Creature::clip_from_run`] measures it; −0.1 × the body length where no two come nearer).
+fn turn_at(c: &Creature, rate: f32, at_rest: &mut AtRest) -> Result<(Clip, f32), Error> {
+    let setup = c.gait.as_ref().ok_or(Error::NoGait)?;
+    let full = core::f32::consts::TAU;
+    let mut rate = rate;
     // The cut: half a second either side of the full turn at that rate.
     let seconds = full / rate;
     let window = ((seconds - 0.5) * CLIP_FPS) as usize..((seconds + 0.5) * CLIP_FPS) as usize + 1;
@@ -218,7 +250,10 @@ pub(crate) fn turn(c: &Creature, at_rest: &mut AtRest) -> Result<Clip, Error> {
         .min_by(|&a, &b| shortfall(a).total_cmp(&shortfall(b)))
         .unwrap_or(end);
     let run = c.closed_or_cut_among(run, &ends, plain, &Pose::IDENTITY, &setup.legs);
-    c.clip_from_run("turn", &run, rate, at_rest)
+    // Only legs nearer than a tenth of the body length matter.
+    let mut overlap = -0.1 * c.length;
+    let clip = c.clip_from_run("turn", &run, rate, at_rest, Some(&mut overlap))?;
+    Ok((clip, overlap))
 }
 
 /// A clip of `seconds` moving forward at `speed` and turning at `yaw_rate` (see
@@ -232,7 +267,7 @@ pub(crate) fn gait(
     at_rest: &mut AtRest,
 ) -> Result<Clip, Error> {
     let run = c.simulate_gait(seconds, speed, yaw_rate)?;
-    c.clip_from_run(name, &run, yaw_rate, at_rest)
+    c.clip_from_run(name, &run, yaw_rate, at_rest, None)
 }
 
 /// What baking a walker's clips measures of the creature at rest, the same for every clip:
@@ -246,6 +281,9 @@ pub(crate) struct AtRest {
     /// The body's vertices (those skinned to spine joints only) with the spine unbent, as a
     /// clip that does not turn holds it ([`Creature::body_shape`]).
     unbent_body: Option<Vec<Vec3>>,
+    /// Per leg of the gait set-up, the radii of its upper and lower segments' skin
+    /// ([`Creature::leg_radii`]).
+    leg_radii: Option<Vec<[f32; 2]>>,
 }
 
 impl Creature {
@@ -403,13 +441,17 @@ impl Creature {
     /// A clip from a recorded gait run: the root's motion, each leg's hip translation, hip
     /// and knee rotations by two-bone IK from the hip to the recorded foot (the leg's pole
     /// bending the knee), and a foot rotation that keeps the sole level (turned with the
-    /// body's heading only); the neck and tail bent toward a turn at `yaw_rate`.
+    /// body's heading only); the neck and tail bent toward a turn at `yaw_rate`. With
+    /// `overlap`, also how deep any two legs are in each other in any frame of the clip (as
+    /// capsules of their skin's radii, [`leg_radii`](Self::leg_radii); ≤ 0 where they are
+    /// apart), if deeper than it was.
     fn clip_from_run(
         &self,
         name: &'static str,
         run: &GaitRun,
         yaw_rate: f32,
         at_rest: &mut AtRest,
+        overlap: Option<&mut f32>,
     ) -> Result<Clip, Error> {
         let setup = self.gait.as_ref().ok_or(Error::NoGait)?;
         let frames = run.frames();
@@ -532,6 +574,8 @@ impl Creature {
         }
         // Each leg's hip, knee and foot tracks, then the neck and tail bent toward a turn.
         let ground = GROUND_CONTACT * self.length;
+        // With `overlap`: each walking leg's hip, knee and foot per frame, in body space.
+        let mut segments: Vec<(usize, Vec<[Vec3; 3]>)> = Vec::new();
         for (i, tracks) in legs.into_iter().enumerate() {
             let [mut hip, mut knee, mut foot] = tracks.rotations.clone();
             if tracks.leg.kind == LimbKind::Leg {
@@ -620,6 +664,21 @@ impl Creature {
                     limit_turn_rate(rotations, MAX_ARM_TURN_PER_FRAME);
                 }
             }
+            if overlap.is_some() && tracks.leg.kind == LimbKind::Leg {
+                let (upper, lower) = (
+                    rest(tracks.hip + 1) - rest(tracks.hip),
+                    rest(tracks.hip + 2) - rest(tracks.hip + 1),
+                );
+                let points = (0..frames)
+                    .map(|f| {
+                        let root = tracks.parent.transform_point3(tracks.translations[f]);
+                        let turn = tracks.parent_rotation * hip[f];
+                        let knee_at = root + turn * upper;
+                        [root, knee_at, knee_at + turn * knee[f] * lower]
+                    })
+                    .collect();
+                segments.push((i, points));
+            }
             clip.tracks.push(Track {
                 joint: tracks.hip,
                 translations: Some(tracks.translations),
@@ -640,8 +699,54 @@ impl Creature {
                 rotations: alloc::vec![q; frames],
             });
         }
+        if let Some(overlap) = overlap {
+            let radii: &[[f32; 2]] = at_rest
+                .leg_radii
+                .get_or_insert_with(|| self.leg_radii(&setup.hip_joints));
+            *overlap = deepest_overlap(&segments, radii, frames, *overlap);
+        }
         clip.loop_error = loop_error(&clip);
         Ok(clip)
+    }
+
+    /// For each of the legs whose hip joints are `hips` (the knee and the foot the next two
+    /// joints), the mean distance from its upper and its lower segment of the rest vertices
+    /// weighted most to that segment's joints (the first of equal weights): the radius of the
+    /// capsules the audit of delivered creatures measures legs as.
+    fn leg_radii(&self, hips: &[usize]) -> Vec<[f32; 2]> {
+        let joints = &self.skeleton.joints;
+        let rest = |j: usize| joints.get(j).map_or(Vec3::ZERO, |j| j.position);
+        // Per joint: the leg it belongs to, and whether to its upper and its lower segment
+        // (a knee to both).
+        let mut of_joint: Vec<Option<(usize, [bool; 2])>> = alloc::vec![None; joints.len()];
+        for (leg, &hip) in hips.iter().enumerate() {
+            for (joint, segments) in [
+                (hip, [true, false]),
+                (hip + 1, [true, true]),
+                (hip + 2, [false, true]),
+            ] {
+                if let Some(slot) = of_joint.get_mut(joint) {
+                    *slot = Some((leg, segments));
+                }
+            }
+        }
+        let mut sums = alloc::vec![[(0.0f32, 0u32); 2]; hips.len()];
+        self.for_each_vertex(|p, js, ws| {
+            let k = (0..4).fold(0, |k, i| if ws[i] > ws[k] { i } else { k });
+            let Some(&Some((leg, segments))) = of_joint.get(usize::from(js[k])) else {
+                return;
+            };
+            for segment in (0..2).filter(|&s| segments[s]) {
+                let a = rest(hips[leg] + segment);
+                let b = rest(hips[leg] + segment + 1);
+                let (sum, n) = &mut sums[leg][segment];
+                *sum += segment_distance(p, p, a, b);
+                *n += 1;
+            }
+        });
+        sums.iter()
+            .map(|s| s.map(|(sum, n)| if n == 0 { 0.0 } else { sum / n as f32 }))
+            .collect()
     }
 
     /// Local rotations of the neck and tail joints bending toward a turn at `yaw_rate`.
@@ -703,6 +808,84 @@ impl Creature {
 /// 0.35 at 1.5 rad/s and faster.
 pub(super) fn turn_bend_total(yaw_rate: f32) -> f32 {
     0.35 * yaw_rate.signum() * (yaw_rate.abs() / 1.5).min(1.0)
+}
+
+/// How deep any two of `legs` (each its index into `radii` and its hip, knee and foot per
+/// frame) are in each other as capsules of their segments' radii, in the first `frames`
+/// frames, or `floor` if no two are deeper than that (≤ 0 where they are apart, by minus the
+/// least gap).
+fn deepest_overlap(
+    legs: &[(usize, Vec<[Vec3; 3]>)],
+    radii: &[[f32; 2]],
+    frames: usize,
+    floor: f32,
+) -> f32 {
+    // Each segment's half length (the legs are rigid).
+    let halves: Vec<[f32; 2]> = legs
+        .iter()
+        .map(|(_, p)| {
+            p.first().map_or([0.0; 2], |p| {
+                [0.5 * p[0].distance(p[1]), 0.5 * p[1].distance(p[2])]
+            })
+        })
+        .collect();
+    let mut depth = floor;
+    for (n, (a, pa)) in legs.iter().enumerate() {
+        for (m, (b, pb)) in legs.iter().enumerate().skip(n + 1) {
+            let (ra, rb) = (radii[*a], radii[*b]);
+            for (pa, pb) in pa.iter().zip(pb).take(frames) {
+                for i in 0..2 {
+                    for k in 0..2 {
+                        // Two segments are no nearer than their midpoints' distance less their
+                        // half lengths: most pairs cannot be deeper than the deepest yet.
+                        let (a0, a1, b0, b1) = (pa[i], pa[i + 1], pb[k], pb[k + 1]);
+                        let reach = ra[i] + rb[k];
+                        let far = halves[n][i] + halves[m][k] + reach - depth;
+                        if (0.5 * (a0 + a1 - b0 - b1)).length_squared() >= far * far {
+                            continue;
+                        }
+                        depth = depth.max(reach - segment_distance(a0, a1, b0, b1));
+                    }
+                }
+            }
+        }
+    }
+    depth
+}
+
+/// The smallest distance between segments `p0 p1` and `q0 q1` (Ericson, *Real-Time Collision
+/// Detection*, 5.1.9).
+fn segment_distance(p0: Vec3, p1: Vec3, q0: Vec3, q1: Vec3) -> f32 {
+    let (d1, d2, r) = (p1 - p0, q1 - q0, p0 - q0);
+    let (a, e, f) = (d1.dot(d1), d2.dot(d2), d2.dot(r));
+    let eps = 1e-12;
+    let (s, t) = if a <= eps && e <= eps {
+        (0.0, 0.0)
+    } else if a <= eps {
+        (0.0, (f / e).clamp(0.0, 1.0))
+    } else {
+        let c = d1.dot(r);
+        if e <= eps {
+            ((-c / a).clamp(0.0, 1.0), 0.0)
+        } else {
+            let b = d1.dot(d2);
+            let denom = a * e - b * b;
+            let s = if denom > eps {
+                ((b * f - c * e) / denom).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            let t = (b * s + f) / e;
+            if t < 0.0 {
+                (((-c) / a).clamp(0.0, 1.0), 0.0)
+            } else if t > 1.0 {
+                (((b - c) / a).clamp(0.0, 1.0), 1.0)
+            } else {
+                (s, t)
+            }
+        }
+    };
+    (p0 + d1 * s).distance(q0 + d2 * t)
 }
 
 /// One leg of a walking clip being baked: what solving it needs, and its tracks' values.
@@ -782,6 +965,54 @@ mod tests {
                 .dot(Vec3::new(0.0, -0.1, 2.5).normalize())
                 > 0.9999
         );
+    }
+
+    #[test]
+    fn segments_distances_and_legs_overlap() {
+        let v = Vec3::new;
+        // Crossing at right angles 0.5 apart; parallel, side by side; end to end; a point.
+        let crossing = segment_distance(
+            v(-1.0, 0.0, 0.0),
+            v(1.0, 0.0, 0.0),
+            v(0.0, 0.5, -1.0),
+            v(0.0, 0.5, 1.0),
+        );
+        assert!((crossing - 0.5).abs() < 1e-6);
+        let parallel = segment_distance(
+            v(0.0, 0.0, 0.0),
+            v(0.0, 2.0, 0.0),
+            v(0.3, 1.0, 0.0),
+            v(0.3, 3.0, 0.0),
+        );
+        assert!((parallel - 0.3).abs() < 1e-6);
+        let apart = segment_distance(
+            v(0.0, 0.0, 0.0),
+            v(1.0, 0.0, 0.0),
+            v(3.0, 0.0, 0.0),
+            v(4.0, 0.0, 0.0),
+        );
+        assert!((apart - 2.0).abs() < 1e-6);
+        let point = segment_distance(
+            v(0.0, 1.0, 0.0),
+            v(0.0, 1.0, 0.0),
+            v(-1.0, 0.0, 0.0),
+            v(1.0, 0.0, 0.0),
+        );
+        assert!((point - 1.0).abs() < 1e-6);
+        // Two upright legs 0.5 apart, radii 0.2 and 0.1: apart by 0.2 until the second frame,
+        // whose second leg leans its foot 0.4 toward the first.
+        let leg = |x: f32, lean: f32| [v(x, 2.0, 0.0), v(x, 1.0, 0.0), v(x + lean, 0.0, 0.0)];
+        let legs = [
+            (0, alloc::vec![leg(0.0, 0.0), leg(0.0, 0.0)]),
+            (1, alloc::vec![leg(0.5, 0.0), leg(0.5, -0.4)]),
+        ];
+        let radii = [[0.2, 0.2], [0.1, 0.1]];
+        let floor = f32::NEG_INFINITY;
+        assert!((deepest_overlap(&legs, &radii, 1, floor) + 0.2).abs() < 1e-6);
+        assert!((deepest_overlap(&legs, &radii, 2, floor) - 0.2).abs() < 1e-6);
+        assert!((deepest_overlap(&legs, &radii, 2, -0.1) - 0.2).abs() < 1e-6);
+        assert_eq!(deepest_overlap(&legs, &radii, 1, -0.1), -0.1);
+        assert_eq!(deepest_overlap(&legs[..1], &radii, 2, floor), floor);
     }
 
     #[test]

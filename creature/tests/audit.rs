@@ -1006,3 +1006,33 @@ fn regression_a_narrow_walker_turns_slower_rather_than_pass_its_front_legs_throu
     .with_ornaments(Span::new(0.795_256_56, 2.069_260_1), 0.772_013_4);
     passes(13_725_262_081_713_939_660, &params, &Check::ALL);
 }
+
+#[test]
+fn regression_a_long_front_leg_steps_before_the_hind_foot_lands_on_it() {
+    // Found by the audit over valid params (case 9734 of 20,000): a walker whose front legs
+    // (8.1 m) are twice as long as its hind legs and nearer the midline, their hips 1.25 m
+    // apart, walking at 6.8 m/s. A front foot trailed past where the hind leg could land, the
+    // hind foot came down beside it, and the legs of a side passed through each other (5% of
+    // the body length deep) in `walk`. A foot trailing onto a hind foot of its side now steps
+    // first (the gait's `foot_spacing`).
+    let params = drawn(
+        Kind::Walker,
+        (1, 8, 10, 5, false),
+        [
+            (1.113_769_2, 2.674_89),
+            (2.894_423_7, 2.950_510_7),
+            (0.388_631_6, 0.523_296_5),
+        ],
+        (0.754_380_46, 4.758_433_3),
+        (4.422_318, 4.898_66),
+        0.410_137_6,
+        (10, 40),
+        35.732_452,
+        (0.992_747_2, 1.047_531_1),
+        (0.445_376_84, 0.541_037_4),
+    )
+    .with_eye_size(Span::new(0.315_415_5, 0.372_528_2))
+    .with_snout_length(Span::new(2.230_136_2, 3.719_821_7))
+    .with_ornaments(Span::new(0.751_980_3, 1.985_458_4), 0.938_962_34);
+    passes(7_361_394_951_656_852_688, &params, &Check::ALL);
+}

@@ -340,6 +340,9 @@ pub(crate) struct Layout {
     pub(crate) opposite: Vec<Option<usize>>,
     /// The other leg of this leg's left/right pair (hip roll).
     pub(crate) partner: Vec<Option<usize>>,
+    /// The walking leg on this one's side whose rest position is the nearest behind it (the
+    /// foot it must not trail onto, see `GaitOptions::foot_spacing`).
+    pub(crate) hind: Vec<Option<usize>>,
 }
 
 /// How many pairs a side may have before the derived gait becomes a three-group travelling
@@ -383,6 +386,16 @@ pub(crate) fn layout(legs: &[Leg]) -> Result<Layout, GaitError> {
         partner[left[k]] = Some(right[k]);
         partner[right[k]] = Some(left[k]);
     }
+    let mut hind = alloc::vec![None; n];
+    for side in [&left, &right] {
+        for pair in side.windows(2) {
+            if let &[back, front] = pair
+                && legs[back].rest.z < legs[front].rest.z
+            {
+                hind[front] = Some(back);
+            }
+        }
+    }
 
     let explicit = legs.iter().filter(|l| l.group.is_some()).count();
     if explicit > 0 {
@@ -407,6 +420,7 @@ pub(crate) fn layout(legs: &[Leg]) -> Result<Layout, GaitError> {
             group_count: labels.len().max(1) as u8,
             opposite,
             partner,
+            hind,
         });
     }
 
@@ -442,6 +456,7 @@ pub(crate) fn layout(legs: &[Leg]) -> Result<Layout, GaitError> {
         group_count: group_count as u8,
         opposite,
         partner,
+        hind,
     })
 }
 

@@ -116,7 +116,10 @@ pub struct GaitOptions {
     /// rest position is behind, so that a rear foot does not land on or past a front foot that
     /// trails, and the legs never pass through each other. At most half the two rest
     /// positions' distance along the body, and a target is never moved further than its reach
-    /// from the rest position. 0 turns it off. Default 0.25.
+    /// from the rest position. A planted foot that trails to within three quarters of that
+    /// of the foot behind it (or of where that lands) steps at once, out of turn, if another
+    /// foot stays down: a long front leg can stride back past where a short hind leg can
+    /// land. 0 turns it off. Default 0.25.
     pub foot_spacing: f32,
     /// The shortest a step's swing takes (seconds), `(0, 10]`; a leg of size `s` under 1 takes
     /// `min_swing_time × √s` at least (a pendulum's time: a small leg swings faster). However fast its rest position moves (the outer feet of a long body turning in

@@ -920,3 +920,38 @@ fn regression_a_fast_step_lands_short_of_a_straight_leg() {
         "a foot landed {worst} of its leg's length away"
     );
 }
+
+#[test]
+fn regression_a_long_front_leg_steps_before_the_hind_foot_lands_on_it() {
+    // A generated walker's legs (creature property case 9734 of 20,000): front legs 8.1 m long
+    // with hips 0.28 m out, 1.25 m ahead of hind legs 4.2 m long with hips 0.62 m out, walking
+    // at 6.8 m/s. A front foot trailed 2.6 m behind its hip, past where the hind leg can land:
+    // the landing reach kept the hind step's target short of the foot spacing, the hind foot
+    // came down 2 cm from the front foot still on the ground, and the legs passed through each
+    // other. A foot trailing onto a hind foot of its side now steps first, out of turn.
+    let mut legs = mirrored_legs(&[(Vec3::new(0.284, 6.251, -0.569), 4.063)]);
+    legs.extend(mirrored_legs(&[(Vec3::new(0.619, 3.265, -1.815), 2.122)]));
+    let options = GaitOptions::DEFAULT
+        .with_speed_multiplier(3.387)
+        .with_min_swing_time(0.129);
+    // The spacing the hind feet keep behind the front feet: a quarter of the legs' mean size,
+    // at most half their rest positions' distance along the body.
+    let spacing = (0.25 * 0.5 * (legs[0].size + legs[2].size)).min(0.5 * (0.569 - 1.815f32).abs());
+    let mut least = f32::INFINITY;
+    drive(&legs, &options, (6.832, 0.0), |controller| {
+        let body = controller.reacted_pose();
+        let along = |p: Vec3| (body.rotation.inverse() * (p - body.translation)).z;
+        let states = controller.leg_states();
+        for (front, hind) in [(0, 2), (1, 3)] {
+            let (f, h) = (&states[front], &states[hind]);
+            // Both feet on the ground (planted, or not yet off it).
+            if f.foot.y < 0.01 && h.foot.y < 0.01 {
+                least = least.min(along(f.foot) - along(h.foot));
+            }
+        }
+    });
+    assert!(
+        least >= 0.5 * spacing,
+        "a front foot on the ground {least:.3} m ahead of its hind foot (spacing {spacing:.3} m)"
+    );
+}

@@ -139,13 +139,14 @@ impl Controller {
         }
 
         // 2. Which planted legs want to step.
-        for ((((leg, state), want), motion), strayed) in self
+        for (index, ((((leg, state), want), motion), strayed)) in self
             .legs
             .iter()
             .zip(&self.states)
             .zip(&mut self.wants)
             .zip(&self.motion)
             .zip(&mut self.strayed)
+            .enumerate()
         {
             if state.stepping || (leg.kind == LimbKind::Leg && !state.grounded) {
                 *want = 0;
@@ -208,6 +209,30 @@ impl Controller {
             let reach = leg.upper + leg.lower;
             if leg.kind == LimbKind::Leg
                 && state.foot.distance_squared(rotation * leg.hip + body) > reach * reach
+            {
+                flags |= WANT | ESCAPE;
+            }
+            // Trailing onto the foot of the leg behind it on its side (a long front leg
+            // striding back past where a short hind leg can land, whose step's target the
+            // landing reach keeps short of the spacing): step now, out of turn, before the hind
+            // foot lands on it and the legs pass through each other, if another foot stays
+            // down.
+            if flags & ESCAPE == 0
+                && o.foot_spacing > 0.0
+                && let Some(hind) = self.layout.hind[index]
+                && trails_onto_a_hind_foot(
+                    (leg, &self.legs[hind], &self.states[hind]),
+                    o,
+                    state.foot,
+                    (body, &rotation),
+                )
+                && self
+                    .legs
+                    .iter()
+                    .zip(&self.states)
+                    .filter(|(l, s)| l.kind == LimbKind::Leg && s.grounded && !s.stepping)
+                    .count()
+                    >= 2
             {
                 flags |= WANT | ESCAPE;
             }
@@ -479,6 +504,39 @@ fn step_target<G: Ground + ?Sized>(
         None => (anchor, anchor_normal()),
     }
 }
+
+/// Whether `foot` (of walking leg `leg`) is along the body within [`TRAILING_SPACING`] of
+/// [`GaitOptions::foot_spacing`] of the foot of `hind`, the walking leg behind it on its side
+/// (of where that lands, if it is stepping and lands further forward). `frame` is the body's
+/// position and rotation.
+#[inline(always)]
+fn trails_onto_a_hind_foot(
+    legs: (&Leg, &Leg, &LegState),
+    o: &GaitOptions,
+    foot: Vec3,
+    frame: (Vec3, &Mat3A),
+) -> bool {
+    let (leg, hind, state) = legs;
+    let (body, rotation) = frame;
+    if !state.grounded {
+        return false;
+    }
+    let forward = Vec3::from(rotation.z_axis);
+    let along = |p: Vec3| forward.dot(p - body);
+    let gap = leg.rest.z - hind.rest.z;
+    let spacing = (o.foot_spacing * 0.5 * (leg.size + hind.size)).min(0.5 * abs(gap));
+    let behind = if state.stepping {
+        along(state.foot).max(along(state.step_target))
+    } else {
+        along(state.foot)
+    };
+    along(foot) < behind + TRAILING_SPACING * spacing
+}
+
+/// The part of [`GaitOptions::foot_spacing`] a foot keeps ahead of a hind foot on its side
+/// before it steps out of turn ([`trails_onto_a_hind_foot`]): less than the whole, so a foot
+/// whose hind neighbour landed just that far behind it is not moved at once.
+const TRAILING_SPACING: f32 = 1.0;
 
 /// `target` (of walking leg `leg`, index `index` of `legs`) moved along the body, as little as
 /// needed and no further than the reach from `anchor`, so that it stays

@@ -136,8 +136,9 @@ pub fn pattern_weights() -> impl Strategy<Value = PatternWeights> {
 /// Valid 3D parameters of the given kind: every field drawn inside its documented range (see
 /// [`Params`]), kept to a moderate box so generation stays fast — up to 24 rings and 16
 /// segments, slice scales 0.3 to 3, body scale 0.1 to 10, bones 0.1 to 0.5 long, at most 40
-/// spine bones; colours and the head's eyes, snout and ornaments over their whole ranges. The limb planner keeps its defaults. Always
-/// passes [`Params::validate`].
+/// spine bones; colours, the head's eyes, snout and ornaments and the limbs' proportions
+/// ([`Params::thigh_thickness`], [`Params::wing_span`], [`Params::wing_area`]) over their
+/// whole ranges. The limb planner keeps its defaults. Always passes [`Params::validate`].
 pub fn params_of_kind(kind: Kind) -> impl Strategy<Value = Params> {
     let mesh = (1u32..=9, 4u32..=24, 3u32..=16, 3u32..=8, any::<bool>());
     let slices = (
@@ -165,13 +166,15 @@ pub fn params_of_kind(kind: Kind) -> impl Strategy<Value = Params> {
         span(0.0, 3.0),
         0.0f32..=1.0,
     );
-    (mesh, slices, body, colours, head).prop_map(
+    let limbs = (span(1.0, 3.0), span(0.2, 5.0), span(0.1, 10.0));
+    (mesh, slices, body, colours, head, limbs).prop_map(
         move |(
             (profiles, rings, segments, limb_sides, flat),
             (width, height, step, swim_width, swim_height, swim_step),
             (scale, speed, bone_length, spine_bones, bend, head, clearance, clips),
             (saturation, countershading, patterns),
             (eye_size, snout_length, ornament_size, ornament_chance),
+            (thigh_thickness, wing_span, wing_area),
         )| {
             Params::DEFAULT
                 .with_kind(kind)
@@ -194,6 +197,8 @@ pub fn params_of_kind(kind: Kind) -> impl Strategy<Value = Params> {
                 .with_eye_size(eye_size)
                 .with_snout_length(snout_length)
                 .with_ornaments(ornament_size, ornament_chance)
+                .with_thigh_thickness(thigh_thickness)
+                .with_wings(wing_span, wing_area)
                 .with_clips(clips)
         },
     )

@@ -599,6 +599,21 @@ fn walks_over_terrain_pass_the_audit_on_the_terrain() {
     }
 }
 
+/// Toed feet (a rear toe or claw reaching a seventh of a body length behind the ankle) on
+/// terrain walks stay out of the ground and land without skidding. Regressions: the sole was
+/// raised for the ground under sixteen rim samples, and a step's crest passing between two of
+/// them left a toe up to 1.2% of the body's length in it (seeds 106, 110; 31 of seeds
+/// 100-199 failed); raised for every sole vertex, a stepping foot's toe caught the crest its
+/// sole would rest on before the step ended and skidded 1.6% over it (seed 100).
+#[test]
+fn toed_soles_stay_out_of_step_crests_on_terrain_walks() {
+    for seed in [100, 106, 110] {
+        let report = terrain_walk_report(seed);
+        assert!(report.walker);
+        assert!(report.passes(), "seed {seed}: {}", listed(&report));
+    }
+}
+
 #[test]
 fn regression_legs_on_a_coarse_body_grow_from_their_own_sockets() {
     // Four rings under up to 33 spine bones: several bones took the same ring's vertices as

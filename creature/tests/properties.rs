@@ -183,6 +183,46 @@ proptest! {
     }
 
     #[test]
+    fn limbs_are_proportioned_as_the_params_ask(
+        seed in strategies::seed(),
+        params in strategies::params(),
+        thigh in strategies::span(1.0, 3.0),
+        span in strategies::span(0.2, 5.0),
+        area in strategies::span(0.1, 10.0),
+    ) {
+        // Measured on the delivered mesh and skeleton, over the proportions' whole ranges:
+        // every leg's thigh at least the least thickness asked × its shin, flapping wings at
+        // least the least span and area asked.
+        let params = params.with_thigh_thickness(thigh).with_wings(span, area);
+        prop_assert_eq!(params.validate(), Ok(()));
+        let c = generate(seed, &params.with_clips(false));
+        prop_assert!(c.is_ok(), "seed {seed}: {:?}", c.err());
+        let Ok(c) = c else { return Ok(()) };
+        let has = |kind: creature::limbs::LimbKind| c.plan.limbs.iter().any(|l| l.kind == kind);
+        let q = c.quality;
+        prop_assert_eq!(q.thigh_to_shin_radius.is_some(), has(creature::limbs::LimbKind::Leg));
+        if let Some(ratio) = q.thigh_to_shin_radius {
+            prop_assert!(
+                ratio >= params.thigh_thickness.min * (1.0 - 1e-4),
+                "seed {seed}: thigh {ratio} × shin, asked {:?}", params.thigh_thickness
+            );
+        }
+        let flapping = has(creature::limbs::LimbKind::FlappingWing);
+        prop_assert_eq!(q.wing_span_to_body_length.is_some(), flapping);
+        prop_assert_eq!(q.wing_area_to_body_volume.is_some(), flapping);
+        if let (Some(span), Some(area)) = (q.wing_span_to_body_length, q.wing_area_to_body_volume) {
+            prop_assert!(
+                span >= params.wing_span.min * (1.0 - 1e-4),
+                "seed {seed}: span {span}, asked {:?}", params.wing_span
+            );
+            prop_assert!(
+                area >= params.wing_area.min * (1.0 - 1e-3),
+                "seed {seed}: area {area}, asked {:?}", params.wing_area
+            );
+        }
+    }
+
+    #[test]
     fn clips_baked_in_place_are_the_clips_without_the_roots_travel(
         seed in strategies::seed(),
         params in strategies::params(),
@@ -694,6 +734,73 @@ fn assert_above_the_floor(c: &d3::Creature, clip: &creature::d3::Clip, floor: f3
             .map(|v| v.y)
             .fold(f32::INFINITY, f32::min);
         assert!(low > floor, "{} frame {frame}: {low}", clip.name);
+    }
+}
+
+/// Regression (found by the audit over valid params once the limbs' proportions were drawn):
+/// a flier's hind legs hang from its tail, whose damped chain is held to its skin's bend limits
+/// in the tracks; the legs hung from the tail as it was simulated, not as the tracks turn it,
+/// so their hips whirled through the tail's whole swing (51° between two keys of `hover`, 98°
+/// of `fly`). A chain hanging from another now hangs from it as its tracks turn it.
+#[cfg(feature = "export")]
+#[test]
+fn regression_legs_on_a_fliers_tail_do_not_whirl() {
+    use creature::d3::{Pattern, PatternWeights};
+    use creature_audit::{Check, Limits, audit_glb};
+    let params = d3::Params::DEFAULT
+        .with_kind(d3::Kind::Flier)
+        .with_profiles(6)
+        .with_resolution(11, 16)
+        .with_limb_sides(3)
+        .with_flat_normals(true)
+        .with_slices(
+            Span::new(2.540_651, 2.780_586_2),
+            Span::new(0.866_352_5, 1.693_655_5),
+            Span::new(0.795_522, 0.844_977_5),
+        )
+        .with_swimmer_slices(
+            Span::new(1.140_422, 1.349_379_3),
+            Span::new(0.652_752_1, 1.870_228_9),
+            Span::new(0.339_772_52, 1.847_010_3),
+        )
+        .with_body_scale(Span::new(0.396_330_4, 1.281_325_1))
+        .with_speed_factor(Span::new(3.957_649_5, 4.830_991_7))
+        .with_bone_length(0.115_943_18)
+        .with_spine_bones(IntSpan::new(8, 35))
+        .with_spine_bend(52.529_804)
+        .with_head_size(Span::new(1.644_309_3, 1.981_544_9))
+        .with_eye_size(Span::new(0.189_040_36, 0.193_160_55))
+        .with_snout_length(Span::new(1.999_866, 2.632_167_6))
+        .with_ornaments(Span::new(0.880_078_6, 0.965_624_4), 0.090_350_51)
+        .with_ground_clearance(Span::new(0.382_742_46, 0.760_995_2))
+        .with_thigh_thickness(Span::new(1.096_409_2, 1.870_718_2))
+        .with_wings(
+            Span::new(0.592_969_83, 0.668_164_97),
+            Span::new(2.655_883_6, 6.222_394),
+        )
+        .with_saturation(Span::new(0.154_549_99, 0.634_415_8))
+        .with_countershading(Span::new(0.172_477_45, 0.411_851_94))
+        .with_patterns(
+            PatternWeights::only(Pattern::Plain)
+                .with(Pattern::Plain, 14.817_366)
+                .with(Pattern::Stripes, 561.260_56)
+                .with(Pattern::Bands, 797.068_7)
+                .with(Pattern::Gradient, 695.066),
+        )
+        .with_clips(true);
+    let c = generate(9_357_823_686_410_948_175, &params).unwrap();
+    let tail = |j: Option<usize>| j.is_some_and(|j| c.skeleton.joints[j].name.starts_with("tail"));
+    assert!(
+        c.skeleton
+            .joints
+            .iter()
+            .any(|j| j.name.ends_with("_hip") && tail(j.parent)),
+        "a leg hangs from the tail"
+    );
+    let glb = creature::export::glb_3d(&c, &c.clips).unwrap();
+    let report = audit_glb(&glb, &Limits::DEFAULT).unwrap();
+    for check in [Check::KeyTurn, Check::AngularSpeed] {
+        assert!(!report.fails(check), "{}", tally::listed(&report));
     }
 }
 

@@ -82,6 +82,40 @@ fn sweep_3d(kind: d3::Kind) {
                         c.quality.eyes_in_view
                     ));
                 }
+                // The proxies for proportioned limbs: thighs thicker than shins, and
+                // flapping wings big enough to fly.
+                let legs = c
+                    .plan
+                    .limbs
+                    .iter()
+                    .any(|l| l.kind == creature::limbs::LimbKind::Leg);
+                match c.quality.thigh_to_shin_radius {
+                    Some(r) if r < 1.3 => {
+                        problems.push(format!("thigh only {r} × the shin's radius, not 1.3"));
+                    }
+                    None if legs => problems.push("legs, but no thigh-to-shin radius".into()),
+                    _ => {}
+                }
+                let flapping = c
+                    .plan
+                    .limbs
+                    .iter()
+                    .any(|l| l.kind == creature::limbs::LimbKind::FlappingWing);
+                match c.quality.wing_span_to_body_length {
+                    Some(span) if span < 1.2 => {
+                        problems.push(format!("wing span {span} × the body length, not 1.2"));
+                    }
+                    None if flapping => problems.push("flapping wings, but no span".into()),
+                    _ => {}
+                }
+                match c.quality.wing_area_to_body_volume {
+                    Some(area) if area < params.wing_area.min * 0.999 => problems.push(format!(
+                        "wing area {area} × the body volume^(2/3), under {}",
+                        params.wing_area.min
+                    )),
+                    None if flapping => problems.push("flapping wings, but no area".into()),
+                    _ => {}
+                }
                 if !problems.is_empty() {
                     failures.push(format!("seed {seed}: {}", problems.join("; ")));
                 }

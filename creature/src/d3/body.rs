@@ -112,6 +112,13 @@ impl Profile {
 /// The centre of the volume a closed triangle mesh encloses (signed tetrahedra from a point
 /// inside its bounds); `None` when the volume is not positive.
 pub(crate) fn centre_of_volume(positions: &[Vec3], triangles: &[[u32; 3]]) -> Option<Vec3> {
+    let (volume, centre) = volume_and_centre(positions, triangles);
+    (volume > 0.0).then_some(centre)
+}
+
+/// The volume a closed triangle mesh encloses (signed: negative when it is inside out) and
+/// its centre (meaningless unless the volume is positive).
+pub(crate) fn volume_and_centre(positions: &[Vec3], triangles: &[[u32; 3]]) -> (f32, Vec3) {
     let (lo, hi) = positions.iter().fold(
         (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)),
         |(lo, hi), &p| (lo.min(p), hi.max(p)),
@@ -125,7 +132,8 @@ pub(crate) fn centre_of_volume(positions: &[Vec3], triangles: &[[u32; 3]]) -> Op
         volume += v;
         moment += v * 0.25 * (a + b + c);
     }
-    (volume > 0.0).then(|| o + moment / volume)
+    let centre = if volume > 0.0 { o + moment / volume } else { o };
+    (volume, centre)
 }
 
 pub(crate) fn pill_triangles(rings: usize, segments: usize) -> Vec<[u32; 3]> {

@@ -456,6 +456,12 @@ impl Colouring {
         Pcg64Mcg::seed_from_u64(self.seed ^ 0x4ead_4ead_4ead_4ead)
     }
 
+    /// A generator of its own for the limbs' proportions (feet, thighs, wings), as
+    /// [`head_rng`](Self::head_rng) is for the head.
+    pub(crate) fn limb_rng(&self) -> Pcg64Mcg {
+        Pcg64Mcg::seed_from_u64(self.seed ^ 0x1146_1146_1146_1146)
+    }
+
     /// How far toward the belly colour the skin facing `up` (1 back, −1 belly) goes, and how
     /// much darker it is.
     fn countershading(&self, up: f32) -> (f32, f32) {

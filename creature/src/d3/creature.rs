@@ -128,6 +128,20 @@ pub struct Quality {
     /// in the rest pose: their outward normal more than a little forward (`+z`) or mostly to a
     /// side. Two or more on every default creature.
     pub eyes_in_view: u32,
+    /// For creatures with legs, the least over its legs of its thigh's radius over its shin's,
+    /// each the farthest any vertex bound to the segment's upper joint (the hip's, the knee's)
+    /// is from the segment between its joints; `None` without legs. At least
+    /// [`Params::thigh_thickness`](crate::d3::Params::thigh_thickness)'s least.
+    pub thigh_to_shin_radius: Option<f32>,
+    /// For fliers with flapping wings, their span tip to tip (the extent across the body of
+    /// the vertices bound to their joints) over the body length; `None` otherwise. At least
+    /// [`Params::wing_span`](crate::d3::Params::wing_span)'s least.
+    pub wing_span_to_body_length: Option<f32>,
+    /// For fliers with flapping wings, their area (both wings, one face: the triangles bound
+    /// to their joints, halved) over the volume of the body and head (the triangles bound to
+    /// spine joints alone) to the power 2/3; `None` otherwise. At least
+    /// [`Params::wing_area`](crate::d3::Params::wing_area)'s least.
+    pub wing_area_to_body_volume: Option<f32>,
 }
 
 /// A generated 3D creature: plain data.

@@ -14,19 +14,20 @@ use creature_gait::{GaitOptions, Leg, LimbKind as GaitLimb};
 use creature_limbs::{Body, CreatureKind, HeadEnd, LimbKind, SpineBone, plan};
 use creature_skin::{Blend, nearest_k, skin_positions};
 
-use super::body::{BASE_RADIUS, base_body, centre_of_volume, pill_triangles};
+use super::body::{BASE_RADIUS, base_body, centre_of_volume, pill_triangles, volume_and_centre};
 use super::clip::MAX_LEG_TURN_RATE;
 use super::colour::{Colouring, body_surface};
+use super::extremities::Proportions;
 use super::gait::{mean_leg_size, swing_time_for_joints, walk_speed_limit};
 use super::head::{self, Shape};
 use super::limbs::{
-    Bind, LegChain, LimbNames, LimbStyle, MeshBuilder, Mount, add_limb, leg_knees, limb_shape,
-    socket_point,
+    Bind, LegChain, LimbNames, LimbStyle, MeshBuilder, Mount, WingSize, add_limb, leg_knees,
+    limb_shape, socket_point,
 };
 use super::{GaitSetup, Kind, Params};
 use crate::Error;
 use crate::d3::{Clip, Creature, Joint, Mesh, Part, Quality, Skeleton};
-use crate::math::{asin, cos, sin};
+use crate::math::{asin, cos, powf, sin};
 use crate::rng::{rng_for, uniform};
 use crate::span::Span;
 use rand_pcg::Pcg64Mcg;
@@ -178,7 +179,17 @@ fn generate_kind(rng: &mut Pcg64Mcg, params: &Params, spec: &KindSpec) -> Result
         &mesh,
         params.ground_clearance.at(uniform(rng)) * rigged.length,
     );
-    let mut limbs = add_limbs(rng, params, spec, &rigged, &mut mesh, ground, &colouring)?;
+    let proportions = Proportions::draw(&mut colouring.limb_rng(), params);
+    let mut limbs = add_limbs(
+        rng,
+        params,
+        spec,
+        &rigged,
+        &mut mesh,
+        ground,
+        &colouring,
+        &proportions,
+    )?;
     let offset = stand_on_ground(
         &mut mesh,
         &mut rigged.rig,
@@ -216,6 +227,11 @@ fn generate_kind(rng: &mut Pcg64Mcg, params: &Params, spec: &KindSpec) -> Result
     );
     quality.belly_contrast = paint.contrast;
     quality.eyes_in_view = face.map_or(0, |f| f.eyes_in_view());
+    [
+        quality.thigh_to_shin_radius,
+        quality.wing_span_to_body_length,
+        quality.wing_area_to_body_volume,
+    ] = measure_limbs(&mesh, &joints, &limbs.plan, rigged.length);
     let mut creature = Creature {
         kind: spec.limbs,
         mesh,
@@ -476,7 +492,9 @@ struct BuiltLimbs {
 }
 
 /// Stage 8: limbs planned on the rig's sockets, each built as joints and a mesh skinned to
-/// them.
+/// them, in the creature's `proportions` (flapping wings sized for the body and head as `mesh`
+/// has them now).
+#[allow(clippy::too_many_arguments)]
 fn add_limbs(
     rng: &mut Pcg64Mcg,
     params: &Params,
@@ -485,7 +503,13 @@ fn add_limbs(
     mesh: &mut MeshBuilder,
     ground: f32,
     colouring: &Colouring,
+    proportions: &Proportions,
 ) -> Result<BuiltLimbs, Error> {
+    let volume = volume_and_centre(&mesh.positions, &mesh.indices).0.max(0.0);
+    let wing = WingSize {
+        span: proportions.wing_span * body.length,
+        area: proportions.wing_area * powf(volume, 2.0 / 3.0),
+    };
     let body_rig = &body.rig;
     let positions = &body.positions;
     let (bones, sockets) = limb_body(body_rig, positions, ground, spec.walks);
@@ -550,7 +574,7 @@ fn add_limbs(
         for (index, (limb, &mount)) in limb_plan.limbs.iter().zip(&mounts).enumerate() {
             let shape = limb_shape(limb.kind)?;
             let first = mesh.positions.len();
-            let chain = add_limb(
+            let built = add_limb(
                 mesh,
                 &mut joints,
                 &mut limb_names,
@@ -562,6 +586,10 @@ fn add_limbs(
                     knee: knees[index],
                     sides: params.limb_sides as usize,
                     colour: colouring.palette.base,
+                    foot: proportions.foot,
+                    thigh: proportions.thigh,
+                    wing,
+                    flat: params.flat_normals,
                 },
             );
             let socket = &body_rig.sockets[limb.bone];
@@ -576,8 +604,9 @@ fn add_limbs(
                 join: mount.point,
                 near,
                 membrane: shape.membrane_colour,
+                horn: built.horn,
             });
-            if let Some(chain) = chain {
+            if let Some(chain) = built.chain {
                 chains.push((index, limb.kind, chain));
             }
         }
@@ -591,6 +620,9 @@ fn add_limbs(
                 colour_limb(mesh, limb, |root, reach| {
                     colouring.limb(root, limb.membrane, reach)
                 });
+                for colour in mesh.colours.get_mut(limb.horn.clone()).unwrap_or(&mut []) {
+                    *colour = HORN;
+                }
             }
             break Ok(BuiltLimbs {
                 plan: limb_plan,
@@ -609,7 +641,12 @@ struct LimbPaint {
     join: Vec3,
     near: [u32; 4],
     membrane: bool,
+    /// Its vertices in [`HORN`] (hooves, claws).
+    horn: core::ops::Range<usize>,
 }
+
+/// The colour of hooves and claws (linear RGB): a dark horn.
+const HORN: Vec3 = Vec3::new(0.09, 0.075, 0.06);
 
 /// Colours `limb`'s vertices by `colour(root, reach)`: `root` the colour of the body vertex
 /// of `limb.near` nearest the join, `reach` the vertex's distance from the join × the limb's
@@ -1321,7 +1358,103 @@ fn measure(
         bend_degrees,
         belly_contrast: 0.0,
         eyes_in_view: 0,
+        thigh_to_shin_radius: None,
+        wing_span_to_body_length: None,
+        wing_area_to_body_volume: None,
     }
+}
+
+/// The limbs' proportions as delivered (see [`Quality`]): the least thigh-over-shin radius of
+/// the legs, and the flapping wings' span over the body length and area over the body's
+/// volume to the power 2/3; measured on `mesh` by each vertex's most weighted joint.
+fn measure_limbs(
+    mesh: &Mesh,
+    joints: &[Joint],
+    limb_plan: &creature_limbs::Plan,
+    length: f32,
+) -> [Option<f32>; 3] {
+    let dominant: Vec<usize> = mesh
+        .joints
+        .iter()
+        .zip(&mesh.weights)
+        .map(|(j, w)| {
+            let k = (0..4).fold(0, |k, i| if w[i] > w[k] { i } else { k });
+            usize::from(j[k])
+        })
+        .collect();
+    // The farthest a vertex bound to `joint` is from the segment `a`–`b`.
+    let radius = |joint: usize, a: Vec3, b: Vec3| {
+        mesh.positions
+            .iter()
+            .zip(&dominant)
+            .filter(|&(_, &d)| d == joint)
+            .map(|(&p, _)| segment_distance(p, a, b))
+            .fold(0.0f32, f32::max)
+    };
+    let mut thigh_to_shin: Option<f32> = None;
+    let mut wing_joints = Vec::new();
+    for (index, limb) in limb_plan.limbs.iter().enumerate() {
+        let chain: Vec<usize> = (0..joints.len())
+            .filter(|&j| joints[j].part == Part::Limb(index))
+            .collect();
+        match (limb.kind, chain.as_slice()) {
+            (LimbKind::Leg, &[hip, knee, foot]) => {
+                let at = |j: usize| joints[j].position;
+                let thigh = radius(hip, at(hip), at(knee));
+                let shin = radius(knee, at(knee), at(foot)).max(f32::MIN_POSITIVE);
+                let ratio = thigh / shin;
+                thigh_to_shin = Some(thigh_to_shin.map_or(ratio, |r| r.min(ratio)));
+            }
+            (LimbKind::FlappingWing, _) => wing_joints.extend(chain),
+            _ => {}
+        }
+    }
+    if wing_joints.is_empty() {
+        return [thigh_to_shin, None, None];
+    }
+    let in_wing = |v: u32| {
+        dominant
+            .get(v as usize)
+            .is_some_and(|d| wing_joints.contains(d))
+    };
+    let (lo, hi) = (0..mesh.positions.len() as u32)
+        .filter(|&v| in_wing(v))
+        .map(|v| mesh.positions[v as usize].x)
+        .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), x| {
+            (lo.min(x), hi.max(x))
+        });
+    let span = (hi - lo) / length.max(f32::MIN_POSITIVE);
+    let faces: f32 = mesh
+        .indices
+        .iter()
+        .filter(|t| t.iter().all(|&v| in_wing(v)))
+        .map(|t| {
+            let [a, b, c] = t.map(|i| mesh.positions[i as usize]);
+            0.5 * (b - a).cross(c - a).length()
+        })
+        .sum();
+    let on_spine = |v: u32| {
+        dominant
+            .get(v as usize)
+            .and_then(|&j| joints.get(j))
+            .is_some_and(|j| j.part == Part::Spine)
+    };
+    let body: Vec<[u32; 3]> = mesh
+        .indices
+        .iter()
+        .filter(|t| t.iter().all(|&v| on_spine(v)))
+        .copied()
+        .collect();
+    let volume = volume_and_centre(&mesh.positions, &body).0.max(0.0);
+    let area = 0.5 * faces / powf(volume, 2.0 / 3.0).max(f32::MIN_POSITIVE);
+    [thigh_to_shin, Some(span), Some(area)]
+}
+
+/// The distance from `p` to the segment `a`–`b`.
+fn segment_distance(p: Vec3, a: Vec3, b: Vec3) -> f32 {
+    let ab = b - a;
+    let t = ((p - a).dot(ab) / ab.length_squared().max(f32::MIN_POSITIVE)).clamp(0.0, 1.0);
+    p.distance(a + ab * t)
 }
 
 #[cfg(test)]

@@ -86,34 +86,34 @@ impl Frame {
     }
 
     /// The direction `(x, y, z)` in the frame (x to the side, y up, z forward).
-    fn dir(&self, x: f32, y: f32, z: f32) -> Vec3 {
+    pub(crate) fn dir(&self, x: f32, y: f32, z: f32) -> Vec3 {
         self.side * x + self.up * y + self.forward * z
     }
 
     /// The point `(x, y, z)` of the frame.
-    fn at(&self, x: f32, y: f32, z: f32) -> Vec3 {
+    pub(crate) fn at(&self, x: f32, y: f32, z: f32) -> Vec3 {
         self.centre + self.dir(x, y, z)
     }
 }
 
 /// One ring of a tube: its centre and its half-extents along the tube's two cross axes.
 #[derive(Debug, Clone, Copy)]
-struct Ring {
-    centre: Vec3,
-    rx: f32,
-    ry: f32,
+pub(crate) struct Ring {
+    pub(crate) centre: Vec3,
+    pub(crate) rx: f32,
+    pub(crate) ry: f32,
 }
 
 /// A closed tube: the `back` tip, `rings` (ellipses across `x` and `y`, with `x × y` pointing
 /// toward `front`), the `front` tip, `segments` around.
 #[derive(Debug, Clone, Copy)]
-struct Tube<'a> {
-    back: Vec3,
-    rings: &'a [Ring],
-    front: Vec3,
-    x: Vec3,
-    y: Vec3,
-    segments: usize,
+pub(crate) struct Tube<'a> {
+    pub(crate) back: Vec3,
+    pub(crate) rings: &'a [Ring],
+    pub(crate) front: Vec3,
+    pub(crate) x: Vec3,
+    pub(crate) y: Vec3,
+    pub(crate) segments: usize,
 }
 
 /// How a tube is coloured: `paint(band, up)` for a vertex facing `up` (its direction from its
@@ -121,15 +121,15 @@ struct Tube<'a> {
 /// and `k`, `rings.len()` the front fan). `banded`: every band on vertices of its own, in one
 /// colour each (the vertex's `up` is then the band's middle's); else the vertices are shared
 /// and each ring takes the band it closes.
-struct Paint<'a> {
-    banded: bool,
-    up: Vec3,
-    paint: &'a dyn Fn(usize, f32) -> Vec3,
+pub(crate) struct Paint<'a> {
+    pub(crate) banded: bool,
+    pub(crate) up: Vec3,
+    pub(crate) paint: &'a dyn Fn(usize, f32) -> Vec3,
 }
 
 impl MeshBuilder {
     /// Adds `tube`, every vertex bound by `bind`.
-    fn head_tube(&mut self, tube: Tube<'_>, paint: &Paint<'_>, bind: Bind) {
+    pub(crate) fn head_tube(&mut self, tube: Tube<'_>, paint: &Paint<'_>, bind: Bind) {
         let Tube {
             back,
             rings,
@@ -211,7 +211,7 @@ impl MeshBuilder {
 
 /// Two unit vectors square to `axis` and to each other, `x × y = axis`, `x` level when it can
 /// be.
-fn cross_axes(axis: Vec3) -> (Vec3, Vec3) {
+pub(crate) fn cross_axes(axis: Vec3) -> (Vec3, Vec3) {
     let axis = axis.normalize_or(Vec3::Z);
     let x = Vec3::Y.cross(axis).try_normalize().unwrap_or(Vec3::X);
     (x, axis.cross(x))

@@ -12,6 +12,7 @@ use glam::Vec3;
 use creature_gait::{GaitOptions, solve_two_bone};
 use creature_limbs::{Knee, Limb, LimbKind, Side, Socket};
 
+use super::extremities::{ANKLE, Foot, add_foot, add_hand, ankle_height, centre_foot};
 use crate::Error;
 use crate::d3::{Joint, Part};
 use crate::math::{cos, sin};
@@ -169,12 +170,34 @@ pub(crate) struct Membrane {
     pub(crate) width: f32,
 }
 
-/// How limbs look: the plan's knee direction, tube sides, colour.
+/// How limbs look: the plan's knee direction, tube sides, colour, the creature's feet and
+/// thigh thickness, its flapping wings' least size, and whether normals are flat (the foot is
+/// centred on its joint as the delivered mesh has its vertices).
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct LimbStyle {
     pub(crate) knee: Option<Knee>,
     pub(crate) sides: usize,
     pub(crate) colour: Vec3,
+    pub(crate) foot: Foot,
+    /// Thigh (upper arm) radius × shin (forearm) radius.
+    pub(crate) thigh: f32,
+    pub(crate) wing: WingSize,
+    pub(crate) flat: bool,
+}
+
+/// The least size of a flier's flapping wings: their span tip to tip (metres) and their area
+/// (both wings, one face; square metres).
+#[derive(Debug, Clone, Copy, Default)]
+pub(crate) struct WingSize {
+    pub(crate) span: f32,
+    pub(crate) area: f32,
+}
+
+/// A limb as built: a leg's or arm's chain, and its vertices to colour as horn (hooves, claws).
+#[derive(Debug, Clone)]
+pub(crate) struct BuiltLimb {
+    pub(crate) chain: Option<LegChain>,
+    pub(crate) horn: core::ops::Range<usize>,
 }
 
 /// Where a limb attaches: the socket's point on the bent, grounded body.
@@ -212,10 +235,59 @@ fn outward_at(limb: &Limb, mount: &Mount) -> f32 {
     }
 }
 
-/// A two-bone limb's radius at its root (its tube narrows to the end): 9% of its length, at
-/// most a fifth of the body's width where it attaches.
+/// A two-bone limb's radius at its root, its thigh's (its tube narrows to the end): 9% of its
+/// length, at most a fifth of the body's width where it attaches.
 fn limb_radius(length: f32, body_width: f32) -> f32 {
     (0.09 * length).min(0.2 * body_width).max(1e-3)
+}
+
+/// A thigh's (upper arm's) radius × [`limb_radius`].
+const THIGH: f32 = 1.0;
+/// The size of a foot (its parts are sized by this: a paw is 2.2 long, a hoof 1.7 across) ×
+/// the thigh's radius. Small enough that legs whose shins keep apart keep their feet apart.
+const FOOT: f32 = 0.6;
+/// The size of a hand (a mitt is 1.9 long) × the upper arm's radius.
+const HAND: f32 = 0.9;
+
+/// Where along the thigh (upper arm), from the hip, its thickest ring is.
+const THIGH_BULGE: f32 = 0.2;
+
+/// The share of a flapping wing's `width × length` its membrane covers (its chord narrows to
+/// the root and the tip, see [`MeshBuilder::membrane`]), with `bones` joints.
+fn membrane_share(bones: usize) -> f32 {
+    let n = bones.max(1);
+    let half = |k: usize| {
+        if k >= n {
+            0.0
+        } else {
+            0.4 + 0.6 * sin(PI * k as f32 / n as f32)
+        }
+    };
+    (0..n).map(|k| 0.5 * (half(k) + half(k + 1))).sum::<f32>() / n as f32
+}
+
+/// A flapping wing's chord, × its length, unless its area asks for more.
+const WING_CHORD: f32 = 0.45;
+/// The widest a flapping wing's chord gets, × its length: past that it grows longer instead.
+const MAX_WING_CHORD: f32 = 0.6;
+
+/// A flapping wing's length and width: as planned (`planned` long), at least long enough for
+/// the span `wing.span` tip to tip (its root `root` from the body's midline, reaching across
+/// by `reach` per unit of length) and wide enough (then long enough) for `wing.area` over the
+/// two wings.
+fn flapping_wing(planned: f32, root: f32, reach: f32, wing: WingSize, bones: usize) -> (f32, f32) {
+    let share = membrane_share(bones);
+    let mut length = planned.max((0.5 * wing.span - root) / reach.max(0.5));
+    let mut width = WING_CHORD * length;
+    let need = 0.5 * wing.area;
+    if share * width * length < need {
+        width = need / (share * length);
+    }
+    if width > MAX_WING_CHORD * length {
+        length = crate::math::sqrt(need / (share * MAX_WING_CHORD));
+        width = MAX_WING_CHORD * length;
+    }
+    (length, width)
 }
 
 /// Per limb of `plan`, the way its knee bends (`mounts` are the limbs' mounts, in order): the
@@ -353,6 +425,9 @@ struct TwoBone {
     rest_direction: fn(f32) -> Vec3,
     /// The knee's pole, from the plan's knee direction and the outward sign.
     pole: fn(Option<Knee>, f32) -> Vec3,
+    /// Whether the thigh bulges (its thickest ring [`THIGH_BULGE`] down it; else at the hip):
+    /// not on arms, whose elbows bend far enough to squash a short upper arm's skin.
+    bulge: bool,
 }
 
 /// A membrane limb's shape.
@@ -391,6 +466,7 @@ pub(crate) const LIMB_SHAPES: [LimbShape; 7] = [
             // A flier's dangling leg: down and a little back.
             rest_direction: |out| Vec3::new(0.15 * out, -1.0, -0.35).normalize(),
             pole: leg_pole,
+            bulge: true,
         }),
     },
     LimbShape {
@@ -402,6 +478,7 @@ pub(crate) const LIMB_SHAPES: [LimbShape; 7] = [
             to_foot: false,
             rest_direction: |out| Vec3::new(0.2 * out, -0.5, 1.0).normalize(),
             pole: |_, _| Vec3::new(0.0, -1.0, -0.3),
+            bulge: false,
         }),
     },
     LimbShape {
@@ -505,12 +582,17 @@ pub(crate) fn add_limb(
     shape: &LimbShape,
     mount: Mount,
     style: LimbStyle,
-) -> Option<LegChain> {
+) -> BuiltLimb {
     let LimbStyle {
         knee,
         sides,
         colour,
+        foot: foot_kind,
+        thigh,
+        wing,
+        flat,
     } = style;
+    let (first_vertex, first_triangle) = (mesh.positions.len(), mesh.indices.len());
     let out = outward_at(limb, &mount);
     let length = limb.length.max(1e-4);
     let base = joints.len();
@@ -557,44 +639,93 @@ pub(crate) fn add_limb(
             let hip_joint = push_joint(hip, mount.joint, hip_name);
             let knee_joint = push_joint(ik.middle, base, knee_name);
             let foot_joint = push_joint(ik.end, base + 1, foot_name);
-            let r = limb_radius(length, mount.width);
+            // The thigh's radius; the shin's is `thigh` times less, narrowing through the knee
+            // to a slender ankle over the foot (or wrist over the hand).
+            let thick = THIGH * limb_radius(length, mount.width);
+            let shin = thick / thigh.max(1.0);
+            // Feet and hands sized by the thigh, so a slender shin still stands on a foot.
+            let foot_size = FOOT * thick;
+            let standing = bone.to_foot && limb.foot.is_some();
             // Standing legs have level rings (the foot's flat on the ground however the leg
             // slants); others square to the limb.
-            let axis = if bone.to_foot && limb.foot.is_some() {
-                Vec3::NEG_Y
+            let axis = if standing { Vec3::NEG_Y } else { ik.end - hip };
+            let is_leg = shape.kind == LimbKind::Leg;
+            let lift = if is_leg { ankle_height(foot_kind) } else { 0.0 } * foot_size;
+            let up_shin = (ik.middle - ik.end).normalize_or(Vec3::Y);
+            let ankle = ik.end + up_shin * lift.min(0.3 * ik.middle.distance(ik.end));
+            // Arms start at their thickest ring (the shoulder's); legs one thigh-bulge down.
+            let first = usize::from(!bone.bulge);
+            let bulge = if bone.bulge {
+                hip.lerp(ik.middle, THIGH_BULGE)
             } else {
-                ik.end - hip
+                hip
             };
             mesh.tube(
-                &[hip, ik.middle, ik.end],
-                &[r, 0.7 * r, 0.55 * r],
+                &[hip, bulge, ik.middle, ankle][first..],
+                &[thick, thick, shin, ANKLE * shin][first..],
                 &[
+                    Bind::one(hip_joint),
                     Bind::one(hip_joint),
                     // The knee ring on the knee joint alone: a ring shared half and half
                     // between two bones shrinks as the knee bends (to 0.79 of its rest size at
                     // 75°, linear blend skinning's pinch); the segments' lengthwise edges take
                     // the bend instead.
                     Bind::one(knee_joint),
-                    // The foot ring on the foot joint: clips keep it level, flat on the ground.
+                    // The ankle ring on the foot joint: clips keep it level, over the foot.
                     Bind::one(foot_joint),
-                ],
+                ][first..],
                 axis,
                 sides,
                 colour,
             );
-            Some(LegChain {
-                hip_joint: usize::from(hip_joint),
-                hip,
-                end: ik.end,
-                upper: segment,
-                lower: segment,
-                pole,
-            })
+            let end_bind = Bind::one(foot_joint);
+            let mut horn = mesh.positions.len()..mesh.positions.len();
+            if is_leg {
+                let shape_start = mesh.positions.len();
+                horn = add_foot(mesh, foot_kind, ik.end, foot_size, colour, end_bind);
+                centre_foot(
+                    mesh,
+                    first_vertex..mesh.positions.len(),
+                    first_triangle..mesh.indices.len(),
+                    shape_start..mesh.positions.len(),
+                    foot_joint,
+                    ik.end,
+                    flat,
+                );
+            } else {
+                let forward = (ik.end - ik.middle).normalize_or(Vec3::NEG_Y);
+                let inward = Vec3::X * -out;
+                add_hand(
+                    mesh,
+                    ik.end,
+                    forward,
+                    inward,
+                    HAND * thick,
+                    colour,
+                    end_bind,
+                );
+            }
+            BuiltLimb {
+                chain: Some(LegChain {
+                    hip_joint: usize::from(hip_joint),
+                    hip,
+                    end: ik.end,
+                    upper: segment,
+                    lower: segment,
+                    pole,
+                }),
+                horn,
+            }
         }
         Build::Membrane(m) => {
             let along = (m.along)(out);
             let across = (m.across - along * along.dot(m.across)).normalize_or(m.across_fallback);
-            let width = (m.width)(limb, length);
+            let (length, width) = if shape.kind == LimbKind::FlappingWing {
+                let root = (mount.point.x - mount.centre.x).abs();
+                flapping_wing(length, root, along.x.abs(), wing, m.bones)
+            } else {
+                (length, (m.width)(limb, length))
+            };
             let chain = chain_joints(&mut push_joint, mount, along, length, m.bones, base);
             mesh.membrane(
                 Membrane {
@@ -607,7 +738,10 @@ pub(crate) fn add_limb(
                 &chain,
                 colour,
             );
-            None
+            BuiltLimb {
+                chain: None,
+                horn: mesh.positions.len()..mesh.positions.len(),
+            }
         }
     }
 }
@@ -658,6 +792,7 @@ pub(crate) fn socket_point(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::d3::extremities::FEET;
     use creature_limbs::Span;
 
     #[test]
@@ -701,11 +836,51 @@ mod tests {
         }
     }
 
-    fn build(limb: &Limb, point: Vec3) -> (MeshBuilder, Vec<Joint>) {
+    fn leg(foot: Vec3) -> Limb {
+        Limb {
+            kind: LimbKind::Leg,
+            foot: Some(foot),
+            length: 1.0,
+            ..wing(Side::Left)
+        }
+    }
+
+    /// A leg from `(0.3, 1, 0)` to a foot of `kind` on the ground, its thigh 1.5 × its shin.
+    fn build_leg(kind: Foot, flat: bool) -> (MeshBuilder, Vec<Joint>, BuiltLimb) {
+        let style = LimbStyle {
+            knee: Some(Knee::Forward),
+            foot: kind,
+            flat,
+            ..STYLE
+        };
+        let limb = leg(Vec3::new(0.45, 0.0, 0.1));
+        build_with(&limb, Vec3::new(0.3, 1.0, 0.0), Vec3::Y, style)
+    }
+
+    const STYLE: LimbStyle = LimbStyle {
+        knee: None,
+        sides: 5,
+        colour: Vec3::ONE,
+        foot: Foot::Paw,
+        thigh: 1.5,
+        wing: WingSize {
+            span: 0.0,
+            area: 0.0,
+        },
+        flat: true,
+    };
+
+    /// `limb` on a body whose spine joint is at `centre`, mounted at `point`.
+    fn build_with(
+        limb: &Limb,
+        point: Vec3,
+        centre: Vec3,
+        style: LimbStyle,
+    ) -> (MeshBuilder, Vec<Joint>, BuiltLimb) {
         let mut mesh = MeshBuilder::default();
         let mut joints = alloc::vec![Joint {
             name: "spine_0".into(),
-            position: Vec3::ZERO,
+            position: centre,
             parent: None,
             part: Part::Spine,
         }];
@@ -713,15 +888,10 @@ mod tests {
             point,
             joint: 0,
             width: 0.6,
-            centre: Vec3::ZERO,
-        };
-        let style = LimbStyle {
-            knee: None,
-            sides: 5,
-            colour: Vec3::ONE,
+            centre,
         };
         let shape = limb_shape(limb.kind).expect("every planner limb type has a row");
-        let chain = add_limb(
+        let built = add_limb(
             &mut mesh,
             &mut joints,
             &mut LimbNames::default(),
@@ -731,7 +901,129 @@ mod tests {
             mount,
             style,
         );
-        assert!(chain.is_none(), "wings have no leg chain");
+        (mesh, joints, built)
+    }
+
+    #[test]
+    fn a_leg_has_a_thick_thigh_a_thin_shin_and_a_foot_of_its_kind_on_its_bones() {
+        let mut shapes = Vec::new();
+        for kind in FEET {
+            for flat in [true, false] {
+                let (mesh, joints, built) = build_leg(kind, flat);
+                assert_eq!(joints.len(), 4, "hip, knee, foot");
+                let [hip, knee, foot] = [1u16, 2, 3];
+                let at = |j: u16| joints[usize::from(j)].position;
+                let (ids, weights) = (&mesh.joints, &mesh.weights);
+                let bound = |j: u16| {
+                    (0..ids.len()).filter(move |&v| ids[v][0] == j && weights[v][0] == 1.0)
+                };
+                // Every vertex on one bone.
+                assert!(mesh.weights.iter().all(|w| *w == [1.0, 0.0, 0.0, 0.0]));
+                // The thigh on the hip, thickest; the shin on the knee; the foot on the foot,
+                // on the ground (its sole at the foot joint's height) and below the knee.
+                let far = |j: u16, a: Vec3, b: Vec3| {
+                    bound(j)
+                        .map(|v| {
+                            let p = mesh.positions[v];
+                            let t = ((p - a).dot(b - a) / (b - a).length_squared()).clamp(0.0, 1.0);
+                            p.distance(a + (b - a) * t)
+                        })
+                        .fold(0.0f32, f32::max)
+                };
+                let thigh = far(hip, at(hip), at(knee));
+                let shin = far(knee, at(knee), at(foot));
+                assert!((thigh / shin - 1.5).abs() < 1e-3, "{thigh} / {shin}");
+                let sole = bound(foot)
+                    .map(|v| mesh.positions[v].y)
+                    .fold(f32::INFINITY, f32::min);
+                assert!(
+                    sole.abs() < 1e-5 && at(foot).y.abs() < 1e-6,
+                    "sole at {sole}"
+                );
+                assert!(bound(foot).all(|v| mesh.positions[v].y < at(knee).y));
+                // Centred on the foot joint across the ground, as the delivered mesh counts
+                // its vertices (once per triangle corner with flat normals).
+                let mut count = alloc::vec![usize::from(!flat); mesh.positions.len()];
+                if flat {
+                    for &i in mesh.indices.iter().flatten() {
+                        count[i as usize] += 1;
+                    }
+                }
+                let (sum, n) = bound(foot).fold((Vec3::ZERO, 0.0f32), |(s, n), v| {
+                    (s + mesh.positions[v] * count[v] as f32, n + count[v] as f32)
+                });
+                let off = (sum / n - at(foot)) * Vec3::new(1.0, 0.0, 1.0);
+                assert!(off.length() < 1e-5, "{kind:?}: foot centre off by {off}");
+                // Hooves and claws in horn, paws not.
+                assert_eq!(built.horn.is_empty(), kind == Foot::Paw, "{kind:?}");
+                for t in &mesh.indices {
+                    let [a, b, c] = t.map(|i| mesh.positions[i as usize]);
+                    assert!((b - a).cross(c - a).length() > 1e-7, "{kind:?}");
+                }
+                if flat {
+                    shapes.push(bound(foot).count());
+                }
+            }
+        }
+        // The three kinds are three shapes.
+        shapes.sort_unstable();
+        shapes.dedup();
+        assert_eq!(shapes.len(), FEET.len(), "{shapes:?}");
+    }
+
+    #[test]
+    fn flapping_wings_reach_their_span_and_grow_with_the_area_asked() {
+        let wing = |span: f32, area: f32| flapping_wing(0.3, 0.2, 1.0, WingSize { span, area }, 4);
+        // As planned when that is enough.
+        assert_eq!(wing(0.0, 0.0), (0.3, WING_CHORD * 0.3));
+        // Long enough for the span: the root 0.2 out, so the tips 1.2 apart.
+        let (length, _) = wing(1.2, 0.0);
+        assert!((length - 0.4).abs() < 1e-6);
+        // More area asked, a wider wing, then a longer one; never less area than asked, and
+        // the asked area once it is more than the span's wing has.
+        let mut last = 0.0;
+        for area in [0.05f32, 0.1, 0.2, 0.4, 0.8, 1.6] {
+            let (length, width) = wing(1.2, area);
+            let got = 2.0 * membrane_share(4) * length * width;
+            assert!(got >= area * (1.0 - 1e-5) && got >= last, "{area}: {got}");
+            assert!(
+                area < 0.2 || (got / area - 1.0).abs() < 1e-5,
+                "{area}: {got}"
+            );
+            assert!(width <= MAX_WING_CHORD * length * (1.0 + 1e-6));
+            last = got;
+        }
+    }
+
+    #[test]
+    fn a_membrane_covers_its_share_of_its_box() {
+        let mut mesh = MeshBuilder::default();
+        let shape = Membrane {
+            origin: Vec3::ZERO,
+            along: Vec3::X,
+            across: Vec3::Z,
+            length: 2.0,
+            width: 0.5,
+        };
+        mesh.membrane(shape, &[0, 1, 2, 3], Vec3::ONE);
+        let area: f32 = mesh
+            .indices
+            .iter()
+            .map(|t| {
+                let [a, b, c] = t.map(|i| mesh.positions[i as usize]);
+                0.5 * (b - a).cross(c - a).length()
+            })
+            .sum();
+        // Two faces.
+        assert!(
+            (0.5 * area - membrane_share(4) * 2.0 * 0.5).abs() < 1e-4,
+            "{area}"
+        );
+    }
+
+    fn build(limb: &Limb, point: Vec3) -> (MeshBuilder, Vec<Joint>) {
+        let (mesh, joints, built) = build_with(limb, point, Vec3::ZERO, STYLE);
+        assert!(built.chain.is_none(), "wings have no leg chain");
         (mesh, joints)
     }
 

@@ -18,6 +18,7 @@ mod body;
 mod clip;
 pub(crate) mod colour;
 mod creature;
+mod extremities;
 mod gait;
 mod generate;
 mod head;

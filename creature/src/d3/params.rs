@@ -111,6 +111,16 @@ pub struct Params {
     /// Options of the limb planner (`creature_limbs::plan`). Default
     /// [`PlanOptions::DEFAULT`].
     pub limbs: PlanOptions,
+    /// How much thicker a leg's thigh is than its shin (an arm's upper arm than its forearm):
+    /// the thigh's radius × the shin's, drawn once per creature. From 1 to 3. Default 1.35..1.7.
+    pub thigh_thickness: Span,
+    /// The least span of a flier's flapping wings, tip to tip, × its body length (a wing the
+    /// planner drew longer stays longer). From 0.2 to 5. Default 1.3..1.8.
+    pub wing_span: Span,
+    /// The least area of a flier's flapping wings (both wings, one face) × the volume of its
+    /// body and head to the power 2/3: heavier bodies get bigger wings (wider, then longer).
+    /// From 0.1 to 10. Default 1.2..2.0.
+    pub wing_area: Span,
     /// Saturation of the base colour (HSV, sRGB-encoded; the belly gets about a third of it),
     /// from 0 (greys) to 1. Default 0.3..0.75.
     pub saturation: Span,
@@ -158,6 +168,9 @@ impl Params {
         ornament_chance: 0.5,
         ground_clearance: Span::new(0.15, 0.6),
         limbs: PlanOptions::DEFAULT,
+        thigh_thickness: Span::new(1.35, 1.7),
+        wing_span: Span::new(1.3, 1.8),
+        wing_area: Span::new(1.2, 2.0),
         saturation: Span::new(0.3, 0.75),
         countershading: Span::new(0.6, 1.0),
         patterns: PatternWeights::DEFAULT,
@@ -301,6 +314,21 @@ impl Params {
         self
     }
 
+    /// Sets [`thigh_thickness`](Self::thigh_thickness).
+    #[must_use]
+    pub const fn with_thigh_thickness(mut self, thickness: Span) -> Self {
+        self.thigh_thickness = thickness;
+        self
+    }
+
+    /// Sets [`wing_span`](Self::wing_span) and [`wing_area`](Self::wing_area).
+    #[must_use]
+    pub const fn with_wings(mut self, span: Span, area: Span) -> Self {
+        self.wing_span = span;
+        self.wing_area = area;
+        self
+    }
+
     /// Sets [`saturation`](Self::saturation).
     #[must_use]
     pub const fn with_saturation(mut self, saturation: Span) -> Self {
@@ -379,6 +407,9 @@ impl Params {
         scalar("ornament_chance", self.ornament_chance, 0.0, 1.0)?;
         self.ground_clearance.check("ground_clearance", 0.0, 10.0)?;
         self.limbs.validate()?;
+        self.thigh_thickness.check("thigh_thickness", 1.0, 3.0)?;
+        self.wing_span.check("wing_span", 0.2, 5.0)?;
+        self.wing_area.check("wing_area", 0.1, 10.0)?;
         self.saturation.check("saturation", 0.0, 1.0)?;
         self.countershading.check("countershading", 0.0, 1.0)?;
         self.patterns.check("patterns")?;
@@ -492,6 +523,30 @@ mod tests {
                 ..
             })
         ));
+        let e = Params::DEFAULT
+            .with_thigh_thickness(Span::new(0.8, 1.5))
+            .validate();
+        assert!(matches!(
+            e,
+            Err(Error::OutOfRange {
+                what: "thigh_thickness",
+                ..
+            })
+        ));
+        let e = Params::DEFAULT
+            .with_wings(Span::new(1.8, 1.3), Span::new(1.5, 2.5))
+            .validate();
+        assert!(matches!(
+            e,
+            Err(Error::EmptyRange {
+                what: "wing_span",
+                ..
+            })
+        ));
+        let e = Params::DEFAULT
+            .with_wings(Span::new(1.3, 1.8), Span::new(f32::NAN, 2.5))
+            .validate();
+        assert_eq!(e, Err(Error::NonFinite { what: "wing_area" }));
         let none = PatternWeights::only(Pattern::Spots).with(Pattern::Spots, 0.0);
         let e = Params::DEFAULT.with_patterns(none).validate();
         assert_eq!(e, Err(Error::AllZero { what: "patterns" }));

@@ -199,13 +199,17 @@ impl Default for Plane {
     }
 }
 
-impl Ground for Plane {
-    fn cast_ray(&self, origin: Vec3, direction: Vec3, max_distance: f32) -> Option<RayHit> {
-        let denom = direction.dot(self.normal);
-        if !(denom < -1e-12) {
-            return None; // parallel, leaving, or NaN
-        }
-        let distance = (self.point - origin).dot(self.normal) / denom;
+impl Plane {
+    /// The hit `distance` along the ray from `origin` along `direction`, if within
+    /// `max_distance`.
+    #[inline]
+    fn hit_at(
+        &self,
+        origin: Vec3,
+        direction: Vec3,
+        distance: f32,
+        max_distance: f32,
+    ) -> Option<RayHit> {
         if !(distance >= 0.0 && distance <= max_distance) {
             return None;
         }
@@ -222,9 +226,77 @@ impl Ground for Plane {
     }
 }
 
+impl Ground for Plane {
+    fn cast_ray(&self, origin: Vec3, direction: Vec3, max_distance: f32) -> Option<RayHit> {
+        let denom = direction.dot(self.normal);
+        if !(denom < -1e-12) {
+            return None; // parallel, leaving, or NaN
+        }
+        let distance = (self.point - origin).dot(self.normal) / denom;
+        self.hit_at(origin, direction, distance, max_distance)
+    }
+
+    /// What [`cast_ray`](Self::cast_ray) finds straight down, without its division when the
+    /// plane is horizontal.
+    #[inline]
+    fn cast_down(&self, origin: Vec3, max_distance: f32) -> Option<RayHit> {
+        if self.normal != Vec3::Y {
+            return self.cast_ray(origin, Vec3::NEG_Y, max_distance);
+        }
+        // `(point − origin) · normal / (−Y · normal)` for the normal +Y, exactly (the
+        // division by −1 a negation).
+        let distance = -(self.point - origin).dot(self.normal);
+        self.hit_at(origin, Vec3::NEG_Y, distance, max_distance)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_horizontal_planes_vertical_casts_are_its_general_casts() {
+        let values = [
+            -3.5,
+            -1.0,
+            -0.0,
+            0.0,
+            1e-30,
+            0.25,
+            1.0,
+            7.0,
+            1e30,
+            f32::INFINITY,
+            f32::NAN,
+        ];
+        for plane in [
+            Plane::GROUND,
+            Plane::horizontal(1.0),
+            Plane::horizontal(-2.5),
+        ] {
+            for &x in &values {
+                for &y in &values {
+                    for &max in &[0.0, 0.5, 3.0, f32::INFINITY, f32::NAN] {
+                        let origin = Vec3::new(x, y, -x);
+                        let general = plane.cast_ray(origin, Vec3::NEG_Y, max);
+                        let down = plane.cast_down(origin, max);
+                        let bits = |h: Option<RayHit>| {
+                            h.map(|h| (h.point.to_array().map(f32::to_bits), h.distance.to_bits()))
+                        };
+                        assert_eq!(bits(general), bits(down), "{origin} {max}");
+                        assert_eq!(
+                            plane
+                                .cast_down_point(origin, max)
+                                .map(|p| p.to_array().map(f32::to_bits)),
+                            general
+                                .filter(RayHit::is_valid)
+                                .map(|h| h.point.to_array().map(f32::to_bits)),
+                        );
+                    }
+                }
+            }
+        }
+    }
 
     #[test]
     fn plane_hits_from_above_only() {

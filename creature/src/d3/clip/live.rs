@@ -170,7 +170,7 @@ enum Drive {
 
 /// One leg's (or arm's) posing: its joints, its knee hinge and how far its knee's ring of
 /// vertices reaches.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone)]
 struct LiveLeg {
     rest_upper: Vec3,
     rest_lower: Vec3,
@@ -178,10 +178,15 @@ struct LiveLeg {
     knee_radius: f32,
     /// The sole's radius about the foot joint.
     foot_radius: f32,
-    /// The sole's rim: the foot's farthest vertices from its joint, at rest (level, facing
-    /// +Z), in eight directions (ahead, behind, left, right and between them), relative to the
-    /// joint.
-    sole: [Vec3; 8],
+    /// The sole's rim: the foot's farthest vertices near its bottom, at rest (level, facing
+    /// +Z), in each of [`RIM`]'s directions: their horizontal offset from the joint and their
+    /// height over the foot's lowest vertex.
+    sole: [Vec3; RIM_SAMPLES],
+    /// The sole's vertices at rest, as offsets from the foot joint, lowest first
+    /// ([`sole_points`]).
+    sole_points: Vec<Vec3A>,
+    /// The farthest any of `sole_points` reaches from the foot joint horizontally.
+    sole_reach: f32,
 }
 
 impl Animator {
@@ -297,13 +302,19 @@ impl Animator {
             .map(|(leg, &hip)| {
                 let rest_upper = (rest(hip + 1) - rest(hip)).normalize_or(Vec3::NEG_Y);
                 let rest_lower = (rest(hip + 2) - rest(hip + 1)).normalize_or(Vec3::NEG_Y);
+                let sole = sole_points(creature, hip + 2);
                 LiveLeg {
                     rest_upper,
                     rest_lower,
                     hinge: Hinge::new((rest_upper, rest_lower), leg.pole),
                     knee_radius: creature.ring_radius(hip + 1),
                     foot_radius: creature.ring_radius(hip + 2),
-                    sole: sole_rim(creature, hip + 2),
+                    sole: sole_rim(&sole),
+                    sole_reach: sole
+                        .iter()
+                        .map(|p| Vec3A::new(p.x, 0.0, p.z).length())
+                        .fold(0.0, f32::max),
+                    sole_points: sole,
                 }
             })
             .collect();
@@ -606,7 +617,38 @@ impl Animator {
                         (1.0 - fit.height / (2.0 * live.foot_radius)).clamp(0.0, 1.0)
                     };
                     normal = Vec3::Y.lerp(fit.normal, level).normalize_or(Vec3::Y);
-                    let lift = fit.lift(normal);
+                    // Every sole vertex tested (on the ground's plane where the ground under
+                    // the rim is flat, else where it is), unless the rim stands clear of the
+                    // ground by more than the sole's radius (a foot high in a step).
+                    let flat = FLAT_SOLE * live.foot_radius;
+                    let sole = rotation_arc(Vec3::Y, normal) * heading;
+                    let mut lift = if fit.clearance > live.foot_radius {
+                        0.0
+                    } else if fit.off_plane <= flat {
+                        fit.plane_lift(sole, &live.sole_points, live.sole_reach)
+                    } else {
+                        sole_lift(g, solved.end, sole, &live.sole_points, leg.size)
+                    };
+                    // A stepping foot comes down onto where its sole will rest at the step's
+                    // target (on a step's crest under a toe, not the ground under its joint):
+                    // raised by that sole's lift over the step's second half, it does not skid
+                    // over the crest as it lands.
+                    let landing = 2.0 * state.progress - 1.0;
+                    if leg.kind == LimbKind::Leg
+                        && state.stepping
+                        && !state.planted
+                        && landing > 0.0
+                        && let Some(fit) =
+                            fit_sole(g, state.step_target, heading, &live.sole, leg.size)
+                    {
+                        let sole = rotation_arc(Vec3::Y, fit.normal) * heading;
+                        let rest = if fit.off_plane <= flat {
+                            fit.plane_lift(sole, &live.sole_points, live.sole_reach)
+                        } else {
+                            sole_lift(g, state.step_target, sole, &live.sole_points, leg.size)
+                        };
+                        lift = lift.max(rest * landing.min(1.0));
+                    }
                     if lift > 0.0 {
                         end = to_body(solved.end + Vec3::Y * lift);
                         middle = solve_two_bone(root, end, leg.upper, leg.lower, leg.pole).middle;
@@ -768,46 +810,58 @@ const TURN_BEND_TIME: f32 = 0.3;
 /// is a steep ramp across it.
 const MAX_SOLE_TILT: f32 = 0.45;
 
-/// The eight directions a sole's rim is sampled in: ahead, behind, left, right, then between.
-const RIM: [Vec3; 8] = {
-    let d = core::f32::consts::FRAC_1_SQRT_2;
-    [
-        Vec3::Z,
-        Vec3::NEG_Z,
-        Vec3::X,
-        Vec3::NEG_X,
-        Vec3::new(d, 0.0, d),
-        Vec3::new(-d, 0.0, -d),
-        Vec3::new(-d, 0.0, d),
-        Vec3::new(d, 0.0, -d),
-    ]
+/// The ground under a sole's rim within this fraction of the sole's radius of a plane is
+/// taken as that plane: the sole's vertices are tested against it without a ray each.
+const FLAT_SOLE: f32 = 0.01;
+
+/// The directions a sole's rim is sampled in: ahead, behind, left, right, then every 22.5°
+/// between them (toes and claws reach out between the four).
+const RIM: [Vec3; RIM_SAMPLES] = {
+    let mut rim = [Vec3::ZERO; RIM_SAMPLES];
+    // cos and sin of k × 22.5° for k = 0..16.
+    const C: [f32; 5] = [
+        1.0,
+        0.923_879_5,
+        core::f32::consts::FRAC_1_SQRT_2,
+        0.382_683_43,
+        0.0,
+    ];
+    let mut k = 0;
+    let mut at = 4;
+    while k < 16 {
+        let (cos, sin) = match k / 4 {
+            0 => (C[k % 4], C[4 - k % 4]),
+            1 => (-C[4 - k % 4], C[k % 4]),
+            2 => (-C[k % 4], -C[4 - k % 4]),
+            _ => (C[4 - k % 4], -C[k % 4]),
+        };
+        let d = Vec3::new(sin, 0.0, cos);
+        match k {
+            0 => rim[0] = d,
+            8 => rim[1] = d,
+            4 => rim[2] = d,
+            12 => rim[3] = d,
+            _ => {
+                rim[at] = d;
+                at += 1;
+            }
+        }
+        k += 1;
+    }
+    rim
 };
 
-/// The rim of the sole of foot joint `foot` at rest: in each of [`RIM`]'s directions, the
-/// vertex bound mostly to the foot that reaches farthest that way (its offset from the joint,
-/// horizontal); the joint itself where the foot has no vertex.
-fn sole_rim(creature: &Creature, foot: usize) -> [Vec3; 8] {
-    let centre = creature
-        .skeleton
-        .joints
-        .get(foot)
-        .map_or(Vec3::ZERO, |j| j.position);
-    let mut rim = [(0.0f32, Vec3::ZERO); 8];
-    for ((p, js), ws) in creature
-        .mesh
-        .positions
-        .iter()
-        .zip(&creature.mesh.joints)
-        .zip(&creature.mesh.weights)
-    {
-        let most = js.iter().zip(ws).fold(
-            (0u16, 0.0f32),
-            |m, (&j, &w)| if w > m.1 { (j, w) } else { m },
-        );
-        if usize::from(most.0) != foot {
-            continue;
-        }
-        let d = Vec3::new(p.x - centre.x, 0.0, p.z - centre.z);
+/// How many directions [`RIM`] samples.
+const RIM_SAMPLES: usize = 16;
+
+/// The rim of a sole (its [`sole_points`]): in each of [`RIM`]'s directions, the vertex that
+/// reaches farthest that way (its horizontal offset from the joint and its height over the
+/// sole's lowest vertex); the joint itself where the foot has no vertex.
+fn sole_rim(points: &[Vec3A]) -> [Vec3; RIM_SAMPLES] {
+    let bottom = points.iter().map(|p| p.y).fold(f32::INFINITY, f32::min);
+    let mut rim = [(0.0f32, Vec3::ZERO); RIM_SAMPLES];
+    for p in points {
+        let d = Vec3::new(p.x, p.y - bottom, p.z);
         for (k, dir) in RIM.iter().enumerate() {
             let reach = d.dot(*dir);
             if reach > rim[k].0 {
@@ -818,6 +872,44 @@ fn sole_rim(creature: &Creature, foot: usize) -> [Vec3; 8] {
     rim.map(|(_, d)| d)
 }
 
+/// The sole of foot joint `foot` at rest: every vertex bound mostly to the foot near its
+/// bottom, as its offset from the joint, each position once (a mesh with flat normals
+/// repeats a position per face).
+fn sole_points(creature: &Creature, foot: usize) -> Vec<Vec3A> {
+    let centre = creature
+        .skeleton
+        .joints
+        .get(foot)
+        .map_or(Vec3::ZERO, |j| j.position);
+    let mesh = &creature.mesh;
+    let mut points: Vec<Vec3> = mesh
+        .positions
+        .iter()
+        .zip(&mesh.joints)
+        .zip(&mesh.weights)
+        .filter(|&((_, js), ws)| {
+            let most = js.iter().zip(ws).fold(
+                (0u16, 0.0f32),
+                |m, (&j, &w)| if w > m.1 { (j, w) } else { m },
+            );
+            usize::from(most.0) == foot
+        })
+        .map(|((&p, _), _)| p - centre)
+        .collect();
+    // The sole: the vertices near the foot's bottom (as the rim's), not the ankle above it.
+    let bottom = points.iter().map(|p| p.y).fold(f32::INFINITY, f32::min);
+    let band = 0.25 * creature.ring_radius(foot);
+    points.retain(|p| p.y - bottom <= band);
+    // Lowest first (the order `plane_lift` stops early in), each position once.
+    points.sort_by(|a, b| {
+        a.y.total_cmp(&b.y)
+            .then(a.x.total_cmp(&b.x))
+            .then(a.z.total_cmp(&b.z))
+    });
+    points.dedup();
+    points.into_iter().map(Vec3A::from).collect()
+}
+
 /// The ground under a sole, sampled on its rim: ahead of, behind, to either side of its
 /// middle and between them.
 struct SoleFit {
@@ -825,20 +917,60 @@ struct SoleFit {
     normal: Vec3,
     /// The sole's middle above the samples' mean.
     height: f32,
-    /// Each sample's offset from the middle (horizontal) and how high the ground is there
-    /// above the middle: ahead, behind, left, right, then the four between them.
-    samples: [(Vec3, f32); 8],
+    /// How far the level sole's rim stands above the ground at its lowest sample (negative
+    /// where a sample is in it).
+    clearance: f32,
+    /// The plane nearest the ground under the rim: its height over the foot joint at the
+    /// joint and its slopes along world x and z.
+    plane: (f32, f32, f32),
+    /// The farthest the ground under the rim is off that plane (infinite where there is none).
+    off_plane: f32,
 }
 
 impl SoleFit {
-    /// How far the sole, tilted to `normal` about its middle, must rise for none of the
-    /// samples to be above it.
-    fn lift(&self, normal: Vec3) -> f32 {
-        self.samples
-            .iter()
-            .map(|&(d, ground)| ground + (normal.x * d.x + normal.z * d.z) / normal.y)
-            .fold(0.0, f32::max)
+    /// [`sole_lift`] on the ground's plane under the rim: how far the sole turned to `turn`
+    /// must rise for none of its `points` (lowest first, none farther than `reach` from the
+    /// joint horizontally) to be below that plane (0 when none is).
+    fn plane_lift(&self, turn: Quat, points: &[Vec3A], reach: f32) -> f32 {
+        // The plane's height over a turned point, less the point's: a dot product with the
+        // plane's gradient turned back into the sole's frame.
+        let (a, p, q) = self.plane;
+        let down = Vec3A::from(turn.inverse() * Vec3::new(p, -1.0, q));
+        // Where `down` points down in the sole's frame, no point higher than one whose
+        // bound falls short of the lift so far can raise it: the scan stops there (the
+        // bound's margin covers rounding).
+        let across = Vec3A::new(down.x, 0.0, down.z).length() * reach;
+        let margin = 1e-5 * (a.abs() + across + 1.0);
+        let mut lift = 0.0f32;
+        for &point in points {
+            if down.y < 0.0 && a + down.y * point.y + across + margin < lift {
+                break;
+            }
+            lift = lift.max(a + down.dot(point));
+        }
+        lift
     }
+}
+
+/// How far a sole whose joint is at `foot` (world), turned to `rotation` (world), must rise
+/// for none of its `points` (offsets from the joint at rest) to be in `ground`: 0 when none is.
+/// Every vertex is tested where it is, so a crest between the rim's samples (a step's edge
+/// under a toe) lifts the sole as much as it needs.
+fn sole_lift<G: Ground + ?Sized>(
+    ground: &G,
+    foot: Vec3,
+    rotation: Quat,
+    points: &[Vec3A],
+    reach: f32,
+) -> f32 {
+    let turn = glam::Mat3A::from_quat(rotation);
+    let foot = Vec3A::from(foot);
+    points.iter().fold(0.0, |lift, &p| {
+        let at = foot + turn * p;
+        ground
+            .cast_down_point(Vec3::new(at.x, at.y + reach, at.z), 2.0 * reach)
+            .map_or(lift, |hit| lift.max(hit.y - at.y))
+    })
 }
 
 /// The ground under a sole of `radius` at `foot` (world) turned with `heading`: `None` when a
@@ -847,26 +979,21 @@ fn fit_sole<G: Ground + ?Sized>(
     ground: &G,
     foot: Vec3,
     heading: Quat,
-    rim: &[Vec3; 8],
+    rim: &[Vec3; RIM_SAMPLES],
     reach: f32,
 ) -> Option<SoleFit> {
     let at = |d: Vec3| {
         let d = heading * d;
         let above = Vec3::new(foot.x + d.x, foot.y + reach, foot.z + d.z);
+        // The ground's height there over the sole's vertex, in the sole's level frame.
         ground
             .cast_down_point(above, 2.0 * reach)
-            .map(|hit| (d, hit.y - foot.y))
+            .map(|hit| (Vec3::new(d.x, 0.0, d.z), hit.y - foot.y - d.y))
     };
-    let samples = [
-        at(rim[0])?,
-        at(rim[1])?,
-        at(rim[2])?,
-        at(rim[3])?,
-        at(rim[4])?,
-        at(rim[5])?,
-        at(rim[6])?,
-        at(rim[7])?,
-    ];
+    let mut samples = [(Vec3::ZERO, 0.0); RIM_SAMPLES];
+    for (sample, &d) in samples.iter_mut().zip(rim) {
+        *sample = at(d)?;
+    }
     // The slope along and across the heading, from the rim's ends.
     let slope = |(da, a): (Vec3, f32), (db, b): (Vec3, f32)| {
         let run = da - db;
@@ -890,11 +1017,44 @@ fn fit_sole<G: Ground + ?Sized>(
         let flat = Vec3::new(normal.x, 0.0, normal.z).normalize_or(Vec3::X);
         flat * sin + Vec3::Y * cos
     };
-    let mean = samples.iter().map(|s| s.1).sum::<f32>() / 8.0;
+    let mean = samples.iter().map(|s| s.1).sum::<f32>() / RIM_SAMPLES as f32;
+    let highest = samples
+        .iter()
+        .map(|s| s.1)
+        .fold(f32::NEG_INFINITY, f32::max);
+    // The plane through the ground under the rim (least squares; heights over the joint).
+    let ground = samples
+        .iter()
+        .zip(rim)
+        .map(|(&(d, h), r)| (d.x, d.z, h + r.y));
+    let n = RIM_SAMPLES as f32;
+    let (mut sx, mut sz, mut sh) = (0.0f32, 0.0f32, 0.0f32);
+    for (x, z, h) in ground.clone() {
+        (sx, sz, sh) = (sx + x, sz + z, sh + h);
+    }
+    let (mx, mz, mh) = (sx / n, sz / n, sh / n);
+    let (mut xx, mut xz, mut zz, mut xh, mut zh) = (0.0f32, 0.0f32, 0.0f32, 0.0f32, 0.0f32);
+    for (x, z, h) in ground.clone() {
+        let (x, z, h) = (x - mx, z - mz, h - mh);
+        (xx, xz, zz) = (xx + x * x, xz + x * z, zz + z * z);
+        (xh, zh) = (xh + x * h, zh + z * h);
+    }
+    let det = xx * zz - xz * xz;
+    let plane = (det > 1e-12 * (xx + zz) * (xx + zz)).then(|| {
+        let (p, q) = ((xh * zz - zh * xz) / det, (zh * xx - xh * xz) / det);
+        (mh - p * mx - q * mz, p, q)
+    });
+    let off_plane = plane.map_or(f32::INFINITY, |(a, p, q)| {
+        ground
+            .map(|(x, z, h)| (h - a - p * x - q * z).abs())
+            .fold(0.0, f32::max)
+    });
     Some(SoleFit {
         normal,
         height: -mean,
-        samples,
+        clearance: -highest,
+        plane: plane.unwrap_or((0.0, 0.0, 0.0)),
+        off_plane,
     })
 }
 
@@ -1090,6 +1250,65 @@ mod tests {
             parents_first(&[Some(5)]),
             Err(Error::BadParent { .. })
         ));
+    }
+
+    #[test]
+    fn a_soles_plane_lift_stops_early_only_where_no_later_point_could_raise_it() {
+        // A sole of points at several heights and reaches, lowest first as `sole_points`
+        // sorts them, against planes and turns of every kind: the early stop gives the full
+        // scan's lift.
+        let mut points: Vec<Vec3A> = (0..60)
+            .map(|k| {
+                let k = k as f32;
+                let angle = 2.399_963 * k;
+                let reach = 0.05 + 0.4 * (crate::math::sin(k * 0.37) * 0.5 + 0.5);
+                Vec3A::new(
+                    reach * crate::math::cos(angle),
+                    0.1 * (crate::math::sin(k * 1.7) * 0.5 + 0.5),
+                    reach * crate::math::sin(angle),
+                )
+            })
+            .collect();
+        points.sort_by(|a, b| a.y.total_cmp(&b.y));
+        let reach = points
+            .iter()
+            .map(|p| Vec3A::new(p.x, 0.0, p.z).length())
+            .fold(0.0, f32::max);
+        let mut stopped_early = 0;
+        for i in 0..400 {
+            let t = i as f32;
+            let plane = (
+                0.2 * crate::math::sin(t * 0.91) - 0.05,
+                0.8 * crate::math::sin(t * 0.53),
+                0.8 * crate::math::cos(t * 0.29),
+            );
+            let fit = SoleFit {
+                normal: Vec3::Y,
+                height: 0.0,
+                clearance: 0.0,
+                plane,
+                off_plane: 0.0,
+            };
+            let turn = Quat::from_rotation_y(t * 0.7)
+                * Quat::from_rotation_x(0.5 * crate::math::sin(t * 0.13))
+                * Quat::from_rotation_z(0.5 * crate::math::cos(t * 0.17));
+            let full = {
+                let (a, p, q) = plane;
+                points.iter().fold(0.0f32, |lift, &point| {
+                    let at = glam::Mat3A::from_quat(turn) * point;
+                    lift.max(a + p * at.x + q * at.z - at.y)
+                })
+            };
+            let lift = fit.plane_lift(turn, &points, reach);
+            assert!((lift - full).abs() <= 1e-5, "{i}: {lift} against {full}");
+            // Count the cases the bound ends before the last point.
+            let down = Vec3A::from(turn.inverse() * Vec3::new(plane.1, -1.0, plane.2));
+            let across = Vec3A::new(down.x, 0.0, down.z).length() * reach;
+            if down.y < 0.0 && plane.0 + down.y * points[59].y + across < full {
+                stopped_early += 1;
+            }
+        }
+        assert!(stopped_early > 0, "the bound never stopped a scan early");
     }
 
     #[test]

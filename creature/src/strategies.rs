@@ -136,9 +136,9 @@ pub fn pattern_weights() -> impl Strategy<Value = PatternWeights> {
 /// Valid 3D parameters of the given kind: every field drawn inside its documented range (see
 /// [`Params`]), kept to a moderate box so generation stays fast — up to 24 rings and 16
 /// segments, slice scales 0.3 to 3, body scale 0.1 to 10, bones 0.1 to 0.5 long, at most 40
-/// spine bones; colours, the head's eyes, snout and ornaments and the limbs' proportions
-/// ([`Params::thigh_thickness`], [`Params::wing_span`], [`Params::wing_area`]) over their
-/// whole ranges. The limb planner keeps its defaults. Always passes [`Params::validate`].
+/// spine bones; colours, the head's eyes, snout and ornaments, the limbs' proportions
+/// ([`Params::thigh_thickness`], [`Params::wing_span`], [`Params::wing_area`]) and the back's
+/// ornaments over their whole ranges. The limb planner keeps its defaults. Always passes [`Params::validate`].
 pub fn params_of_kind(kind: Kind) -> impl Strategy<Value = Params> {
     let mesh = (1u32..=9, 4u32..=24, 3u32..=16, 3u32..=8, any::<bool>());
     let slices = (
@@ -166,7 +166,13 @@ pub fn params_of_kind(kind: Kind) -> impl Strategy<Value = Params> {
         span(0.0, 3.0),
         0.0f32..=1.0,
     );
-    let limbs = (span(1.0, 3.0), span(0.2, 5.0), span(0.1, 10.0));
+    let limbs = (
+        span(1.0, 3.0),
+        span(0.2, 5.0),
+        span(0.1, 10.0),
+        span(0.0, 3.0),
+        0.0f32..=1.0,
+    );
     (mesh, slices, body, colours, head, limbs).prop_map(
         move |(
             (profiles, rings, segments, limb_sides, flat),
@@ -174,7 +180,7 @@ pub fn params_of_kind(kind: Kind) -> impl Strategy<Value = Params> {
             (scale, speed, bone_length, spine_bones, bend, head, clearance, clips),
             (saturation, countershading, patterns),
             (eye_size, snout_length, ornament_size, ornament_chance),
-            (thigh_thickness, wing_span, wing_area),
+            (thigh_thickness, wing_span, wing_area, back_size, back_chance),
         )| {
             Params::DEFAULT
                 .with_kind(kind)
@@ -198,6 +204,7 @@ pub fn params_of_kind(kind: Kind) -> impl Strategy<Value = Params> {
                 .with_snout_length(snout_length)
                 .with_ornaments(ornament_size, ornament_chance)
                 .with_thigh_thickness(thigh_thickness)
+                .with_back_ornaments(back_size, back_chance)
                 .with_wings(wing_span, wing_area)
                 .with_clips(clips)
         },
@@ -247,7 +254,7 @@ pub fn bad_params_2d() -> impl Strategy<Value = d2::Params> {
 /// out of range (a colour range outside 0 to 1, an eye size above 0.6, a negative pattern
 /// weight) or every pattern weight 0. [`Params::validate`] — and so [`generate`](crate::generate) — rejects every one.
 pub fn bad_params() -> impl Strategy<Value = Params> {
-    (params(), non_finite_f32(), 0usize..17).prop_map(|(p, bad, which)| {
+    (params(), non_finite_f32(), 0usize..18).prop_map(|(p, bad, which)| {
         let swap = |s: Span| {
             if s.min < s.max {
                 Span::new(s.max, s.min)
@@ -272,6 +279,7 @@ pub fn bad_params() -> impl Strategy<Value = Params> {
             13 => p.with_eye_size(Span::new(p.eye_size.min, 0.7)),
             14 => p.with_snout_length(swap(p.snout_length)),
             15 => p.with_ornaments(p.ornament_size, bad),
+            16 => p.with_back_ornaments(p.back_ornament_size, bad),
             _ => p.with_spine_bones(IntSpan::new(0, 0)),
         }
     })

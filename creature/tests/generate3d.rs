@@ -476,3 +476,76 @@ fn every_creature_has_a_face_its_eyes_in_view_and_on_the_head_joint() {
         }
     }
 }
+
+#[test]
+fn a_walkers_back_row_stands_on_its_spine_and_changes_nothing_else() {
+    use std::collections::HashSet;
+    let size = Span::new(0.5, 1.0);
+    let mut worn_rows = 0;
+    for seed in 0..16 {
+        let base = d3::Params::DEFAULT
+            .with_kind(d3::Kind::Walker)
+            .with_clips(false);
+        let bare = generate(seed, &base.with_back_ornaments(size, 0.0)).unwrap();
+        let worn = generate(seed, &base.with_back_ornaments(size, 1.0)).unwrap();
+        assert_eq!(bare.quality.back_ornaments, 0, "seed {seed}");
+        // The same spine, limbs and colours: the row is drawn on its own (the feet may stand
+        // a little elsewhere, under the body with its row's weight).
+        let spine = |c: &d3::Creature| -> Vec<d3::Joint> {
+            let j = c.skeleton.joints.iter();
+            j.filter(|j| j.part == d3::Part::Spine).cloned().collect()
+        };
+        assert_eq!(spine(&bare), spine(&worn), "seed {seed}");
+        assert_eq!(bare.plan.limbs.len(), worn.plan.limbs.len(), "seed {seed}");
+        assert_eq!(bare.palette, worn.palette, "seed {seed}");
+        // The row's vertices: those bound to the spine alone that the bare body lacks.
+        let key = |p: &creature::glam::Vec3| p.to_array().map(f32::to_bits);
+        let had: HashSet<_> = bare.mesh.positions.iter().map(key).collect();
+        let on_spine = |c: &d3::Creature, v: usize| {
+            let (js, ws) = (c.mesh.joints[v], c.mesh.weights[v]);
+            js.iter().zip(ws).all(|(&j, w)| {
+                w == 0.0 || c.skeleton.joints[usize::from(j)].part == d3::Part::Spine
+            })
+        };
+        let added: Vec<usize> = (0..worn.mesh.positions.len())
+            .filter(|&v| on_spine(&worn, v) && !had.contains(&key(&worn.mesh.positions[v])))
+            .collect();
+        if worn.quality.back_ornaments == 0 {
+            assert!(added.is_empty(), "seed {seed}: vertices without a row");
+            continue;
+        }
+        worn_rows += 1;
+        assert!(!added.is_empty(), "seed {seed}");
+        // Every piece rigid on a spine joint, standing above it.
+        let mut joints = HashSet::new();
+        for v in added {
+            let (js, ws) = (worn.mesh.joints[v], worn.mesh.weights[v]);
+            assert_eq!(ws[0], 1.0, "seed {seed}: vertex {v} weights {ws:?}");
+            let joint = &worn.skeleton.joints[usize::from(js[0])];
+            assert_eq!(
+                joint.part,
+                d3::Part::Spine,
+                "seed {seed}: on {}",
+                joint.name
+            );
+            assert!(
+                worn.mesh.positions[v].y > joint.position.y,
+                "seed {seed}: a vertex under {}",
+                joint.name
+            );
+            joints.insert(js[0]);
+        }
+        assert!(
+            joints.len() >= worn.quality.back_ornaments as usize,
+            "seed {seed}: {} pieces on {} joints",
+            worn.quality.back_ornaments,
+            joints.len()
+        );
+        // Fliers and swimmers wear none.
+        for kind in [d3::Kind::Flier, d3::Kind::Swimmer] {
+            let other = base.with_kind(kind).with_back_ornaments(size, 1.0);
+            assert_eq!(generate(seed, &other).unwrap().quality.back_ornaments, 0);
+        }
+    }
+    assert!(worn_rows >= 12, "{worn_rows} of 16 walkers wear a row");
+}

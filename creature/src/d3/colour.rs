@@ -462,6 +462,12 @@ impl Colouring {
         Pcg64Mcg::seed_from_u64(self.seed ^ 0x1146_1146_1146_1146)
     }
 
+    /// A generator of its own for the back's ornaments, as [`head_rng`](Self::head_rng) is
+    /// for the head.
+    pub(crate) fn back_rng(&self) -> Pcg64Mcg {
+        Pcg64Mcg::seed_from_u64(self.seed ^ 0xbac4_bac4_bac4_bac4)
+    }
+
     /// How far toward the belly colour the skin facing `up` (1 back, −1 belly) goes, and how
     /// much darker it is.
     fn countershading(&self, up: f32) -> (f32, f32) {

@@ -142,6 +142,10 @@ pub struct Quality {
     /// spine joints alone) to the power 2/3; `None` otherwise. At least
     /// [`Params::wing_area`](crate::d3::Params::wing_area)'s least.
     pub wing_area_to_body_volume: Option<f32>,
+    /// Spikes or plates along the back (walkers with a back row, see
+    /// [`Params::back_ornament_chance`](crate::d3::Params::back_ornament_chance)), each rigid
+    /// on the spine joint it stands on; 0 for a bare back.
+    pub back_ornaments: u32,
 }
 
 /// A generated 3D creature: plain data.

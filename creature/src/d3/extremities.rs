@@ -13,7 +13,7 @@ use glam::Vec3;
 use rand_core::Rng;
 
 use super::head::{Frame, Paint, Ring, Tube};
-use super::limbs::{Bind, MeshBuilder};
+use super::limbs::{Bind, MeshBuilder, Outline};
 use super::params::Params;
 use crate::math::sin;
 use crate::rng::uniform;
@@ -44,6 +44,8 @@ pub(crate) struct Proportions {
     /// Flapping wings' area (both wings, one face), × the body's volume to the power 2/3
     /// (at least).
     pub(crate) wing_area: f32,
+    /// A tail fin's outline: forked or rounded, evenly.
+    pub(crate) tail_fin: Outline,
 }
 
 impl Proportions {
@@ -55,6 +57,11 @@ impl Proportions {
             thigh: params.thigh_thickness.at(uniform(rng)),
             wing_span: params.wing_span.at(uniform(rng)),
             wing_area: params.wing_area.at(uniform(rng)),
+            tail_fin: if uniform(rng) < 0.5 {
+                Outline::Forked
+            } else {
+                Outline::Rounded
+            },
         }
     }
 }

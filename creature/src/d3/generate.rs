@@ -14,6 +14,7 @@ use creature_gait::{GaitOptions, Leg, LimbKind as GaitLimb};
 use creature_limbs::{Body, CreatureKind, HeadEnd, LimbKind, SpineBone, plan};
 use creature_skin::{Blend, nearest_k, skin_positions};
 
+use super::accessories::{BackRow, add_back_row};
 use super::body::{BASE_RADIUS, base_body, centre_of_volume, pill_triangles, volume_and_centre};
 use super::clip::MAX_LEG_TURN_RATE;
 use super::colour::{Colouring, body_surface};
@@ -175,6 +176,20 @@ fn generate_kind(rng: &mut Pcg64Mcg, params: &Params, spec: &KindSpec) -> Result
     } else {
         add_fish_face(&mut mesh, &rigged.rig, params, &head, &colouring)
     };
+    // A walker's back row, from a generator of its own, on the body's skin (before the limbs:
+    // the feet stand under the body with its row).
+    let back = if spec.walks {
+        let row = BackRow::draw(&mut colouring.back_rng(), params);
+        add_back_row(
+            &mut mesh,
+            rigged.positions.len(),
+            &rigged.rig,
+            &row,
+            colouring.palette.accent,
+        )
+    } else {
+        0
+    };
     let ground = ground_under(
         &mesh,
         params.ground_clearance.at(uniform(rng)) * rigged.length,
@@ -227,6 +242,7 @@ fn generate_kind(rng: &mut Pcg64Mcg, params: &Params, spec: &KindSpec) -> Result
     );
     quality.belly_contrast = paint.contrast;
     quality.eyes_in_view = face.map_or(0, |f| f.eyes_in_view());
+    quality.back_ornaments = back;
     [
         quality.thigh_to_shin_radius,
         quality.wing_span_to_body_length,
@@ -589,6 +605,7 @@ fn add_limbs(
                     foot: proportions.foot,
                     thigh: proportions.thigh,
                     wing,
+                    tail_fin: proportions.tail_fin,
                     flat: params.flat_normals,
                 },
             );
@@ -1361,6 +1378,7 @@ fn measure(
         thigh_to_shin_radius: None,
         wing_span_to_body_length: None,
         wing_area_to_body_volume: None,
+        back_ornaments: 0,
     }
 }
 

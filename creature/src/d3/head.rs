@@ -283,7 +283,14 @@ fn add_eye(mesh: &mut MeshBuilder, eye: Eye, lid: Vec3, up: Vec3, bind: Bind) {
 
 /// A cone from `base` (radius `radius`, sunk a little inside along `-axis`) to `base + axis`,
 /// in one colour.
-fn add_cone(mesh: &mut MeshBuilder, base: Vec3, axis: Vec3, radius: f32, colour: Vec3, bind: Bind) {
+pub(crate) fn add_cone(
+    mesh: &mut MeshBuilder,
+    base: Vec3,
+    axis: Vec3,
+    radius: f32,
+    colour: Vec3,
+    bind: Bind,
+) {
     if axis.length_squared() <= 1e-12 {
         // No length (an `ornament_size` of 0): nothing to add.
         return;

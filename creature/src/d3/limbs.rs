@@ -117,6 +117,7 @@ impl MeshBuilder {
             across,
             length,
             width,
+            outline,
         } = shape;
         let n = chain.len();
         if n == 0 {
@@ -129,19 +130,26 @@ impl MeshBuilder {
             (-1.0, -normal * thickness * 0.5),
         ] {
             let first = self.positions.len() as u32;
+            // The chord's middle at `t` along (0 the root, 1 the tip).
+            let middle = |t: f32| {
+                origin + offset + along * (length * t) + across * (width * outline.sweep(t))
+            };
             for (k, &joint) in chain.iter().enumerate() {
                 let t = k as f32 / n as f32;
-                let half = 0.5 * width * (0.4 + 0.6 * sin(PI * t));
-                let centre = origin + offset + along * (length * t);
+                let half = width * outline.half_chord(t);
                 let bind = Bind::one(joint);
-                self.vertex(centre - across * half, colour, bind);
-                self.vertex(centre + across * half, colour, bind);
+                self.vertex(middle(t) - across * half, colour, bind);
+                self.vertex(middle(t) + across * half, colour, bind);
             }
-            let tip = self.vertex(
-                origin + offset + along * length,
-                colour,
-                Bind::one(chain[n - 1]),
-            );
+            let last = Bind::one(chain[n - 1]);
+            let tip = if outline == Outline::Forked {
+                // A notch a third of the way from the last station to the end, between two
+                // lobes at the end as wide as the chord there.
+                let t = (n - 1) as f32 / n as f32;
+                self.vertex(middle(t + (1.0 - t) / 3.0), colour, last)
+            } else {
+                self.vertex(middle(1.0), colour, last)
+            };
             let v = |k: usize, plus: bool| first + (2 * k + usize::from(plus)) as u32;
             let mut push = |t: [u32; 3]| {
                 if side > 0.0 {
@@ -154,7 +162,56 @@ impl MeshBuilder {
                 push([v(k, false), v(k + 1, false), v(k + 1, true)]);
                 push([v(k, false), v(k + 1, true), v(k, true)]);
             }
-            push([v(n - 1, false), tip, v(n - 1, true)]);
+            if outline == Outline::Forked {
+                let lobe = width * outline.half_chord(1.0);
+                let minus = self.vertex(middle(1.0) - across * lobe, colour, last);
+                let plus = self.vertex(middle(1.0) + across * lobe, colour, last);
+                let mut push = |t: [u32; 3]| {
+                    if side > 0.0 {
+                        self.indices.push(t);
+                    } else {
+                        self.indices.push([t[0], t[2], t[1]]);
+                    }
+                };
+                push([v(n - 1, false), minus, tip]);
+                push([v(n - 1, false), tip, v(n - 1, true)]);
+                push([tip, plus, v(n - 1, true)]);
+            } else {
+                push([v(n - 1, false), tip, v(n - 1, true)]);
+            }
+        }
+    }
+}
+
+/// A membrane's outline.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Outline {
+    /// Narrow at the root and the tip, widest midway (wings, pectoral fins, a rounded tail
+    /// fin).
+    Rounded,
+    /// Widest at the root, narrowing to a tip swept back against `across` (a shark's dorsal
+    /// fin).
+    Swept,
+    /// Fanning out from a narrow root to two lobes at the end with a notch between them (a
+    /// forked tail fin).
+    Forked,
+}
+
+impl Outline {
+    /// Half the chord at `t` along (0 the root, 1 the tip), × the membrane's width.
+    fn half_chord(self, t: f32) -> f32 {
+        match self {
+            Self::Rounded => 0.5 * (0.4 + 0.6 * sin(PI * t)),
+            Self::Swept => 0.5 * (1.0 - 0.75 * t),
+            Self::Forked => 0.5 * (0.35 + 0.65 * t),
+        }
+    }
+
+    /// How far the chord's middle at `t` along lies along `across`, × the width.
+    fn sweep(self, t: f32) -> f32 {
+        match self {
+            Self::Swept => -0.35 * t,
+            Self::Rounded | Self::Forked => 0.0,
         }
     }
 }
@@ -168,6 +225,7 @@ pub(crate) struct Membrane {
     pub(crate) across: Vec3,
     pub(crate) length: f32,
     pub(crate) width: f32,
+    pub(crate) outline: Outline,
 }
 
 /// How limbs look: the plan's knee direction, tube sides, colour, the creature's feet and
@@ -182,6 +240,8 @@ pub(crate) struct LimbStyle {
     /// Thigh (upper arm) radius × shin (forearm) radius.
     pub(crate) thigh: f32,
     pub(crate) wing: WingSize,
+    /// A tail fin's outline.
+    pub(crate) tail_fin: Outline,
     pub(crate) flat: bool,
 }
 
@@ -590,6 +650,7 @@ pub(crate) fn add_limb(
         foot: foot_kind,
         thigh,
         wing,
+        tail_fin,
         flat,
     } = style;
     let (first_vertex, first_triangle) = (mesh.positions.len(), mesh.indices.len());
@@ -727,6 +788,11 @@ pub(crate) fn add_limb(
                 (length, (m.width)(limb, length))
             };
             let chain = chain_joints(&mut push_joint, mount, along, length, m.bones, base);
+            let outline = match shape.kind {
+                LimbKind::DorsalFin => Outline::Swept,
+                LimbKind::Tail => tail_fin,
+                _ => Outline::Rounded,
+            };
             mesh.membrane(
                 Membrane {
                     origin: mount.point,
@@ -734,6 +800,7 @@ pub(crate) fn add_limb(
                     across,
                     length,
                     width,
+                    outline,
                 },
                 &chain,
                 colour,
@@ -867,6 +934,7 @@ mod tests {
             span: 0.0,
             area: 0.0,
         },
+        tail_fin: Outline::Rounded,
         flat: true,
     };
 
@@ -995,17 +1063,24 @@ mod tests {
         }
     }
 
-    #[test]
-    fn a_membrane_covers_its_share_of_its_box() {
+    /// A membrane 2 long along +X, `width` wide across Z, on four joints.
+    fn membrane_along_x(width: f32, outline: Outline) -> MeshBuilder {
         let mut mesh = MeshBuilder::default();
         let shape = Membrane {
             origin: Vec3::ZERO,
             along: Vec3::X,
             across: Vec3::Z,
             length: 2.0,
-            width: 0.5,
+            width,
+            outline,
         };
         mesh.membrane(shape, &[0, 1, 2, 3], Vec3::ONE);
+        mesh
+    }
+
+    #[test]
+    fn a_membrane_covers_its_share_of_its_box() {
+        let mesh = membrane_along_x(0.5, Outline::Rounded);
         let area: f32 = mesh
             .indices
             .iter()
@@ -1019,6 +1094,60 @@ mod tests {
             (0.5 * area - membrane_share(4) * 2.0 * 0.5).abs() < 1e-4,
             "{area}"
         );
+    }
+
+    #[test]
+    fn a_forked_fin_ends_in_two_lobes_and_a_swept_fin_leans_back() {
+        let fin = |outline| {
+            let mesh = membrane_along_x(1.0, outline);
+            // Every triangle has area and faces its side's way (the two faces opposite).
+            let normals: Vec<f32> = mesh
+                .indices
+                .iter()
+                .map(|t| {
+                    let [a, b, c] = t.map(|i| mesh.positions[i as usize]);
+                    let n = (b - a).cross(c - a);
+                    assert!(n.length() > 1e-6, "{outline:?}: a sliver");
+                    n.y.signum()
+                })
+                .collect();
+            let half = normals.len() / 2;
+            assert!(
+                normals[..half].iter().all(|&s| s == normals[0]),
+                "{outline:?}"
+            );
+            assert!(
+                normals[half..].iter().all(|&s| s == -normals[0]),
+                "{outline:?}"
+            );
+            mesh.positions
+        };
+        // Forked: the end's two outermost points at the full length, wide apart; the middle
+        // of the end short of them (the notch).
+        let forked = fin(Outline::Forked);
+        let at_end: Vec<Vec3> = forked.iter().copied().filter(|p| p.x > 1.99).collect();
+        assert!(at_end.iter().any(|p| p.z > 0.45) && at_end.iter().any(|p| p.z < -0.45));
+        let notch = forked
+            .iter()
+            .filter(|p| p.z.abs() < 1e-6 && p.x > 1.0)
+            .map(|p| p.x)
+            .fold(0.0f32, f32::max);
+        assert!(notch > 1.5 && notch < 1.95, "notch at {notch}");
+        // Swept: widest at the root, its tip behind the root along `across`.
+        let swept = fin(Outline::Swept);
+        let width_at = |x: f32| {
+            swept
+                .iter()
+                .filter(|p| (p.x - x).abs() < 1e-4)
+                .map(|p| p.z)
+                .fold(f32::NEG_INFINITY, f32::max)
+        };
+        assert!(width_at(0.0) > width_at(1.0) && width_at(1.0) > width_at(1.5));
+        let tip = swept
+            .iter()
+            .copied()
+            .fold(Vec3::ZERO, |m, p| if p.x > m.x { p } else { m });
+        assert!(tip.z < -0.3, "tip at {tip}");
     }
 
     fn build(limb: &Limb, point: Vec3) -> (MeshBuilder, Vec<Joint>) {

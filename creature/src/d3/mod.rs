@@ -14,6 +14,7 @@
 //! # Ok::<(), creature::Error>(())
 //! ```
 
+mod accessories;
 mod body;
 mod clip;
 pub(crate) mod colour;

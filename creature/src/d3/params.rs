@@ -121,6 +121,12 @@ pub struct Params {
     /// body and head to the power 2/3: heavier bodies get bigger wings (wider, then longer).
     /// From 0.1 to 10. Default 1.2..2.0.
     pub wing_area: Span,
+    /// Height of the spikes or plates along a walker's back, × the body's half-height at the
+    /// spine joint each stands on (drawn once per creature). From 0 to 3. Default 0.5..1.0.
+    pub back_ornament_size: Span,
+    /// How likely a walker is to wear a row of spikes or plates along its back (spikes and
+    /// plates equally likely). From 0 to 1. Default 0.5.
+    pub back_ornament_chance: f32,
     /// Saturation of the base colour (HSV, sRGB-encoded; the belly gets about a third of it),
     /// from 0 (greys) to 1. Default 0.3..0.75.
     pub saturation: Span,
@@ -171,6 +177,8 @@ impl Params {
         thigh_thickness: Span::new(1.35, 1.7),
         wing_span: Span::new(1.3, 1.8),
         wing_area: Span::new(1.2, 2.0),
+        back_ornament_size: Span::new(0.5, 1.0),
+        back_ornament_chance: 0.5,
         saturation: Span::new(0.3, 0.75),
         countershading: Span::new(0.6, 1.0),
         patterns: PatternWeights::DEFAULT,
@@ -329,6 +337,15 @@ impl Params {
         self
     }
 
+    /// Sets [`back_ornament_size`](Self::back_ornament_size) and
+    /// [`back_ornament_chance`](Self::back_ornament_chance).
+    #[must_use]
+    pub const fn with_back_ornaments(mut self, size: Span, chance: f32) -> Self {
+        self.back_ornament_size = size;
+        self.back_ornament_chance = chance;
+        self
+    }
+
     /// Sets [`saturation`](Self::saturation).
     #[must_use]
     pub const fn with_saturation(mut self, saturation: Span) -> Self {
@@ -410,6 +427,9 @@ impl Params {
         self.thigh_thickness.check("thigh_thickness", 1.0, 3.0)?;
         self.wing_span.check("wing_span", 0.2, 5.0)?;
         self.wing_area.check("wing_area", 0.1, 10.0)?;
+        self.back_ornament_size
+            .check("back_ornament_size", 0.0, 3.0)?;
+        scalar("back_ornament_chance", self.back_ornament_chance, 0.0, 1.0)?;
         self.saturation.check("saturation", 0.0, 1.0)?;
         self.countershading.check("countershading", 0.0, 1.0)?;
         self.patterns.check("patterns")?;
@@ -547,6 +567,25 @@ mod tests {
             .with_wings(Span::new(1.3, 1.8), Span::new(f32::NAN, 2.5))
             .validate();
         assert_eq!(e, Err(Error::NonFinite { what: "wing_area" }));
+        let e = Params::DEFAULT
+            .with_back_ornaments(Span::new(0.5, 3.5), 0.5)
+            .validate();
+        assert!(matches!(
+            e,
+            Err(Error::OutOfRange {
+                what: "back_ornament_size",
+                ..
+            })
+        ));
+        let e = Params::DEFAULT
+            .with_back_ornaments(Span::new(0.5, 1.0), f32::NAN)
+            .validate();
+        assert_eq!(
+            e,
+            Err(Error::NonFinite {
+                what: "back_ornament_chance"
+            })
+        );
         let none = PatternWeights::only(Pattern::Spots).with(Pattern::Spots, 0.0);
         let e = Params::DEFAULT.with_patterns(none).validate();
         assert_eq!(e, Err(Error::AllZero { what: "patterns" }));

@@ -21,7 +21,9 @@
 
 use proptest::prelude::*;
 
-use crate::d3::{Kind, Params, Pattern, PatternWeights};
+use crate::d3::{
+    BackKind, BackWeights, Kind, Params, Pattern, PatternWeights, WingKind, WingWeights,
+};
 use crate::{IntSpan, Span, d2};
 
 /// Any seed.
@@ -114,23 +116,47 @@ pub fn kind() -> impl Strategy<Value = Kind> {
     ]
 }
 
-/// Valid pattern weights: each from 0 to 1000 (often 0), at least one above 0.
-pub fn pattern_weights() -> impl Strategy<Value = PatternWeights> {
+/// Valid weights of `all`'s kinds, built from `only` and `with`: each from 0 to 1000 (often
+/// 0), at least one above 0.
+fn weights<K, W>(
+    all: &'static [K],
+    only: fn(K) -> W,
+    with: fn(W, K, f32) -> W,
+) -> impl Strategy<Value = W>
+where
+    K: Copy + PartialEq + core::fmt::Debug + 'static,
+    W: core::fmt::Debug,
+{
     let weight = prop_oneof![Just(0.0f32), 0.0f32..=1000.0];
     (
-        proptest::array::uniform5(weight),
-        proptest::sample::select(Pattern::ALL.to_vec()),
+        proptest::collection::vec(weight, all.len()),
+        proptest::sample::select(all),
         0.001f32..=1000.0,
     )
-        .prop_map(|(weights, kept, floor)| {
-            let mut w = PatternWeights::only(kept).with(kept, floor);
-            for (p, weight) in Pattern::ALL.into_iter().zip(weights) {
-                if p != kept {
-                    w = w.with(p, weight);
+        .prop_map(move |(weights, kept, floor)| {
+            let mut w = with(only(kept), kept, floor);
+            for (&k, weight) in all.iter().zip(weights) {
+                if k != kept {
+                    w = with(w, k, weight);
                 }
             }
             w
         })
+}
+
+/// Valid pattern weights: each from 0 to 1000 (often 0), at least one above 0.
+pub fn pattern_weights() -> impl Strategy<Value = PatternWeights> {
+    weights(&Pattern::ALL, PatternWeights::only, PatternWeights::with)
+}
+
+/// Valid wing-kind weights: each from 0 to 1000 (often 0), at least one above 0.
+pub fn wing_weights() -> impl Strategy<Value = WingWeights> {
+    weights(&WingKind::ALL, WingWeights::only, WingWeights::with)
+}
+
+/// Valid back-kind weights: each from 0 to 1000 (often 0), at least one above 0.
+pub fn back_weights() -> impl Strategy<Value = BackWeights> {
+    weights(&BackKind::ALL, BackWeights::only, BackWeights::with)
 }
 
 /// Valid 3D parameters of the given kind: every field drawn inside its documented range (see
@@ -172,6 +198,7 @@ pub fn params_of_kind(kind: Kind) -> impl Strategy<Value = Params> {
         span(0.1, 10.0),
         span(0.0, 3.0),
         0.0f32..=1.0,
+        (wing_weights(), back_weights(), span(0.0, 1.0)),
     );
     (mesh, slices, body, colours, head, limbs).prop_map(
         move |(
@@ -180,7 +207,7 @@ pub fn params_of_kind(kind: Kind) -> impl Strategy<Value = Params> {
             (scale, speed, bone_length, spine_bones, bend, head, clearance, clips),
             (saturation, countershading, patterns),
             (eye_size, snout_length, ornament_size, ornament_chance),
-            (thigh_thickness, wing_span, wing_area, back_size, back_chance),
+            (thigh_thickness, wing_span, wing_area, back_size, back_chance, (wings, backs, shell)),
         )| {
             Params::DEFAULT
                 .with_kind(kind)
@@ -206,6 +233,9 @@ pub fn params_of_kind(kind: Kind) -> impl Strategy<Value = Params> {
                 .with_thigh_thickness(thigh_thickness)
                 .with_back_ornaments(back_size, back_chance)
                 .with_wings(wing_span, wing_area)
+                .with_wing_kinds(wings)
+                .with_back_kinds(backs)
+                .with_shell_size(shell)
                 .with_clips(clips)
         },
     )
@@ -252,9 +282,9 @@ pub fn bad_params_2d() -> impl Strategy<Value = d2::Params> {
 /// Valid [`params`] with exactly one field broken: a range with `min > max`, a NaN or
 /// infinite value, a zero count (profiles, rings, segments, limb sides, spine bones), a value
 /// out of range (a colour range outside 0 to 1, an eye size above 0.6, a negative pattern
-/// weight) or every pattern weight 0. [`Params::validate`] — and so [`generate`](crate::generate) — rejects every one.
+/// weight) or every pattern, wing-kind or back-kind weight 0. [`Params::validate`] — and so [`generate`](crate::generate) — rejects every one.
 pub fn bad_params() -> impl Strategy<Value = Params> {
-    (params(), non_finite_f32(), 0usize..18).prop_map(|(p, bad, which)| {
+    (params(), non_finite_f32(), 0usize..22).prop_map(|(p, bad, which)| {
         let swap = |s: Span| {
             if s.min < s.max {
                 Span::new(s.max, s.min)
@@ -280,6 +310,12 @@ pub fn bad_params() -> impl Strategy<Value = Params> {
             14 => p.with_snout_length(swap(p.snout_length)),
             15 => p.with_ornaments(p.ornament_size, bad),
             16 => p.with_back_ornaments(p.back_ornament_size, bad),
+            17 => p.with_wing_kinds(WingWeights::only(WingKind::Bat).with(WingKind::Bat, 0.0)),
+            18 => p.with_back_kinds(p.back_kinds.with(BackKind::Shell, bad)),
+            19 => {
+                p.with_back_kinds(BackWeights::only(BackKind::Spikes).with(BackKind::Spikes, 0.0))
+            }
+            20 => p.with_shell_size(swap(p.shell_size)),
             _ => p.with_spine_bones(IntSpan::new(0, 0)),
         }
     })

@@ -482,9 +482,12 @@ fn a_walkers_back_row_stands_on_its_spine_and_changes_nothing_else() {
     use std::collections::HashSet;
     let size = Span::new(0.5, 1.0);
     let mut worn_rows = 0;
+    // Rows only (shells are the next test's).
+    let rows = d3::BackWeights::DEFAULT.with(d3::BackKind::Shell, 0.0);
     for seed in 0..16 {
         let base = d3::Params::DEFAULT
             .with_kind(d3::Kind::Walker)
+            .with_back_kinds(rows)
             .with_clips(false);
         let bare = generate(seed, &base.with_back_ornaments(size, 0.0)).unwrap();
         let worn = generate(seed, &base.with_back_ornaments(size, 1.0)).unwrap();
@@ -548,4 +551,123 @@ fn a_walkers_back_row_stands_on_its_spine_and_changes_nothing_else() {
         }
     }
     assert!(worn_rows >= 12, "{worn_rows} of 16 walkers wear a row");
+}
+
+#[test]
+fn a_walkers_shell_is_a_closed_dome_over_its_back_skinned_as_the_skin_under_it() {
+    use std::collections::{HashMap, HashSet};
+    let size = Span::new(0.5, 1.0);
+    for seed in 0..16 {
+        let base = d3::Params::DEFAULT
+            .with_kind(d3::Kind::Walker)
+            .with_back_kinds(d3::BackWeights::only(d3::BackKind::Shell))
+            .with_flat_normals(false)
+            .with_clips(false);
+        let bare = generate(seed, &base.with_back_ornaments(size, 0.0)).unwrap();
+        let worn = generate(seed, &base.with_back_ornaments(size, 1.0)).unwrap();
+        assert_eq!(
+            worn.quality.back_kind,
+            Some(d3::BackKind::Shell),
+            "seed {seed}"
+        );
+        assert_eq!(worn.quality.back_ornaments, 1, "seed {seed}");
+        assert_eq!(bare.quality.back_kind, None, "seed {seed}");
+        let spine = |c: &d3::Creature| -> Vec<d3::Joint> {
+            let j = c.skeleton.joints.iter();
+            j.filter(|j| j.part == d3::Part::Spine).cloned().collect()
+        };
+        assert_eq!(spine(&bare), spine(&worn), "seed {seed}");
+        assert_eq!(bare.palette, worn.palette, "seed {seed}");
+        // The shell's triangles: those on vertices the bare creature does not have, all bound
+        // as the body's skin is (to spine joints alone).
+        let key = |p: &creature::glam::Vec3| p.to_array().map(f32::to_bits);
+        let had: HashSet<_> = bare.mesh.positions.iter().map(key).collect();
+        let on_spine = |v: usize| {
+            let (js, ws) = (worn.mesh.joints[v], worn.mesh.weights[v]);
+            js.iter().zip(ws).all(|(&j, w)| {
+                w == 0.0 || worn.skeleton.joints[usize::from(j)].part == d3::Part::Spine
+            })
+        };
+        let new = |v: u32| !had.contains(&key(&worn.mesh.positions[v as usize]));
+        let shell: Vec<[u32; 3]> = worn
+            .mesh
+            .indices
+            .iter()
+            .filter(|t| t.iter().all(|&v| new(v) && on_spine(v as usize)))
+            .copied()
+            .collect();
+        assert!(shell.len() >= 8, "seed {seed}: {} triangles", shell.len());
+        // Closed: every edge (by position) shared by two of its triangles, once each way.
+        let mut edges: HashMap<([u32; 3], [u32; 3]), i32> = HashMap::new();
+        for t in &shell {
+            for k in 0..3 {
+                let (a, b) = (t[k], t[(k + 1) % 3]);
+                let (a, b) = (
+                    key(&worn.mesh.positions[a as usize]),
+                    key(&worn.mesh.positions[b as usize]),
+                );
+                *edges.entry((a, b)).or_default() += 1;
+                *edges.entry((b, a)).or_default() -= 1;
+            }
+        }
+        assert!(
+            edges.values().all(|&n| n == 0),
+            "seed {seed}: the shell has an open edge"
+        );
+        // A dome over the middle of the back: its top above the bare body's where it lies.
+        let vertices: HashSet<u32> = shell.iter().flatten().copied().collect();
+        let at = |v: &u32| worn.mesh.positions[*v as usize];
+        let (lo, hi) = vertices
+            .iter()
+            .map(at)
+            .fold((f32::MAX, f32::MIN), |(lo, hi), p| {
+                (lo.min(p.z), hi.max(p.z))
+            });
+        let top = vertices.iter().map(at).fold(f32::MIN, |y, p| y.max(p.y));
+        // The skin on the joints the shell follows most.
+        let most = |c: &d3::Creature, v: usize| {
+            let (js, ws) = (c.mesh.joints[v], c.mesh.weights[v]);
+            js[(0..4).fold(0, |k, i| if ws[i] > ws[k] { i } else { k })]
+        };
+        let joints: HashSet<u16> = vertices.iter().map(|&v| most(&worn, v as usize)).collect();
+        let body_top = (0..bare.mesh.positions.len())
+            .filter(|&v| joints.contains(&most(&bare, v)))
+            .map(|v| bare.mesh.positions[v].y)
+            .fold(f32::MIN, f32::max);
+        assert!(
+            top > body_top,
+            "seed {seed}: shell top {top} under the back's {body_top}"
+        );
+        let length = worn.length;
+        assert!(
+            hi - lo > 0.2 * length && hi - lo < 0.7 * length,
+            "seed {seed}: {lo}..{hi}"
+        );
+    }
+}
+
+#[test]
+fn the_neck_measure_tells_a_tiny_head_from_a_big_one() {
+    for kind in [d3::Kind::Walker, d3::Kind::Flier] {
+        let params = d3::Params::DEFAULT.with_kind(kind).with_clips(false);
+        let neck = |seed: u64, size: f32| {
+            let p = params.with_head_size(Span::new(size, size));
+            let r = generate(seed, &p).unwrap().quality.neck_to_head_and_body;
+            let r = r.unwrap();
+            assert!(r.is_finite() && r > 0.0, "{kind:?} {seed}: {r}");
+            r
+        };
+        for seed in 0..6 {
+            // A head a tenth of the default's is no wider than the neck it sits on; a head
+            // twice the default's is wider, so the neck measures narrower.
+            let (tiny, big) = (neck(seed, 0.1), neck(seed, 2.5));
+            assert!(tiny >= 1.0, "{kind:?} {seed}: neck {tiny} × a tiny head");
+            assert!(big < tiny, "{kind:?} {seed}: {big} against {tiny}");
+        }
+    }
+    let swimmer = d3::Params::DEFAULT
+        .with_kind(d3::Kind::Swimmer)
+        .with_clips(false);
+    let c = generate(0, &swimmer).unwrap();
+    assert_eq!(c.quality.neck_to_head_and_body, None);
 }

@@ -805,7 +805,7 @@ fn regression_legs_on_a_fliers_tail_do_not_whirl() {
 }
 
 /// Regression (found by the audit over 20,000 random valid params once walkers wore back
-/// rows): the row was added after the feet were placed, so this biped's plates (about twice
+/// rows): the row was added after the feet were placed, so this biped's spikes (about twice
 /// its body's half-height, along a long raised tail) put its centre of volume behind its feet,
 /// and it tipped back at rest (0.0037 of its length). The feet now stand under the body with
 /// its row.
@@ -846,6 +846,8 @@ fn regression_a_biped_with_a_big_back_row_stands_on_its_feet() {
             Span::new(1.016_742_5, 7.976_563_5),
         )
         .with_back_ornaments(Span::new(1.734_209_4, 2.663_288_4), 0.426_120_1)
+        // Rows only, as when the case was found (its row is spikes).
+        .with_back_kinds(d3::BackWeights::DEFAULT.with(d3::BackKind::Shell, 0.0))
         .with_saturation(Span::new(0.246_844_8, 0.494_752_38))
         .with_countershading(Span::new(0.057_372_164, 0.346_282_78))
         .with_patterns(
@@ -859,6 +861,7 @@ fn regression_a_biped_with_a_big_back_row_stands_on_its_feet() {
         .with_clips(true);
     let c = generate(15_008_024_188_465_964_969, &params).unwrap();
     assert!(c.quality.back_ornaments > 0, "it wears a row");
+    assert_eq!(c.quality.back_kind, Some(d3::BackKind::Spikes));
     let legs = c
         .plan
         .limbs
@@ -868,6 +871,81 @@ fn regression_a_biped_with_a_big_back_row_stands_on_its_feet() {
     let glb = creature::export::glb_3d(&c, &c.clips).unwrap();
     let report = audit_glb(&glb, &Limits::DEFAULT).unwrap();
     assert!(!report.fails(Check::Tips), "{}", tally::listed(&report));
+}
+
+/// Regression (found by the audit over 20,000 random valid params once walkers wore shells):
+/// this biped's body curves to its right, and its shell put its centre of volume 0.41 m (3% of
+/// its length) right of its feet's middle; the stance then moved bodily toward the mass, its
+/// left foot 0.07 m past the midline at rest (the audit's feet cross, at idle, walk and turn).
+/// Across the body only the feet on the mass's side move now, widening the stance.
+#[cfg(feature = "export")]
+#[test]
+fn regression_a_biped_under_an_off_centre_shell_keeps_its_feet_apart() {
+    use creature::d3::{BackKind, BackWeights, Pattern, PatternWeights, WingKind, WingWeights};
+    use creature_audit::{Check, Limits, audit_glb};
+    let params = d3::Params::DEFAULT
+        .with_kind(d3::Kind::Walker)
+        .with_profiles(2)
+        .with_resolution(21, 11)
+        .with_limb_sides(4)
+        .with_flat_normals(false)
+        .with_slices(
+            Span::new(0.361_581_18, 0.565_561_53),
+            Span::new(0.698_426_37, 2.527_789),
+            Span::new(1.701_566_6, 1.928_599_8),
+        )
+        .with_swimmer_slices(
+            Span::new(2.105_476_9, 2.749_024),
+            Span::new(1.367_882_8, 1.661_588_1),
+            Span::new(0.719_788_25, 2.829_076_8),
+        )
+        .with_body_scale(Span::new(1.743_253, 5.067_66))
+        .with_speed_factor(Span::new(0.648_162_4, 2.498_491_5))
+        .with_bone_length(0.266_325_2)
+        .with_spine_bones(IntSpan::new(9, 30))
+        .with_spine_bend(33.481_19)
+        .with_head_size(Span::new(1.030_697_2, 1.078_385_5))
+        .with_eye_size(Span::new(0.122_583_86, 0.272_724_54))
+        .with_snout_length(Span::new(0.055_640_23, 0.998_615_9))
+        .with_ornaments(Span::new(1.169_724_7, 1.396_267), 0.907_876_43)
+        .with_ground_clearance(Span::new(0.901_176_7, 0.943_424_34))
+        .with_thigh_thickness(Span::new(1.647_325_2, 2.617_974_3))
+        .with_wings(
+            Span::new(1.192_388_9, 2.264_261_2),
+            Span::new(1.729_327_7, 7.522_102),
+        )
+        .with_wing_kinds(
+            WingWeights::only(WingKind::Feathered)
+                .with(WingKind::Feathered, 196.791_82)
+                .with(WingKind::Bat, 998.807_3),
+        )
+        .with_back_ornaments(Span::new(1.941_855_1, 2.559_412_7), 0.675_517_9)
+        .with_back_kinds(
+            BackWeights::only(BackKind::Spikes)
+                .with(BackKind::Spikes, 53.453_003)
+                .with(BackKind::Shell, 923.498_96),
+        )
+        .with_shell_size(Span::new(0.032_485_697, 0.729_995_1))
+        .with_saturation(Span::new(0.224_681_84, 0.725_302_1))
+        .with_countershading(Span::new(0.119_104_11, 0.702_116_3))
+        .with_patterns(
+            PatternWeights::only(Pattern::Spots)
+                .with(Pattern::Spots, 860.722_96)
+                .with(Pattern::Bands, 163.553_67)
+                .with(Pattern::Gradient, 522.516_1),
+        )
+        .with_clips(true);
+    let c = generate(12_645_272_577_486_560_301, &params).unwrap();
+    assert_eq!(c.quality.back_kind, Some(BackKind::Shell));
+    assert_eq!(c.plan.leg_pairs(), 1, "a biped");
+    let glb = creature::export::glb_3d(&c, &c.clips).unwrap();
+    let report = audit_glb(&glb, &Limits::DEFAULT).unwrap();
+    assert!(
+        !report.fails(Check::FeetCross),
+        "{}",
+        tally::listed(&report)
+    );
+    assert!(report.passes(), "{}", tally::listed(&report));
 }
 
 /// The audit of delivered creatures over random valid params: `CREATURE_AUDIT_CASES` creatures

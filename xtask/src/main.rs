@@ -55,7 +55,7 @@ not part of ci:
                run the Khronos glTF-Validator (installed from npm into
                target/gltf-validator) on every .glb under DIR; fails on any error or
                warning, and when node or npm is missing
-  gallery      render 16 creatures (seeds 0-15) into creature/gallery.png
+  gallery      render the READMEs' pictures (creature/gallery.png, gallery3d.png, ...)
   audit DIR    audit every 3D creature .glb under DIR as a viewer plays it (creature-audit:
                tipping, planted feet, crossing legs, jerks, ground, skin stretch); prints each
                file's failures and the count per check; fails when any file fails
@@ -818,13 +818,17 @@ fn example(w: &Workspace, name: &str) -> Command {
     c
 }
 
-/// The galleries of the root README: 16 2D creatures, and 3D ones of every kind.
+/// The galleries of the root README (16 2D creatures, and 3D ones of every kind) and the
+/// facade README's close-ups of 3D features.
 fn gallery(w: &Workspace) -> Result<(), String> {
     let mut c = example(w, "gallery");
     c.arg(w.root.join("creature").join("gallery.png"));
     run(c)?;
     let mut c = example(w, "gallery3d");
     c.arg(w.root.join("creature").join("gallery3d.png"));
+    run(c)?;
+    let mut c = example(w, "features3d");
+    c.arg(w.root.join("creature"));
     run(c)
 }
 

@@ -1,6 +1,8 @@
-//! Accessories on a walker's back: a row of spikes or of plates along its spine, drawn per
-//! creature from a generator of its own (so it changes nothing else), each piece rigid on the
-//! spine joint it stands on, so the row moves with the body.
+//! Accessories on a walker's back: a row of spikes or of plates along its spine, or a shell
+//! over the middle of its back, drawn per creature from a generator of its own (so it changes
+//! nothing else). Each piece of a row is rigid on the spine joint it stands on; a shell is the
+//! skin of the back it covers lifted into a dome, each of its vertices skinned as the skin
+//! under it, so it bends with the body.
 //!
 //! A piece stands on the top of the body's skin at its joint (the highest body vertex bound
 //! mostly to that joint), sunk a little into it, leaning back; its height is
@@ -9,21 +11,117 @@
 //! half that piece's height is skipped. Only joints where the spine runs within 37° of level
 //! carry one (a raised neck does not), and never the head's, its carrier or the tail's tip.
 
+use alloc::vec::Vec;
+use core::f32::consts::PI;
+
 use glam::Vec3;
 use rand_core::Rng;
 
+use super::colour::SurfacePoint;
 use super::head::{Paint, Ring, Tube, add_cone};
 use super::limbs::{Bind, MeshBuilder};
 use super::params::Params;
+use crate::Error;
+use crate::math::sin;
 use crate::rng::uniform;
 
-/// What a walker wears along its back.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum BackKind {
-    /// Cones leaning back.
+/// What a walker wears on its back.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum BackKind {
+    /// A row of cones leaning back.
     Spikes,
-    /// Flat upright plates, thin across the body and broad along it.
+    /// A row of flat upright plates, thin across the body and broad along it.
     Plates,
+    /// A domed shell over the middle of the back, in plates of two shades with a dark rim.
+    Shell,
+}
+
+impl BackKind {
+    /// Every kind, in the order [`BackWeights`] draws them.
+    pub const ALL: [Self; 3] = [Self::Spikes, Self::Plates, Self::Shell];
+}
+
+/// Relative weights of the [`BackKind`]s a walker that wears something on its back draws from
+/// (see [`Params::back_ornament_chance`]): kind `k` is drawn with probability
+/// `weight(k) / sum of weights`. Each from 0 to 1000, at least one above 0.
+///
+/// ```
+/// use creature::d3::{BackKind, BackWeights, Params};
+///
+/// // Every walker in a shell.
+/// let params = Params::DEFAULT
+///     .with_back_ornaments(Params::DEFAULT.back_ornament_size, 1.0)
+///     .with_back_kinds(BackWeights::only(BackKind::Shell));
+/// params.validate()?;
+/// # Ok::<(), creature::Error>(())
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
+pub struct BackWeights {
+    /// Weight of [`BackKind::Spikes`]. Default 1.
+    pub spikes: f32,
+    /// Weight of [`BackKind::Plates`]. Default 1.
+    pub plates: f32,
+    /// Weight of [`BackKind::Shell`]. Default 1.
+    pub shell: f32,
+}
+
+impl BackWeights {
+    /// The defaults listed on each field: every kind alike.
+    pub const DEFAULT: Self = Self {
+        spikes: 1.0,
+        plates: 1.0,
+        shell: 1.0,
+    };
+
+    /// Weight 1 for `kind`, 0 for the others.
+    #[must_use]
+    pub const fn only(kind: BackKind) -> Self {
+        let none = Self {
+            spikes: 0.0,
+            plates: 0.0,
+            shell: 0.0,
+        };
+        none.with(kind, 1.0)
+    }
+
+    /// Sets the weight of `kind`.
+    #[must_use]
+    pub const fn with(mut self, kind: BackKind, weight: f32) -> Self {
+        match kind {
+            BackKind::Spikes => self.spikes = weight,
+            BackKind::Plates => self.plates = weight,
+            BackKind::Shell => self.shell = weight,
+        }
+        self
+    }
+
+    /// The weight of `kind`.
+    #[must_use]
+    pub const fn weight(&self, kind: BackKind) -> f32 {
+        match kind {
+            BackKind::Spikes => self.spikes,
+            BackKind::Plates => self.plates,
+            BackKind::Shell => self.shell,
+        }
+    }
+
+    /// Checks every weight is finite and from 0 to 1000, and one is above 0.
+    pub(crate) fn check(&self, what: &'static str) -> Result<(), Error> {
+        crate::rng::check_weights(what, &BackKind::ALL.map(|k| self.weight(k)))
+    }
+
+    /// The kind at `u` in `[0, 1)` of the weights' cumulative sum.
+    fn pick(&self, u: f32) -> BackKind {
+        BackKind::ALL[crate::rng::pick_weighted(&BackKind::ALL.map(|k| self.weight(k)), u)]
+    }
+}
+
+impl Default for BackWeights {
+    fn default() -> Self {
+        Self::DEFAULT
+    }
 }
 
 /// A creature's back row, drawn once.
@@ -35,6 +133,8 @@ pub(crate) struct BackRow {
     size: f32,
     /// In a horn colour (else the palette's accent).
     horn: bool,
+    /// A shell's thickness on top of its middle, × [`SHELL_HEIGHT`] × the body's radius.
+    shell: f32,
 }
 
 impl BackRow {
@@ -42,17 +142,15 @@ impl BackRow {
     /// chance changes nothing else).
     pub(crate) fn draw(rng: &mut impl Rng, params: &Params) -> Self {
         let has = uniform(rng) < params.back_ornament_chance;
-        let kind = if uniform(rng) < 0.5 {
-            BackKind::Spikes
-        } else {
-            BackKind::Plates
-        };
+        let kind = params.back_kinds.pick(uniform(rng));
         let size = params.back_ornament_size.at(uniform(rng));
         let horn = uniform(rng) < 0.5;
+        let shell = params.shell_size.at(uniform(rng));
         Self {
             kind: has.then_some(kind),
             size,
             horn,
+            shell,
         }
     }
 }
@@ -68,10 +166,12 @@ const GAP: f32 = 0.5;
 const SEGMENTS: usize = 6;
 
 /// Adds `row` along the spine of `rig` on the body of `mesh` (its first `body_vertices`
-/// vertices), in `accent` or a horn colour; returns how many pieces it added.
+/// vertices, at `surface` on the body's surface), in `accent` or a horn colour; returns how
+/// many pieces it added (a shell is one).
 pub(crate) fn add_back_row(
     mesh: &mut MeshBuilder,
     body_vertices: usize,
+    surface: &[SurfacePoint],
     rig: &creature_autorig::Rig,
     row: &BackRow,
     accent: Vec3,
@@ -79,13 +179,32 @@ pub(crate) fn add_back_row(
     let Some(kind) = row.kind else {
         return 0;
     };
-    if row.size <= 0.0 {
+    let size = if kind == BackKind::Shell {
+        row.shell
+    } else {
+        row.size
+    };
+    if size <= 0.0 {
         return 0;
     }
     let colour = if row.horn {
         Vec3::new(0.62, 0.55, 0.42)
     } else {
         accent
+    };
+    let spikes = match kind {
+        BackKind::Shell => {
+            return u32::from(add_shell(
+                mesh,
+                body_vertices,
+                surface,
+                rig,
+                row.size,
+                colour,
+            ));
+        }
+        BackKind::Spikes => true,
+        BackKind::Plates => false,
     };
     let spine = &rig.spine;
     let n = spine.len();
@@ -102,7 +221,7 @@ pub(crate) fn add_back_row(
         }
         // The top of the skin at this joint: the highest body vertex bound mostly to it.
         let top = (0..body_vertices)
-            .filter(|&v| most(mesh, v) == j)
+            .filter(|&v| mesh.dominant(v) == j)
             .map(|v| mesh.positions[v])
             .filter(|p| p.y > at.y)
             .max_by(|a, b| a.y.total_cmp(&b.y));
@@ -128,31 +247,16 @@ pub(crate) fn add_back_row(
             .position
             .distance(at)
             .min(rig.joints[prev].position.distance(at));
-        match kind {
-            BackKind::Spikes => {
-                let radius = (0.3 * height).min(0.45 * spacing);
-                add_cone(mesh, base, up * height, radius, colour, bind);
-            }
-            BackKind::Plates => {
-                add_plate(mesh, base, up, back, height, spacing, colour, bind);
-            }
+        if spikes {
+            let radius = (0.3 * height).min(0.45 * spacing);
+            add_cone(mesh, base, up * height, radius, colour, bind);
+        } else {
+            add_plate(mesh, base, up, back, height, spacing, colour, bind);
         }
         placed += 1;
         last = Some((at, height));
     }
     placed
-}
-
-/// The joint body vertex `v` is bound to most.
-fn most(mesh: &MeshBuilder, v: usize) -> usize {
-    let (js, ws) = (&mesh.joints[v], &mesh.weights[v]);
-    let mut best = (0usize, f32::NEG_INFINITY);
-    for (&j, &w) in js.iter().zip(ws) {
-        if w > best.1 {
-            best = (usize::from(j), w);
-        }
-    }
-    best.0
 }
 
 /// A plate standing on `base` along `up` for `height`: thin across the body, broad along
@@ -200,4 +304,122 @@ fn add_plate(
         },
         bind,
     );
+}
+
+/// Where along the body (0 the tail's tip, 1 the head's end of the body) a shell runs.
+const SHELL_ALONG: [f32; 2] = [0.25, 0.72];
+/// The lowest a shell reaches round the body: skin facing up at least this (the sine of its
+/// angle above the body's axis; 0 the flank's middle).
+const SHELL_UP: f32 = -0.15;
+/// A shell's thickness at the top of its middle, × its size × the body's radius there.
+const SHELL_HEIGHT: f32 = 0.8;
+/// Rows of plates along a shell.
+const SHELL_ROWS: f32 = 4.0;
+
+/// Adds a shell over the back of `mesh`'s body (its first `body_vertices` vertices, at
+/// `surface`): the body triangles whose corners all lie in [`SHELL_ALONG`] and face up at
+/// least [`SHELL_UP`], lifted off the skin along its normals (most at the top of the middle,
+/// `size` ([`Params::shell_size`]) × [`SHELL_HEIGHT`] × the body's radius from its spine
+/// joint) over a copy of them
+/// on the skin, closed by a dark rim; every vertex skinned as the skin vertex it comes from.
+/// Returns whether it added one (a body too coarse for a patch gets none).
+fn add_shell(
+    mesh: &mut MeshBuilder,
+    body_vertices: usize,
+    surface: &[SurfacePoint],
+    rig: &creature_autorig::Rig,
+    size: f32,
+    colour: Vec3,
+) -> bool {
+    let body = body_vertices.min(surface.len()).min(mesh.positions.len());
+    let inside = |v: u32| {
+        let v = v as usize;
+        v < body && {
+            let s = surface[v];
+            (SHELL_ALONG[0]..=SHELL_ALONG[1]).contains(&s.along) && s.up >= SHELL_UP
+        }
+    };
+    // The skin's normals: area-weighted over the body's triangles.
+    let mut normals = alloc::vec![Vec3::ZERO; body];
+    let body_triangles: Vec<[u32; 3]> = mesh
+        .indices
+        .iter()
+        .filter(|t| t.iter().all(|&v| (v as usize) < body))
+        .copied()
+        .collect();
+    for t in &body_triangles {
+        let [a, b, c] = t.map(|v| mesh.positions[v as usize]);
+        let n = (b - a).cross(c - a);
+        for &v in t {
+            normals[v as usize] += n;
+        }
+    }
+    let patch: Vec<[u32; 3]> = body_triangles
+        .iter()
+        .filter(|t| t.iter().all(|&v| inside(v)))
+        .copied()
+        .collect();
+    if patch.len() < 4 {
+        return false;
+    }
+    // The patch's vertices' outer and inner copies, by body vertex (`NONE` off the patch).
+    const NONE: [u32; 2] = [u32::MAX; 2];
+    let mut copy = alloc::vec![NONE; body];
+    for t in &patch {
+        for &v in t {
+            let i = v as usize;
+            if copy[i] != NONE {
+                continue;
+            }
+            let p = mesh.positions[i];
+            let normal = normals[i].normalize_or(Vec3::Y);
+            let bind = Bind::from_arrays(mesh.joints[i], mesh.weights[i]);
+            // The body's radius here: how far the skin is from the joint it follows most.
+            let radius = rig
+                .joints
+                .get(mesh.dominant(i))
+                .map_or(0.0, |j| p.distance(j.position));
+            let s = surface[i];
+            let u = (s.along - SHELL_ALONG[0]) / (SHELL_ALONG[1] - SHELL_ALONG[0]);
+            let lift = size
+                * SHELL_HEIGHT
+                * radius
+                * (0.3 + 0.7 * sin(PI * u))
+                * (0.45 + 0.55 * s.up.max(0.0));
+            // Plates: rows along the body, columns round it, in two shades.
+            let row = (u * SHELL_ROWS) as i32;
+            let column = (s.across * 4.0) as i32;
+            let shade = if (row + column) % 2 == 0 { 1.0 } else { 0.72 };
+            let outer = mesh.vertex(p + normal * lift, colour * shade, bind);
+            let inner = mesh.vertex(p - normal * (0.02 * lift), colour * 0.5, bind);
+            copy[i] = [outer, inner];
+        }
+    }
+    // Edges used by one patch triangle: the rim.
+    let edges: Vec<(u32, u32)> = patch
+        .iter()
+        .flat_map(|t| [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])])
+        .collect();
+    for t in &patch {
+        let [a, b, c] = t.map(|v| copy[v as usize]);
+        mesh.indices.push([a[0], b[0], c[0]]);
+        mesh.indices.push([a[1], c[1], b[1]]);
+    }
+    // The rim: a dark band from the outer edge down to the inner one, facing out.
+    for &(a, b) in &edges {
+        if edges.contains(&(b, a)) {
+            continue;
+        }
+        let [a, b] = [copy[a as usize], copy[b as usize]];
+        let mut dark = |v: u32| {
+            let i = v as usize;
+            let bind = Bind::from_arrays(mesh.joints[i], mesh.weights[i]);
+            let p = mesh.positions[i];
+            mesh.vertex(p, colour * 0.45, bind)
+        };
+        let (ao, bo, ai, bi) = (dark(a[0]), dark(b[0]), dark(a[1]), dark(b[1]));
+        mesh.indices.push([ai, bi, bo]);
+        mesh.indices.push([ai, bo, ao]);
+    }
+    true
 }

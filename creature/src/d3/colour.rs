@@ -18,6 +18,7 @@ use glam::Vec3;
 use rand_core::{Rng, SeedableRng};
 use rand_pcg::Pcg64Mcg;
 
+use super::wings::Tone;
 use crate::Error;
 use crate::math::{floor_f, powf, sin};
 use crate::rng::uniform;
@@ -131,32 +132,13 @@ impl PatternWeights {
 
     /// Checks every weight is finite and from 0 to 1000, and one is above 0.
     pub(crate) fn check(&self, what: &'static str) -> Result<(), Error> {
-        for p in Pattern::ALL {
-            crate::span::scalar(what, self.weight(p), 0.0, 1000.0)?;
-        }
-        if Pattern::ALL.iter().all(|&p| self.weight(p) == 0.0) {
-            return Err(Error::AllZero { what });
-        }
-        Ok(())
+        crate::rng::check_weights(what, &Pattern::ALL.map(|p| self.weight(p)))
     }
 
     /// The pattern at `u` in `[0, 1)` of the weights' cumulative sum.
     fn pick(&self, u: f32) -> Pattern {
-        let total: f32 = Pattern::ALL.iter().map(|&p| self.weight(p)).sum();
-        let mut left = u * total;
-        for p in Pattern::ALL {
-            let w = self.weight(p);
-            if w > 0.0 && left < w {
-                return p;
-            }
-            left -= w;
-        }
-        // Rounding at the top end: the last pattern with a weight.
-        Pattern::ALL
-            .into_iter()
-            .rev()
-            .find(|&p| self.weight(p) > 0.0)
-            .unwrap_or(Pattern::Plain)
+        let weights = Pattern::ALL.map(|p| self.weight(p));
+        Pattern::ALL[crate::rng::pick_weighted(&weights, u)]
     }
 }
 
@@ -748,6 +730,28 @@ impl Colouring {
             }
         };
         clamp01(c)
+    }
+}
+
+impl Colouring {
+    /// A wing's colour in `tone`, from its membrane colour `c` there: bones and veins a strong
+    /// shade of it, an insect's membrane pale, coverts toward the body's base colour, and
+    /// feathers' tips a contrasting shade (darker on a light wing, lighter on a dark one).
+    pub(crate) fn wing_tone(&self, c: Vec3, tone: Tone) -> Vec3 {
+        let shade = |amount: f32| {
+            if luminance(c) > 0.12 {
+                c * (1.0 - amount)
+            } else {
+                c.lerp(Vec3::ONE, 0.6 * amount)
+            }
+        };
+        clamp01(match tone {
+            Tone::Skin => c,
+            Tone::Bone => shade(0.6),
+            Tone::Pale => c.lerp(Vec3::splat(0.85), 0.6),
+            Tone::Covert => c.lerp(self.palette.base, 0.7),
+            Tone::Tip => shade(0.5),
+        })
     }
 }
 

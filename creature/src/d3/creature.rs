@@ -9,7 +9,9 @@ use glam::{Affine3A, Mat4, Vec3};
 use creature_autorig::Rig;
 use creature_limbs::{CreatureKind, Plan};
 
+use super::accessories::BackKind;
 use super::clip::{self, Clip};
+use super::wings::WingKind;
 use crate::Error;
 
 /// A skinned triangle mesh: one for the whole creature (body, head, limbs), one skin.
@@ -146,6 +148,20 @@ pub struct Quality {
     /// [`Params::back_ornament_chance`](crate::d3::Params::back_ornament_chance)), each rigid
     /// on the spine joint it stands on; 0 for a bare back.
     pub back_ornaments: u32,
+    /// What a walker wears on its back (see [`Params::back_kinds`](crate::d3::Params::back_kinds));
+    /// `None` for a bare back.
+    pub back_kind: Option<BackKind>,
+    /// For fliers with flapping wings, what they are made of (drawn by
+    /// [`Params::wing_kinds`](crate::d3::Params::wing_kinds)); `None` otherwise.
+    pub wing_kind: Option<WingKind>,
+    /// For creatures with a head on a neck (walkers, fliers), how narrow the neck is: its
+    /// radius over the narrower of the head's and the body's, on the skin as delivered at
+    /// rest. The body's radius at a spine joint is the mean distance from it of the skin
+    /// vertices bound to it most; the body's is the widest of these short of the head, the
+    /// neck's the narrowest from there to the head; the head's is the median distance of its
+    /// parts' vertices from their centre. Below 1, the neck is narrower than both, so head and
+    /// body read as distinct; `None` for swimmers (a fish's head is its body's front).
+    pub neck_to_head_and_body: Option<f32>,
 }
 
 /// A generated 3D creature: plain data.

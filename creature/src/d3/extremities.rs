@@ -15,6 +15,7 @@ use rand_core::Rng;
 use super::head::{Frame, Paint, Ring, Tube};
 use super::limbs::{Bind, MeshBuilder, Outline};
 use super::params::Params;
+use super::wings::WingKind;
 use crate::math::sin;
 use crate::rng::uniform;
 
@@ -46,6 +47,8 @@ pub(crate) struct Proportions {
     pub(crate) wing_area: f32,
     /// A tail fin's outline: forked or rounded, evenly.
     pub(crate) tail_fin: Outline,
+    /// What flapping wings are made of.
+    pub(crate) wing_kind: WingKind,
 }
 
 impl Proportions {
@@ -62,6 +65,7 @@ impl Proportions {
             } else {
                 Outline::Rounded
             },
+            wing_kind: params.wing_kinds.pick(uniform(rng)),
         }
     }
 }

@@ -25,6 +25,7 @@ use super::limbs::{
     Bind, LegChain, LimbNames, LimbStyle, MeshBuilder, Mount, WingSize, add_limb, leg_knees,
     limb_shape, socket_point,
 };
+use super::wings::Tone;
 use super::{GaitSetup, Kind, Params};
 use crate::Error;
 use crate::d3::{Clip, Creature, Joint, Mesh, Part, Quality, Skeleton};
@@ -178,17 +179,19 @@ fn generate_kind(rng: &mut Pcg64Mcg, params: &Params, spec: &KindSpec) -> Result
     };
     // A walker's back row, from a generator of its own, on the body's skin (before the limbs:
     // the feet stand under the body with its row).
-    let back = if spec.walks {
+    let (back, back_kind) = if spec.walks {
         let row = BackRow::draw(&mut colouring.back_rng(), params);
-        add_back_row(
+        let pieces = add_back_row(
             &mut mesh,
             rigged.positions.len(),
+            &surface,
             &rigged.rig,
             &row,
             colouring.palette.accent,
-        )
+        );
+        (pieces, row.kind.filter(|_| pieces > 0))
     } else {
-        0
+        (0, None)
     };
     let ground = ground_under(
         &mesh,
@@ -225,6 +228,17 @@ fn generate_kind(rng: &mut Pcg64Mcg, params: &Params, spec: &KindSpec) -> Result
     } else {
         None
     };
+    let neck = spec
+        .neck_and_head
+        .then(|| {
+            measure_neck(
+                &mesh,
+                rigged.positions.len(),
+                &rigged.rig.spine,
+                &limbs.joints,
+            )
+        })
+        .flatten();
     let joints = limbs.joints;
     if joints.len() > usize::from(u16::MAX) {
         return Err(Error::TooManyBones {
@@ -243,6 +257,13 @@ fn generate_kind(rng: &mut Pcg64Mcg, params: &Params, spec: &KindSpec) -> Result
     quality.belly_contrast = paint.contrast;
     quality.eyes_in_view = face.map_or(0, |f| f.eyes_in_view());
     quality.back_ornaments = back;
+    quality.back_kind = back_kind;
+    quality.neck_to_head_and_body = neck;
+    quality.wing_kind = limbs
+        .plan
+        .limbs_of(LimbKind::FlappingWing)
+        .next()
+        .map(|_| proportions.wing_kind);
     [
         quality.thigh_to_shin_radius,
         quality.wing_span_to_body_length,
@@ -605,6 +626,7 @@ fn add_limbs(
                     foot: proportions.foot,
                     thigh: proportions.thigh,
                     wing,
+                    wing_kind: proportions.wing_kind,
                     tail_fin: proportions.tail_fin,
                     flat: params.flat_normals,
                 },
@@ -622,6 +644,7 @@ fn add_limbs(
                 near,
                 membrane: shape.membrane_colour,
                 horn: built.horn,
+                tones: built.tones,
             });
             if let Some(chain) = built.chain {
                 chains.push((index, limb.kind, chain));
@@ -639,6 +662,15 @@ fn add_limbs(
                 });
                 for colour in mesh.colours.get_mut(limb.horn.clone()).unwrap_or(&mut []) {
                     *colour = HORN;
+                }
+                // A wing's tones (its vertices are all the limb's).
+                debug_assert!(limb.tones.is_empty() || limb.tones.len() == limb.vertices.len());
+                let colours = mesh
+                    .colours
+                    .get_mut(limb.vertices.clone())
+                    .unwrap_or(&mut []);
+                for (colour, &tone) in colours.iter_mut().zip(&limb.tones) {
+                    *colour = colouring.wing_tone(*colour, tone);
                 }
             }
             break Ok(BuiltLimbs {
@@ -660,6 +692,8 @@ struct LimbPaint {
     membrane: bool,
     /// Its vertices in [`HORN`] (hooves, claws).
     horn: core::ops::Range<usize>,
+    /// A wing's tone per vertex, from its first (empty for other limbs).
+    tones: Vec<Tone>,
 }
 
 /// The colour of hooves and claws (linear RGB): a dark horn.
@@ -745,10 +779,19 @@ fn feet_under_mass(
         }
         let mass = glam::Vec2::new(centre.x, centre.z);
         let full = mass - sum / n;
-        // Each foot's move by a share `t` of the full shift, no more than twice its leg's length.
+        // Each foot's move by a share `t` of the full shift, no more than twice its leg's
+        // length; across the body only the feet on the mass's side move (outward), so the
+        // stance widens toward a mass off to one side instead of carrying a foot across the
+        // midline.
+        let middle = sum.x / n;
+        let shift = |limb: &creature_limbs::Limb, t: f32| {
+            let s = (full * t).clamp_length_max(2.0 * limb.length);
+            let toward = limb.foot.is_some_and(|f| (f.x - middle) * full.x > 0.0);
+            glam::Vec2::new(if toward { s.x } else { 0.0 }, s.y)
+        };
         let moved = |t: f32| {
             plan.limbs.iter().filter_map(move |limb| {
-                let s = (full * t).clamp_length_max(2.0 * limb.length);
+                let s = shift(limb, t);
                 limb.foot.map(|f| glam::Vec2::new(f.x + s.x, f.z + s.y))
             })
         };
@@ -775,11 +818,7 @@ fn feet_under_mass(
         } else {
             1.0
         };
-        let shifts: Vec<glam::Vec2> = plan
-            .limbs
-            .iter()
-            .map(|limb| (full * t).clamp_length_max(2.0 * limb.length))
-            .collect();
+        let shifts: Vec<glam::Vec2> = plan.limbs.iter().map(|limb| shift(limb, t)).collect();
         for (limb, s) in plan.limbs.iter_mut().zip(shifts) {
             if let Some(foot) = limb.foot.as_mut() {
                 foot.x += s.x;
@@ -1379,12 +1418,64 @@ fn measure(
         wing_span_to_body_length: None,
         wing_area_to_body_volume: None,
         back_ornaments: 0,
+        back_kind: None,
+        wing_kind: None,
+        neck_to_head_and_body: None,
     }
 }
 
 /// The limbs' proportions as delivered (see [`Quality`]): the least thigh-over-shin radius of
 /// the legs, and the flapping wings' span over the body length and area over the body's
 /// volume to the power 2/3; measured on `mesh` by each vertex's most weighted joint.
+/// The neck's radius over the narrower of the head's and the body's (see
+/// [`Quality::neck_to_head_and_body`]), of `mesh` (the body's skin its first `body_vertices`
+/// vertices, the head's parts after them) on the rig's `spine` (tail to head: the head's
+/// joint the last but one); `None` without a joint between the body's widest and the head, or
+/// without head parts.
+fn measure_neck(
+    mesh: &MeshBuilder,
+    body_vertices: usize,
+    spine: &[usize],
+    joints: &[Joint],
+) -> Option<f32> {
+    let n = spine.len();
+    if n < 3 {
+        return None;
+    }
+    let head = spine[n - 2];
+    // The body's radius at each joint: the mean distance from it of the skin bound to it most.
+    let mut sums = alloc::vec![(0.0f32, 0u32); joints.len()];
+    for v in 0..body_vertices.min(mesh.positions.len()) {
+        let j = mesh.dominant(v);
+        if let (Some(sum), Some(joint)) = (sums.get_mut(j), joints.get(j)) {
+            sum.0 += mesh.positions[v].distance(joint.position);
+            sum.1 += 1;
+        }
+    }
+    let radius = |k: usize| {
+        let (sum, count) = sums[spine[k]];
+        (count > 0).then(|| sum / count as f32)
+    };
+    // The widest joint short of the head, then the narrowest from it to the head's carrier.
+    let (widest, body) = (0..n - 2)
+        .filter_map(|k| Some((k, radius(k)?)))
+        .max_by(|a, b| a.1.total_cmp(&b.1))?;
+    let neck = (widest..n - 2).filter_map(radius).min_by(f32::total_cmp)?;
+    // The head's: the median distance of its parts' vertices from their centroid.
+    let parts: Vec<Vec3> = (body_vertices..mesh.positions.len())
+        .filter(|&v| mesh.dominant(v) == head)
+        .map(|v| mesh.positions[v])
+        .collect();
+    if parts.is_empty() {
+        return None;
+    }
+    let centre = parts.iter().copied().sum::<Vec3>() / parts.len() as f32;
+    let mut distances: Vec<f32> = parts.iter().map(|p| p.distance(centre)).collect();
+    distances.sort_unstable_by(f32::total_cmp);
+    let head = distances[distances.len() / 2];
+    Some(neck / body.min(head).max(f32::MIN_POSITIVE))
+}
+
 fn measure_limbs(
     mesh: &Mesh,
     joints: &[Joint],

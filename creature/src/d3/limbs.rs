@@ -13,6 +13,7 @@ use creature_gait::{GaitOptions, solve_two_bone};
 use creature_limbs::{Knee, Limb, LimbKind, Side, Socket};
 
 use super::extremities::{ANKLE, Foot, add_foot, add_hand, ankle_height, centre_foot};
+use super::wings::{self, Tone, WingFrame, WingKind};
 use crate::Error;
 use crate::d3::{Joint, Part};
 use crate::math::{cos, sin};
@@ -28,7 +29,7 @@ pub(crate) struct MeshBuilder {
 }
 
 /// The joints a vertex follows and their weights.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct Bind {
     joints: [u16; 4],
     weights: [f32; 4],
@@ -55,6 +56,13 @@ impl MeshBuilder {
         self.joints.truncate(vertices);
         self.weights.truncate(vertices);
         self.indices.truncate(triangles);
+    }
+
+    /// The joint vertex `v` is bound to most (the first of equal weights).
+    pub(crate) fn dominant(&self, v: usize) -> usize {
+        let (js, ws) = (&self.joints[v], &self.weights[v]);
+        let k = (1..4).fold(0, |k, i| if ws[i] > ws[k] { i } else { k });
+        usize::from(js[k])
     }
 
     pub(crate) fn vertex(&mut self, p: Vec3, colour: Vec3, bind: Bind) -> u32 {
@@ -240,6 +248,8 @@ pub(crate) struct LimbStyle {
     /// Thigh (upper arm) radius × shin (forearm) radius.
     pub(crate) thigh: f32,
     pub(crate) wing: WingSize,
+    /// What its flapping wings are made of.
+    pub(crate) wing_kind: WingKind,
     /// A tail fin's outline.
     pub(crate) tail_fin: Outline,
     pub(crate) flat: bool,
@@ -253,11 +263,13 @@ pub(crate) struct WingSize {
     pub(crate) area: f32,
 }
 
-/// A limb as built: a leg's or arm's chain, and its vertices to colour as horn (hooves, claws).
+/// A limb as built: a leg's or arm's chain, its vertices to colour as horn (hooves, claws),
+/// and a wing's tone per vertex (empty for other limbs).
 #[derive(Debug, Clone)]
 pub(crate) struct BuiltLimb {
     pub(crate) chain: Option<LegChain>,
     pub(crate) horn: core::ops::Range<usize>,
+    pub(crate) tones: Vec<Tone>,
 }
 
 /// Where a limb attaches: the socket's point on the bent, grounded body.
@@ -312,20 +324,6 @@ const HAND: f32 = 0.9;
 /// Where along the thigh (upper arm), from the hip, its thickest ring is.
 const THIGH_BULGE: f32 = 0.2;
 
-/// The share of a flapping wing's `width × length` its membrane covers (its chord narrows to
-/// the root and the tip, see [`MeshBuilder::membrane`]), with `bones` joints.
-fn membrane_share(bones: usize) -> f32 {
-    let n = bones.max(1);
-    let half = |k: usize| {
-        if k >= n {
-            0.0
-        } else {
-            0.4 + 0.6 * sin(PI * k as f32 / n as f32)
-        }
-    };
-    (0..n).map(|k| 0.5 * (half(k) + half(k + 1))).sum::<f32>() / n as f32
-}
-
 /// A flapping wing's chord, × its length, unless its area asks for more.
 const WING_CHORD: f32 = 0.45;
 /// The widest a flapping wing's chord gets, × its length: past that it grows longer instead.
@@ -334,9 +332,9 @@ const MAX_WING_CHORD: f32 = 0.6;
 /// A flapping wing's length and width: as planned (`planned` long), at least long enough for
 /// the span `wing.span` tip to tip (its root `root` from the body's midline, reaching across
 /// by `reach` per unit of length) and wide enough (then long enough) for `wing.area` over the
-/// two wings.
-fn flapping_wing(planned: f32, root: f32, reach: f32, wing: WingSize, bones: usize) -> (f32, f32) {
-    let share = membrane_share(bones);
+/// two wings, its outline covering `share` of `length × width`.
+fn flapping_wing(planned: f32, root: f32, reach: f32, wing: WingSize, share: f32) -> (f32, f32) {
+    let share = share.max(f32::MIN_POSITIVE);
     let mut length = planned.max((0.5 * wing.span - root) / reach.max(0.5));
     let mut width = WING_CHORD * length;
     let need = 0.5 * wing.area;
@@ -650,6 +648,7 @@ pub(crate) fn add_limb(
         foot: foot_kind,
         thigh,
         wing,
+        wing_kind,
         tail_fin,
         flat,
     } = style;
@@ -776,38 +775,59 @@ pub(crate) fn add_limb(
                     pole,
                 }),
                 horn,
+                tones: Vec::new(),
             }
         }
         Build::Membrane(m) => {
             let along = (m.along)(out);
             let across = (m.across - along * along.dot(m.across)).normalize_or(m.across_fallback);
-            let (length, width) = if shape.kind == LimbKind::FlappingWing {
-                let root = (mount.point.x - mount.centre.x).abs();
-                flapping_wing(length, root, along.x.abs(), wing, m.bones)
-            } else {
-                (length, (m.width)(limb, length))
+            let planform = match (shape.kind, wing_kind) {
+                (LimbKind::FlappingWing, WingKind::Feathered) => Some(wings::feathered()),
+                (LimbKind::FlappingWing, WingKind::Bat) => Some(wings::bat()),
+                (LimbKind::BuzzingWing, _) => Some(wings::insect()),
+                _ => None,
+            };
+            let (length, width) = match &planform {
+                Some(p) if shape.kind == LimbKind::FlappingWing => {
+                    let root = (mount.point.x - mount.centre.x).abs();
+                    flapping_wing(length, root, along.x.abs(), wing, p.area())
+                }
+                _ => (length, (m.width)(limb, length)),
             };
             let chain = chain_joints(&mut push_joint, mount, along, length, m.bones, base);
-            let outline = match shape.kind {
-                LimbKind::DorsalFin => Outline::Swept,
-                LimbKind::Tail => tail_fin,
-                _ => Outline::Rounded,
-            };
-            mesh.membrane(
-                Membrane {
+            let tones = if let Some(planform) = &planform {
+                let frame = WingFrame {
                     origin: mount.point,
                     along,
                     across,
                     length,
                     width,
-                    outline,
-                },
-                &chain,
-                colour,
-            );
+                };
+                mesh.wing(frame, planform, &chain, colour)
+            } else {
+                let outline = match shape.kind {
+                    LimbKind::DorsalFin => Outline::Swept,
+                    LimbKind::Tail => tail_fin,
+                    _ => Outline::Rounded,
+                };
+                mesh.membrane(
+                    Membrane {
+                        origin: mount.point,
+                        along,
+                        across,
+                        length,
+                        width,
+                        outline,
+                    },
+                    &chain,
+                    colour,
+                );
+                Vec::new()
+            };
             BuiltLimb {
                 chain: None,
                 horn: mesh.positions.len()..mesh.positions.len(),
+                tones,
             }
         }
     }
@@ -934,6 +954,7 @@ mod tests {
             span: 0.0,
             area: 0.0,
         },
+        wing_kind: WingKind::Feathered,
         tail_fin: Outline::Rounded,
         flat: true,
     };
@@ -1041,7 +1062,9 @@ mod tests {
 
     #[test]
     fn flapping_wings_reach_their_span_and_grow_with_the_area_asked() {
-        let wing = |span: f32, area: f32| flapping_wing(0.3, 0.2, 1.0, WingSize { span, area }, 4);
+        let share = 0.7;
+        let wing =
+            |span: f32, area: f32| flapping_wing(0.3, 0.2, 1.0, WingSize { span, area }, share);
         // As planned when that is enough.
         assert_eq!(wing(0.0, 0.0), (0.3, WING_CHORD * 0.3));
         // Long enough for the span: the root 0.2 out, so the tips 1.2 apart.
@@ -1052,7 +1075,7 @@ mod tests {
         let mut last = 0.0;
         for area in [0.05f32, 0.1, 0.2, 0.4, 0.8, 1.6] {
             let (length, width) = wing(1.2, area);
-            let got = 2.0 * membrane_share(4) * length * width;
+            let got = 2.0 * share * length * width;
             assert!(got >= area * (1.0 - 1e-5) && got >= last, "{area}: {got}");
             assert!(
                 area < 0.2 || (got / area - 1.0).abs() < 1e-5,
@@ -1076,24 +1099,6 @@ mod tests {
         };
         mesh.membrane(shape, &[0, 1, 2, 3], Vec3::ONE);
         mesh
-    }
-
-    #[test]
-    fn a_membrane_covers_its_share_of_its_box() {
-        let mesh = membrane_along_x(0.5, Outline::Rounded);
-        let area: f32 = mesh
-            .indices
-            .iter()
-            .map(|t| {
-                let [a, b, c] = t.map(|i| mesh.positions[i as usize]);
-                0.5 * (b - a).cross(c - a).length()
-            })
-            .sum();
-        // Two faces.
-        assert!(
-            (0.5 * area - membrane_share(4) * 2.0 * 0.5).abs() < 1e-4,
-            "{area}"
-        );
     }
 
     #[test]

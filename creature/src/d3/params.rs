@@ -2,7 +2,9 @@
 
 use creature_limbs::PlanOptions;
 
+use super::accessories::BackWeights;
 use super::colour::{ColourParams, PatternWeights};
+use super::wings::WingWeights;
 use crate::Error;
 use crate::span::{IntSpan, Span, count, scalar};
 
@@ -121,12 +123,23 @@ pub struct Params {
     /// body and head to the power 2/3: heavier bodies get bigger wings (wider, then longer).
     /// From 0.1 to 10. Default 1.2..2.0.
     pub wing_area: Span,
+    /// How likely a flier's flapping wings are to be feathered or a bat's membrane between
+    /// finger bones (buzzing wings are always an insect's). Default [`WingWeights::DEFAULT`].
+    pub wing_kinds: WingWeights,
     /// Height of the spikes or plates along a walker's back, × the body's half-height at the
     /// spine joint each stands on (drawn once per creature). From 0 to 3. Default 0.5..1.0.
     pub back_ornament_size: Span,
-    /// How likely a walker is to wear a row of spikes or plates along its back (spikes and
-    /// plates equally likely). From 0 to 1. Default 0.5.
+    /// How likely a walker is to wear something on its back (a row of spikes or plates, or a
+    /// shell: see [`back_kinds`](Self::back_kinds)). From 0 to 1. Default 0.5.
     pub back_ornament_chance: f32,
+    /// What a walker that wears something on its back wears: a row of spikes, a row of plates
+    /// or a shell. Default [`BackWeights::DEFAULT`] (each alike).
+    pub back_kinds: BackWeights,
+    /// A walker's shell's thickness on top of its middle, × 0.8 × the body's radius there
+    /// (drawn once per creature). From 0 to 1: at most a body's radius thick, so the shell
+    /// stays on the back instead of outweighing the body (thicker ones, up to 2.2 radii, put
+    /// bipeds' feet across their midline as the feet moved under the mass). Default 0.5..1.0.
+    pub shell_size: Span,
     /// Saturation of the base colour (HSV, sRGB-encoded; the belly gets about a third of it),
     /// from 0 (greys) to 1. Default 0.3..0.75.
     pub saturation: Span,
@@ -177,8 +190,11 @@ impl Params {
         thigh_thickness: Span::new(1.35, 1.7),
         wing_span: Span::new(1.3, 1.8),
         wing_area: Span::new(1.2, 2.0),
+        wing_kinds: WingWeights::DEFAULT,
         back_ornament_size: Span::new(0.5, 1.0),
         back_ornament_chance: 0.5,
+        back_kinds: BackWeights::DEFAULT,
+        shell_size: Span::new(0.5, 1.0),
         saturation: Span::new(0.3, 0.75),
         countershading: Span::new(0.6, 1.0),
         patterns: PatternWeights::DEFAULT,
@@ -360,6 +376,27 @@ impl Params {
         self
     }
 
+    /// Sets [`shell_size`](Self::shell_size).
+    #[must_use]
+    pub const fn with_shell_size(mut self, shell_size: Span) -> Self {
+        self.shell_size = shell_size;
+        self
+    }
+
+    /// Sets [`back_kinds`](Self::back_kinds).
+    #[must_use]
+    pub const fn with_back_kinds(mut self, back_kinds: BackWeights) -> Self {
+        self.back_kinds = back_kinds;
+        self
+    }
+
+    /// Sets [`wing_kinds`](Self::wing_kinds).
+    #[must_use]
+    pub const fn with_wing_kinds(mut self, wing_kinds: WingWeights) -> Self {
+        self.wing_kinds = wing_kinds;
+        self
+    }
+
     /// Sets [`patterns`](Self::patterns).
     #[must_use]
     pub const fn with_patterns(mut self, patterns: PatternWeights) -> Self {
@@ -396,7 +433,8 @@ impl Params {
     ///
     /// # Errors
     /// [`Error::NonFinite`], [`Error::OutOfRange`] or [`Error::EmptyRange`] naming the field,
-    /// [`Error::AllZero`] for [`patterns`](Self::patterns) with no weight above 0, and
+    /// [`Error::AllZero`] for [`patterns`](Self::patterns), [`wing_kinds`](Self::wing_kinds)
+    /// or [`back_kinds`](Self::back_kinds) with no weight above 0, and
     /// [`Error::Limbs`] for bad [`limbs`](Self::limbs) options.
     pub fn validate(&self) -> Result<(), Error> {
         count("profiles", self.profiles, 1, 9)?;
@@ -427,9 +465,12 @@ impl Params {
         self.thigh_thickness.check("thigh_thickness", 1.0, 3.0)?;
         self.wing_span.check("wing_span", 0.2, 5.0)?;
         self.wing_area.check("wing_area", 0.1, 10.0)?;
+        self.wing_kinds.check("wing_kinds")?;
         self.back_ornament_size
             .check("back_ornament_size", 0.0, 3.0)?;
         scalar("back_ornament_chance", self.back_ornament_chance, 0.0, 1.0)?;
+        self.back_kinds.check("back_kinds")?;
+        self.shell_size.check("shell_size", 0.0, 1.0)?;
         self.saturation.check("saturation", 0.0, 1.0)?;
         self.countershading.check("countershading", 0.0, 1.0)?;
         self.patterns.check("patterns")?;
@@ -446,7 +487,7 @@ impl Default for Params {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::d3::Pattern;
+    use crate::d3::{BackKind, Pattern, WingKind};
 
     #[test]
     fn defaults_are_valid() {
@@ -593,5 +634,31 @@ mod tests {
             .with_patterns(PatternWeights::DEFAULT.with(Pattern::Bands, f32::NAN))
             .validate();
         assert_eq!(e, Err(Error::NonFinite { what: "patterns" }));
+        let e = Params::DEFAULT
+            .with_shell_size(Span::new(0.5, 1.5))
+            .validate();
+        assert!(matches!(
+            e,
+            Err(Error::OutOfRange {
+                what: "shell_size",
+                ..
+            })
+        ));
+        let none = BackWeights::only(BackKind::Shell).with(BackKind::Shell, 0.0);
+        let e = Params::DEFAULT.with_back_kinds(none).validate();
+        assert_eq!(e, Err(Error::AllZero { what: "back_kinds" }));
+        let none = WingWeights::only(WingKind::Bat).with(WingKind::Bat, 0.0);
+        let e = Params::DEFAULT.with_wing_kinds(none).validate();
+        assert_eq!(e, Err(Error::AllZero { what: "wing_kinds" }));
+        let e = Params::DEFAULT
+            .with_wing_kinds(WingWeights::DEFAULT.with(WingKind::Feathered, -1.0))
+            .validate();
+        assert!(matches!(
+            e,
+            Err(Error::OutOfRange {
+                what: "wing_kinds",
+                ..
+            })
+        ));
     }
 }

@@ -191,6 +191,7 @@ pub fn params_of_kind(kind: Kind) -> impl Strategy<Value = Params> {
         span(0.0, 5.0),
         span(0.0, 3.0),
         0.0f32..=1.0,
+        0.2f32..=1.0,
     );
     let limbs = (
         span(1.0, 3.0),
@@ -206,7 +207,7 @@ pub fn params_of_kind(kind: Kind) -> impl Strategy<Value = Params> {
             (width, height, step, swim_width, swim_height, swim_step),
             (scale, speed, bone_length, spine_bones, bend, head, clearance, clips),
             (saturation, countershading, patterns),
-            (eye_size, snout_length, ornament_size, ornament_chance),
+            (eye_size, snout_length, ornament_size, ornament_chance, neck_width),
             (thigh_thickness, wing_span, wing_area, back_size, back_chance, (wings, backs, shell)),
         )| {
             Params::DEFAULT
@@ -223,6 +224,7 @@ pub fn params_of_kind(kind: Kind) -> impl Strategy<Value = Params> {
                 .with_spine_bones(spine_bones)
                 .with_spine_bend(bend)
                 .with_head_size(head)
+                .with_neck_width(neck_width)
                 .with_ground_clearance(clearance)
                 .with_saturation(saturation)
                 .with_countershading(countershading)
@@ -284,7 +286,7 @@ pub fn bad_params_2d() -> impl Strategy<Value = d2::Params> {
 /// out of range (a colour range outside 0 to 1, an eye size above 0.6, a negative pattern
 /// weight) or every pattern, wing-kind or back-kind weight 0. [`Params::validate`] — and so [`generate`](crate::generate) — rejects every one.
 pub fn bad_params() -> impl Strategy<Value = Params> {
-    (params(), non_finite_f32(), 0usize..22).prop_map(|(p, bad, which)| {
+    (params(), non_finite_f32(), 0usize..23).prop_map(|(p, bad, which)| {
         let swap = |s: Span| {
             if s.min < s.max {
                 Span::new(s.max, s.min)
@@ -316,6 +318,7 @@ pub fn bad_params() -> impl Strategy<Value = Params> {
                 p.with_back_kinds(BackWeights::only(BackKind::Spikes).with(BackKind::Spikes, 0.0))
             }
             20 => p.with_shell_size(swap(p.shell_size)),
+            21 => p.with_neck_width(bad),
             _ => p.with_spine_bones(IntSpan::new(0, 0)),
         }
     })

@@ -657,6 +657,16 @@ fn the_neck_measure_tells_a_tiny_head_from_a_big_one() {
             assert!(r.is_finite() && r > 0.0, "{kind:?} {seed}: {r}");
             r
         };
+        for seed in 0..4 {
+            // A body narrowed into a neck changes its shape, not its colours.
+            let necked = generate(seed, &params.with_neck_width(0.5)).unwrap();
+            let plain = generate(seed, &params).unwrap();
+            assert_ne!(
+                necked.mesh.positions, plain.mesh.positions,
+                "{kind:?} {seed}"
+            );
+            assert_eq!(necked.palette, plain.palette, "{kind:?} {seed}");
+        }
         for seed in 0..6 {
             // A head a tenth of the default's is no wider than the neck it sits on; a head
             // twice the default's is wider, so the neck measures narrower.

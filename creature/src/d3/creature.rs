@@ -155,11 +155,11 @@ pub struct Quality {
     /// [`Params::wing_kinds`](crate::d3::Params::wing_kinds)); `None` otherwise.
     pub wing_kind: Option<WingKind>,
     /// For creatures with a head on a neck (walkers, fliers), how narrow the neck is: its
-    /// radius over the narrower of the head's and the body's, on the skin as delivered at
-    /// rest. The body's radius at a spine joint is the mean distance from it of the skin
-    /// vertices bound to it most; the body's is the widest of these short of the head, the
-    /// neck's the narrowest from there to the head; the head's is the median distance of its
-    /// parts' vertices from their centre. Below 1, the neck is narrower than both, so head and
+    /// width over the narrower of the head's and the body's, each across the body (`x`, as
+    /// the front view shows it) in the rest pose as delivered. The body's width at a spine
+    /// joint spans the skin vertices bound to it most; the body's is the widest of these short
+    /// of the head, the neck's the narrowest from there to the head; the head's spans all its
+    /// parts (skull, face, ornaments). Below 1, the neck is narrower than both, so head and
     /// body read as distinct; `None` for swimmers (a fish's head is its body's front).
     pub neck_to_head_and_body: Option<f32>,
 }

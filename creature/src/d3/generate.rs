@@ -34,6 +34,10 @@ use crate::rng::{rng_for, uniform};
 use crate::span::Span;
 use rand_pcg::Pcg64Mcg;
 
+/// The lattice slices at the head's end that narrow into a neck: the first `neck_width` × as
+/// wide and high, the next ones less so, evenly back to the body's own.
+const NECK_SLICES: usize = 4;
+
 /// FFD lattice divisions: 3×3 control points per slice, 11 slices along the body (the seed's).
 const DIVISIONS: [usize; 3] = [2, 2, 10];
 
@@ -315,9 +319,23 @@ fn shape_body(rng: &mut Pcg64Mcg, params: &Params, spec: &KindSpec) -> Result<Sh
     let [width, height, step] = (spec.slices)(params);
     let mut lattice = Lattice::around(&positions, DIVISIONS, 0.05 * BASE_RADIUS)?;
     let slices = lattice.slice_count(Axis::U);
+    // The pill's head tip is its last vertex; the lattice's slices run along z (`U`), from
+    // the head's end or the tail's.
+    let head_first = match (positions.first(), positions.last()) {
+        (Some(tail), Some(head)) => head.z < tail.z,
+        _ => false,
+    };
     for k in 0..slices {
         let s = Vec3::new(width.at(uniform(rng)), height.at(uniform(rng)), 1.0);
-        lattice.scale_slice(Axis::U, k, s)?;
+        // A neck under the head (see [`NECK_SLICES`]).
+        let from_head = if head_first { k } else { slices - 1 - k };
+        let neck = if spec.neck_and_head && from_head < NECK_SLICES {
+            let w = params.neck_width;
+            w + (1.0 - w) * from_head as f32 / NECK_SLICES as f32
+        } else {
+            1.0
+        };
+        lattice.scale_slice(Axis::U, k, s * Vec3::new(neck, neck, 1.0))?;
     }
     let base_gap = lattice.axes()[2].length() / DIVISIONS[2] as f32;
     let gaps: Vec<f32> = (0..DIVISIONS[2])
@@ -1124,6 +1142,9 @@ fn body_width(body: &creature_autorig::Rig, bone: usize) -> f32 {
         .unwrap_or(2.0 * BASE_RADIUS)
 }
 
+/// The least width of a head (at `head_size` 1) × the neck's under it.
+const HEAD_OVER_NECK: f32 = 1.3;
+
 /// The head of `shape` on the neck tip, bound to the `head` joint (the last neck bone's).
 fn add_head(
     mesh: &mut MeshBuilder,
@@ -1141,8 +1162,9 @@ fn add_head(
     let tip = pos(spine[n - 1]);
     let carrier = spine[n - 2];
     let centre_index = root_on_spine(body)?;
-    // The body's width at the second neck bone counted from the root.
-    let width = body_width(body, centre_index + 1);
+    // The body's width at the second neck bone counted from the root, or, where the neck
+    // under the head is wider, [`HEAD_OVER_NECK`] × that: a head wider than its neck.
+    let width = body_width(body, centre_index + 1).max(HEAD_OVER_NECK * body_width(body, n - 2));
     // The head held nearer level than the neck: a neck raised by `p` (in the body's YZ plane,
     // past upright on a neck bent back) pitches it by 0.3 `p`, at most 20° down or 25° up.
     let neck = (tip - pos(carrier)).normalize_or(Vec3::Z);
@@ -1427,11 +1449,11 @@ fn measure(
 /// The limbs' proportions as delivered (see [`Quality`]): the least thigh-over-shin radius of
 /// the legs, and the flapping wings' span over the body length and area over the body's
 /// volume to the power 2/3; measured on `mesh` by each vertex's most weighted joint.
-/// The neck's radius over the narrower of the head's and the body's (see
-/// [`Quality::neck_to_head_and_body`]), of `mesh` (the body's skin its first `body_vertices`
-/// vertices, the head's parts after them) on the rig's `spine` (tail to head: the head's
-/// joint the last but one); `None` without a joint between the body's widest and the head, or
-/// without head parts.
+/// The neck's width over the narrower of the head's and the body's, across the body (`x`) as
+/// the front view shows them (see [`Quality::neck_to_head_and_body`]), of `mesh` (the body's
+/// skin its first `body_vertices` vertices, the head's parts after them) on the rig's `spine`
+/// (tail to head: the head's joint the last but one); `None` without a joint between the
+/// body's widest and the head, or without head parts.
 fn measure_neck(
     mesh: &MeshBuilder,
     body_vertices: usize,
@@ -1443,37 +1465,35 @@ fn measure_neck(
         return None;
     }
     let head = spine[n - 2];
-    // The body's radius at each joint: the mean distance from it of the skin bound to it most.
-    let mut sums = alloc::vec![(0.0f32, 0u32); joints.len()];
+    // The body's width at each joint: the skin bound to it most, from its leftmost vertex to
+    // its rightmost.
+    let mut spans = alloc::vec![(f32::INFINITY, f32::NEG_INFINITY); joints.len()];
     for v in 0..body_vertices.min(mesh.positions.len()) {
-        let j = mesh.dominant(v);
-        if let (Some(sum), Some(joint)) = (sums.get_mut(j), joints.get(j)) {
-            sum.0 += mesh.positions[v].distance(joint.position);
-            sum.1 += 1;
+        if let Some(span) = spans.get_mut(mesh.dominant(v)) {
+            let x = mesh.positions[v].x;
+            *span = (span.0.min(x), span.1.max(x));
         }
     }
-    let radius = |k: usize| {
-        let (sum, count) = sums[spine[k]];
-        (count > 0).then(|| sum / count as f32)
+    let width = |k: usize| {
+        let (lo, hi) = spans[spine[k]];
+        (hi >= lo).then_some(hi - lo)
     };
     // The widest joint short of the head, then the narrowest from it to the head's carrier.
     let (widest, body) = (0..n - 2)
-        .filter_map(|k| Some((k, radius(k)?)))
+        .filter_map(|k| Some((k, width(k)?)))
         .max_by(|a, b| a.1.total_cmp(&b.1))?;
-    let neck = (widest..n - 2).filter_map(radius).min_by(f32::total_cmp)?;
-    // The head's: the median distance of its parts' vertices from their centroid.
-    let parts: Vec<Vec3> = (body_vertices..mesh.positions.len())
+    let neck = (widest..n - 2).filter_map(width).min_by(f32::total_cmp)?;
+    // The head's: its parts' (skull, face and ornaments) from the leftmost to the rightmost.
+    let (lo, hi) = (body_vertices..mesh.positions.len())
         .filter(|&v| mesh.dominant(v) == head)
-        .map(|v| mesh.positions[v])
-        .collect();
-    if parts.is_empty() {
+        .map(|v| mesh.positions[v].x)
+        .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), x| {
+            (lo.min(x), hi.max(x))
+        });
+    if hi < lo {
         return None;
     }
-    let centre = parts.iter().copied().sum::<Vec3>() / parts.len() as f32;
-    let mut distances: Vec<f32> = parts.iter().map(|p| p.distance(centre)).collect();
-    distances.sort_unstable_by(f32::total_cmp);
-    let head = distances[distances.len() / 2];
-    Some(neck / body.min(head).max(f32::MIN_POSITIVE))
+    Some(neck / body.min(hi - lo).max(f32::MIN_POSITIVE))
 }
 
 fn measure_limbs(

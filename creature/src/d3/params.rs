@@ -90,10 +90,18 @@ pub struct Params {
     /// random per-bone angle of at most `spine_bend / bones`, and never more than half of this
     /// in total. From 0 to 200. Default 200 (the seed's: neither passes 100°).
     pub spine_bend: f32,
-    /// Head radius (walkers and fliers), × half the body width at the second neck bone: the
-    /// skull's half-width is about this (a broad, flat head's more). From 0.1 to 10.
+    /// Head radius (walkers and fliers), × half the body width at the second neck bone (or,
+    /// where that is wider, 1.3 × the neck's width under the head): the skull's half-width is
+    /// about this (a broad, flat head's more). From 0.1 to 10.
     /// Default 0.9..1.3.
     pub head_size: Span,
+    /// How narrow a walker's or flier's neck is: the body's front (the slice of its lattice at
+    /// the head's end) is this × as wide and high as drawn, the next three slices less so,
+    /// evenly back to the body's own, so the body narrows into a neck under the head. From 0.2
+    /// to 1. Default 1 (the body as drawn): at 0.6 nearly every walker and flier shows a neck
+    /// narrower than its head and body, but a few more walks end in a cut instead of closing
+    /// their loop (the crate README has the figures).
+    pub neck_width: f32,
     /// Eye radius, × the head radius (on a swimmer, × the half-width or half-height of its
     /// front, whichever is less). From 0.05 to 0.6. Default 0.2..0.3.
     pub eye_size: Span,
@@ -181,6 +189,7 @@ impl Params {
         spine_bones: IntSpan::new(5, 24),
         spine_bend: 200.0,
         head_size: Span::new(0.9, 1.3),
+        neck_width: 1.0,
         eye_size: Span::new(0.2, 0.3),
         snout_length: Span::new(0.6, 1.3),
         ornament_size: Span::new(0.5, 0.9),
@@ -298,6 +307,13 @@ impl Params {
     #[must_use]
     pub const fn with_head_size(mut self, size: Span) -> Self {
         self.head_size = size;
+        self
+    }
+
+    /// Sets [`neck_width`](Self::neck_width).
+    #[must_use]
+    pub const fn with_neck_width(mut self, neck_width: f32) -> Self {
+        self.neck_width = neck_width;
         self
     }
 
@@ -456,6 +472,7 @@ impl Params {
         self.spine_bones.check("spine_bones", 5, 60)?;
         scalar("spine_bend", self.spine_bend, 0.0, 200.0)?;
         self.head_size.check("head_size", 0.1, 10.0)?;
+        scalar("neck_width", self.neck_width, 0.2, 1.0)?;
         self.eye_size.check("eye_size", 0.05, 0.6)?;
         self.snout_length.check("snout_length", 0.0, 5.0)?;
         self.ornament_size.check("ornament_size", 0.0, 3.0)?;

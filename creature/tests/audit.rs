@@ -563,13 +563,15 @@ fn regression_a_limited_swing_frame_that_would_touch_the_ground_moves_only_as_fa
 
 /// A walk over procedural terrain, as `--terrain` bakes and exports it (hills half the body's
 /// length high, a 12° slope, steps a fifth of the shortest leg high), audited on the terrain
-/// the file carries.
+/// the file carries; the walker's front as drawn (`neck_width` 1), as its regressions were
+/// found on.
 fn terrain_walk_report(seed: u64) -> creature_audit::Report {
     use creature::terrain::{TerrainParams, terrain, terrain_mesh};
     let c = d3::generate(
         seed,
         &d3::Params::DEFAULT
             .with_kind(Kind::Walker)
+            .with_neck_width(1.0)
             .with_clips(false),
     )
     .unwrap();

@@ -647,7 +647,7 @@ fn a_walkers_shell_is_a_closed_dome_over_its_back_skinned_as_the_skin_under_it()
 }
 
 #[test]
-fn the_neck_measure_tells_a_tiny_head_from_a_big_one() {
+fn every_head_has_a_neck_narrower_than_it_and_the_measure_tells_a_wide_front() {
     for kind in [d3::Kind::Walker, d3::Kind::Flier] {
         let params = d3::Params::DEFAULT.with_kind(kind).with_clips(false);
         let neck = |seed: u64, size: f32| {
@@ -668,12 +668,21 @@ fn the_neck_measure_tells_a_tiny_head_from_a_big_one() {
             assert_eq!(necked.palette, plain.palette, "{kind:?} {seed}");
         }
         for seed in 0..6 {
-            // A head a tenth of the default's is no wider than the neck it sits on; a head
-            // twice the default's is wider, so the neck measures narrower.
+            // A head a tenth of the default's still grows to 1.3 × the neck's width, and a
+            // head twice the default's does not swallow the neck.
             let (tiny, big) = (neck(seed, 0.1), neck(seed, 2.5));
-            assert!(tiny >= 1.0, "{kind:?} {seed}: neck {tiny} × a tiny head");
-            assert!(big < tiny, "{kind:?} {seed}: {big} against {tiny}");
+            assert!(tiny < 1.0, "{kind:?} {seed}: neck {tiny} × a tiny head");
+            assert!(big < 1.0, "{kind:?} {seed}: neck {big} × a big head");
+            // The narrowest neck and the widest still below 1.
+            for w in [0.2, 0.8] {
+                let p = params.with_neck_width(w);
+                let r = generate(seed, &p).unwrap().quality.neck_to_head_and_body;
+                assert!(r.is_some_and(|r| r < 1.0), "{kind:?} {seed} at {w}: {r:?}");
+            }
         }
+        // A body whose front is its broadest, not narrowed: no neck to measure narrower.
+        let wide = generate(20015, &params.with_neck_width(1.0)).unwrap();
+        assert_eq!(wide.quality.neck_to_head_and_body, Some(1.0), "{kind:?}");
     }
     let swimmer = d3::Params::DEFAULT
         .with_kind(d3::Kind::Swimmer)

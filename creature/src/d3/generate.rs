@@ -35,7 +35,8 @@ use crate::span::Span;
 use rand_pcg::Pcg64Mcg;
 
 /// The lattice slices at the head's end that narrow into a neck: the first `neck_width` × as
-/// wide and high, the next ones less so, evenly back to the body's own.
+/// wide and high as the body's broadest, the next ones less so, back to the body's own along
+/// a parabola (narrow for most of the neck, widening into the shoulders).
 const NECK_SLICES: usize = 4;
 
 /// FFD lattice divisions: 3×3 control points per slice, 11 slices along the body (the seed's).
@@ -181,6 +182,11 @@ fn generate_kind(rng: &mut Pcg64Mcg, params: &Params, spec: &KindSpec) -> Result
     } else {
         add_fish_face(&mut mesh, &rigged.rig, params, &head, &colouring)
     };
+    // Measured before anything else joins the head's joint.
+    let neck = face
+        .as_ref()
+        .filter(|_| spec.neck_and_head)
+        .and_then(|face| measure_neck(&mesh, rigged.positions.len(), &rigged.rig.spine, face));
     // A walker's back row, from a generator of its own, on the body's skin (before the limbs:
     // the feet stand under the body with its row).
     let (back, back_kind) = if spec.walks {
@@ -232,17 +238,6 @@ fn generate_kind(rng: &mut Pcg64Mcg, params: &Params, spec: &KindSpec) -> Result
     } else {
         None
     };
-    let neck = spec
-        .neck_and_head
-        .then(|| {
-            measure_neck(
-                &mesh,
-                rigged.positions.len(),
-                &rigged.rig.spine,
-                &limbs.joints,
-            )
-        })
-        .flatten();
     let joints = limbs.joints;
     if joints.len() > usize::from(u16::MAX) {
         return Err(Error::TooManyBones {
@@ -325,17 +320,28 @@ fn shape_body(rng: &mut Pcg64Mcg, params: &Params, spec: &KindSpec) -> Result<Sh
         (Some(tail), Some(head)) => head.z < tail.z,
         _ => false,
     };
-    for k in 0..slices {
-        let s = Vec3::new(width.at(uniform(rng)), height.at(uniform(rng)), 1.0);
-        // A neck under the head (see [`NECK_SLICES`]).
-        let from_head = if head_first { k } else { slices - 1 - k };
-        let neck = if spec.neck_and_head && from_head < NECK_SLICES {
-            let w = params.neck_width;
-            w + (1.0 - w) * from_head as f32 / NECK_SLICES as f32
-        } else {
-            1.0
-        };
-        lattice.scale_slice(Axis::U, k, s * Vec3::new(neck, neck, 1.0))?;
+    let mut scales: Vec<Vec3> = (0..slices)
+        .map(|_| Vec3::new(width.at(uniform(rng)), height.at(uniform(rng)), 1.0))
+        .collect();
+    if spec.neck_and_head {
+        // A neck under the head (see [`NECK_SLICES`]): its slices no wider or higher than
+        // the body's broadest behind them, then narrowed.
+        let from_head = |k: usize| if head_first { k } else { slices - 1 - k };
+        debug_assert!(slices > NECK_SLICES, "a lattice longer than its neck");
+        let broadest = (0..slices)
+            .filter(|&k| from_head(k) >= NECK_SLICES)
+            .fold(Vec3::Z, |m, k| m.max(scales[k]));
+        let w = params.neck_width;
+        for (k, s) in scales.iter_mut().enumerate() {
+            if from_head(k) < NECK_SLICES {
+                let t = from_head(k) as f32 / NECK_SLICES as f32;
+                let neck = w + (1.0 - w) * t * t;
+                *s = s.min(broadest) * Vec3::new(neck, neck, 1.0);
+            }
+        }
+    }
+    for (k, s) in scales.into_iter().enumerate() {
+        lattice.scale_slice(Axis::U, k, s)?;
     }
     let base_gap = lattice.axes()[2].length() / DIVISIONS[2] as f32;
     let gaps: Vec<f32> = (0..DIVISIONS[2])
@@ -1165,6 +1171,13 @@ fn add_head(
     // The body's width at the second neck bone counted from the root, or, where the neck
     // under the head is wider, [`HEAD_OVER_NECK`] × that: a head wider than its neck.
     let width = body_width(body, centre_index + 1).max(HEAD_OVER_NECK * body_width(body, n - 2));
+    // And at least [`HEAD_OVER_NECK`] × as wide as the neck's skin as built (the bone's before
+    // the head's), whatever the head's size and shape.
+    let neck_skin = n
+        .checked_sub(3)
+        .and_then(|k| mesh.width_across(mesh.positions.len(), spine[k]))
+        .unwrap_or(0.0);
+    let radius = (0.5 * width * size).max(0.5 * HEAD_OVER_NECK * neck_skin / shape.across());
     // The head held nearer level than the neck: a neck raised by `p` (in the body's YZ plane,
     // past upright on a neck bent back) pitches it by 0.3 `p`, at most 20° down or 25° up.
     let neck = (tip - pos(carrier)).normalize_or(Vec3::Z);
@@ -1178,7 +1191,7 @@ fn add_head(
     let mount = head::Mount {
         tip,
         forward: Vec3::new(0.0, sin(pitch), cos(pitch)),
-        radius: 0.5 * width * size,
+        radius,
         joint: carrier as u16,
     };
     Ok(Some(head::add_head(mesh, mount, shape, colouring)))
@@ -1452,48 +1465,48 @@ fn measure(
 /// The neck's width over the narrower of the head's and the body's, across the body (`x`) as
 /// the front view shows them (see [`Quality::neck_to_head_and_body`]), of `mesh` (the body's
 /// skin its first `body_vertices` vertices, the head's parts after them) on the rig's `spine`
-/// (tail to head: the head's joint the last but one); `None` without a joint between the
-/// body's widest and the head, or without head parts.
+/// (tail to head: the head's joint the last but one) under `head`; `None` without a joint
+/// between the body's widest and the head, or without head parts.
 fn measure_neck(
     mesh: &MeshBuilder,
     body_vertices: usize,
     spine: &[usize],
-    joints: &[Joint],
+    head: &head::Built,
 ) -> Option<f32> {
     let n = spine.len();
     if n < 3 {
         return None;
     }
-    let head = spine[n - 2];
+    let carrier = spine[n - 2];
     // The body's width at each joint: the skin bound to it most, from its leftmost vertex to
     // its rightmost.
-    let mut spans = alloc::vec![(f32::INFINITY, f32::NEG_INFINITY); joints.len()];
-    for v in 0..body_vertices.min(mesh.positions.len()) {
-        if let Some(span) = spans.get_mut(mesh.dominant(v)) {
-            let x = mesh.positions[v].x;
-            *span = (span.0.min(x), span.1.max(x));
-        }
-    }
-    let width = |k: usize| {
-        let (lo, hi) = spans[spine[k]];
-        (hi >= lo).then_some(hi - lo)
-    };
-    // The widest joint short of the head, then the narrowest from it to the head's carrier.
+    let width = |k: usize| mesh.width_across(body_vertices, spine[k]);
+    // The widest joint short of the head, then the narrowest from it to the head: the
+    // joints' skin, and the head's carrier's where it shows outside the skull.
     let (widest, body) = (0..n - 2)
         .filter_map(|k| Some((k, width(k)?)))
         .max_by(|a, b| a.1.total_cmp(&b.1))?;
-    let neck = (widest..n - 2).filter_map(width).min_by(f32::total_cmp)?;
+    let x_span = |vertices: &mut dyn Iterator<Item = usize>| {
+        let (lo, hi) = vertices
+            .map(|v| mesh.positions[v].x)
+            .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), x| {
+                (lo.min(x), hi.max(x))
+            });
+        (hi >= lo).then_some(hi - lo)
+    };
+    let shown = x_span(
+        &mut (0..body_vertices.min(mesh.positions.len()))
+            .filter(|&v| mesh.dominant(v) == carrier && !head.in_skull(mesh.positions[v])),
+    );
+    let neck = (widest..n - 2)
+        .filter_map(width)
+        .chain(shown)
+        .min_by(f32::total_cmp)?;
     // The head's: its parts' (skull, face and ornaments) from the leftmost to the rightmost.
-    let (lo, hi) = (body_vertices..mesh.positions.len())
-        .filter(|&v| mesh.dominant(v) == head)
-        .map(|v| mesh.positions[v].x)
-        .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), x| {
-            (lo.min(x), hi.max(x))
-        });
-    if hi < lo {
-        return None;
-    }
-    Some(neck / body.min(hi - lo).max(f32::MIN_POSITIVE))
+    let head = x_span(
+        &mut (body_vertices..mesh.positions.len()).filter(|&v| mesh.dominant(v) == carrier),
+    )?;
+    Some(neck / body.min(head).max(f32::MIN_POSITIVE))
 }
 
 fn measure_limbs(

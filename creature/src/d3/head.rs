@@ -370,6 +370,11 @@ impl Shape {
             detail: uniform(rng),
         }
     }
+
+    /// The skull's half-width × the head radius.
+    pub(crate) fn across(&self) -> f32 {
+        self.skull.x
+    }
 }
 
 /// Where a head goes: the neck tip, the direction the neck points, the head radius (half the
@@ -382,14 +387,27 @@ pub(crate) struct Mount {
     pub(crate) joint: u16,
 }
 
-/// What a built head reports: its frame and its eyes.
+/// What a built head reports: its frame, its skull's half-extents (across, up, along the
+/// frame; a swimmer's face has no skull of its own, zero) and its eyes.
 #[derive(Debug, Clone)]
 pub(crate) struct Built {
     pub(crate) frame: Frame,
+    pub(crate) skull: Vec3,
     pub(crate) eyes: Vec<Eye>,
 }
 
 impl Built {
+    /// Whether `p` is inside the skull.
+    pub(crate) fn in_skull(&self, p: Vec3) -> bool {
+        let d = p - self.frame.centre;
+        let q = Vec3::new(
+            d.dot(self.frame.side),
+            d.dot(self.frame.up),
+            d.dot(self.frame.forward),
+        ) / self.skull.max(Vec3::splat(f32::MIN_POSITIVE));
+        q.length_squared() < 1.0
+    }
+
     /// How many eyes face the front or a side view: their pupils (see [`Eye::axis`]) more
     /// than a little toward the front (`+z`, where the previews' front view looks from) or
     /// mostly toward a side.
@@ -606,7 +624,11 @@ pub(crate) fn add_head(
             _ => {}
         }
     }
-    Built { frame, eyes }
+    Built {
+        frame,
+        skull: s,
+        eyes,
+    }
 }
 
 /// The skin colour of ears: the head's on its flank.
@@ -781,7 +803,11 @@ pub(crate) fn add_fish_face(
     };
     let mouth_at = frame.at(0.0, -0.22 * h, depth);
     lips.on_ellipsoid(mesh, &frame, Vec3::new(w, h, depth), bind_at(mouth_at));
-    Built { frame, eyes }
+    Built {
+        frame,
+        skull: Vec3::ZERO,
+        eyes,
+    }
 }
 
 /// A mouth line on an ellipsoid: a thin dark lens `bulge` × as wide as the ellipsoid at height

@@ -65,6 +65,18 @@ impl MeshBuilder {
         usize::from(js[k])
     }
 
+    /// How wide (along `x`, across the body) the first `vertices` vertices bound most to
+    /// `joint` reach, from the leftmost to the rightmost; `None` without one.
+    pub(crate) fn width_across(&self, vertices: usize, joint: usize) -> Option<f32> {
+        let (lo, hi) = (0..vertices.min(self.positions.len()))
+            .filter(|&v| self.dominant(v) == joint)
+            .map(|v| self.positions[v].x)
+            .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), x| {
+                (lo.min(x), hi.max(x))
+            });
+        (hi >= lo).then_some(hi - lo)
+    }
+
     pub(crate) fn vertex(&mut self, p: Vec3, colour: Vec3, bind: Bind) -> u32 {
         let index = self.positions.len() as u32;
         self.positions.push(p);

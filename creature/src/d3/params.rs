@@ -96,11 +96,9 @@ pub struct Params {
     /// Default 0.9..1.3.
     pub head_size: Span,
     /// How narrow a walker's or flier's neck is: the body's front (the slice of its lattice at
-    /// the head's end) is this × as wide and high as drawn, the next three slices less so,
-    /// evenly back to the body's own, so the body narrows into a neck under the head. From 0.2
-    /// to 1. Default 1 (the body as drawn): at 0.6 nearly every walker and flier shows a neck
-    /// narrower than its head and body, but a few more walks end in a cut instead of closing
-    /// their loop (the crate README has the figures).
+    /// the head's end) is this × as wide and high as the body's broadest slice behind it (or
+    /// as its own, if narrower), the next three slices less so, back to the body's own along a
+    /// parabola, so the body narrows into a neck under the head. From 0.2 to 1. Default 0.6.
     pub neck_width: f32,
     /// Eye radius, × the head radius (on a swimmer, × the half-width or half-height of its
     /// front, whichever is less). From 0.05 to 0.6. Default 0.2..0.3.
@@ -189,7 +187,7 @@ impl Params {
         spine_bones: IntSpan::new(5, 24),
         spine_bend: 200.0,
         head_size: Span::new(0.9, 1.3),
-        neck_width: 1.0,
+        neck_width: 0.6,
         eye_size: Span::new(0.2, 0.3),
         snout_length: Span::new(0.6, 1.3),
         ornament_size: Span::new(0.5, 0.9),

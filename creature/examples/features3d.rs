@@ -24,6 +24,7 @@ use creature::d3::{
     WingWeights,
 };
 use creature::export;
+use creature::limbs::LimbKind;
 
 /// Height of one cell (its width is three views), by default.
 const CELL: u32 = 150;
@@ -94,7 +95,7 @@ fn run(dir: &str, cell: u32) -> Result<(), String> {
         })?);
     }
     wings.push(first("buzzing wings", &flier, |c| {
-        c.quality.wing_kind.is_none() && c.quality.wing_span_to_body_length.is_none()
+        c.plan.limbs_of(LimbKind::BuzzingWing).next().is_some()
     })?);
     // Wings are thin: one flier a row, larger.
     write(dir, "wings3d.png", &wings, 1, cell * 5 / 3)?;

@@ -690,3 +690,34 @@ fn every_head_has_a_neck_narrower_than_it_and_the_measure_tells_a_wide_front() {
     let c = generate(0, &swimmer).unwrap();
     assert_eq!(c.quality.neck_to_head_and_body, None);
 }
+
+/// Regression: a buzzing pair of wings stands on a top socket, and both grew from its ring's
+/// top vertex, which on some bodies is off the midline (0.29 m aside on flier 1251): the right
+/// wing grew across the back and reached half as far out as the left one (span 1.16 × the
+/// body's length where 1.3 was asked). Each grows from its own side now, mirrored.
+#[test]
+fn regression_a_pair_of_wings_on_the_back_is_mirrored() {
+    let params = d3::Params::DEFAULT
+        .with_kind(d3::Kind::Flier)
+        .with_clips(false);
+    for seed in (0..12).chain([1251]) {
+        let c = generate(seed, &params).unwrap();
+        let joints = &c.skeleton.joints;
+        let mut pairs = 0;
+        for left in joints.iter().filter(|j| j.name.starts_with("wing_l")) {
+            let name = left.name.replacen("wing_l", "wing_r", 1);
+            let right = joints.iter().find(|j| j.name == name).unwrap();
+            let mirrored = Vec3::new(-right.position.x, right.position.y, right.position.z);
+            assert!(
+                left.position.distance(mirrored) < 1e-4 * c.length,
+                "seed {seed}: {} at {} against {} at {}",
+                left.name,
+                left.position,
+                right.name,
+                right.position
+            );
+            pairs += 1;
+        }
+        assert!(pairs > 0, "seed {seed}: no wings");
+    }
+}

@@ -191,8 +191,8 @@ proptest! {
         area in strategies::span(0.1, 10.0),
     ) {
         // Measured on the delivered mesh and skeleton, over the proportions' whole ranges:
-        // every leg's thigh at least the least thickness asked × its shin, flapping wings at
-        // least the least span and area asked.
+        // every leg's thigh at least the least thickness asked × its shin, wings (flapping or
+        // buzzing) at least the least span and area asked.
         let params = params.with_thigh_thickness(thigh).with_wings(span, area);
         prop_assert_eq!(params.validate(), Ok(()));
         let c = generate(seed, &params.with_clips(false));
@@ -207,9 +207,10 @@ proptest! {
                 "seed {seed}: thigh {ratio} × shin, asked {:?}", params.thigh_thickness
             );
         }
-        let flapping = has(creature::limbs::LimbKind::FlappingWing);
-        prop_assert_eq!(q.wing_span_to_body_length.is_some(), flapping);
-        prop_assert_eq!(q.wing_area_to_body_volume.is_some(), flapping);
+        let winged = has(creature::limbs::LimbKind::FlappingWing)
+            || has(creature::limbs::LimbKind::BuzzingWing);
+        prop_assert_eq!(q.wing_span_to_body_length.is_some(), winged);
+        prop_assert_eq!(q.wing_area_to_body_volume.is_some(), winged);
         if let (Some(span), Some(area)) = (q.wing_span_to_body_length, q.wing_area_to_body_volume) {
             prop_assert!(
                 span >= params.wing_span.min * (1.0 - 1e-4),

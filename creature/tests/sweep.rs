@@ -95,7 +95,7 @@ fn sweep_3d(kind: d3::Kind) {
                     None => {}
                 }
                 // The proxies for proportioned limbs: thighs thicker than shins, and
-                // flapping wings big enough to fly.
+                // wings (flapping or buzzing) big enough to fly.
                 let legs = c
                     .plan
                     .limbs
@@ -108,16 +108,18 @@ fn sweep_3d(kind: d3::Kind) {
                     None if legs => problems.push("legs, but no thigh-to-shin radius".into()),
                     _ => {}
                 }
-                let flapping = c
-                    .plan
-                    .limbs
-                    .iter()
-                    .any(|l| l.kind == creature::limbs::LimbKind::FlappingWing);
+                let winged = c.plan.limbs.iter().any(|l| {
+                    matches!(
+                        l.kind,
+                        creature::limbs::LimbKind::FlappingWing
+                            | creature::limbs::LimbKind::BuzzingWing
+                    )
+                });
                 match c.quality.wing_span_to_body_length {
                     Some(span) if span < 1.2 => {
                         problems.push(format!("wing span {span} × the body length, not 1.2"));
                     }
-                    None if flapping => problems.push("flapping wings, but no span".into()),
+                    None if winged => problems.push("wings, but no span".into()),
                     _ => {}
                 }
                 match c.quality.wing_area_to_body_volume {
@@ -125,7 +127,7 @@ fn sweep_3d(kind: d3::Kind) {
                         "wing area {area} × the body volume^(2/3), under {}",
                         params.wing_area.min
                     )),
-                    None if flapping => problems.push("flapping wings, but no area".into()),
+                    None if winged => problems.push("wings, but no area".into()),
                     _ => {}
                 }
                 if !problems.is_empty() {

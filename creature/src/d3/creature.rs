@@ -135,11 +135,11 @@ pub struct Quality {
     /// is from the segment between its joints; `None` without legs. At least
     /// [`Params::thigh_thickness`](crate::d3::Params::thigh_thickness)'s least.
     pub thigh_to_shin_radius: Option<f32>,
-    /// For fliers with flapping wings, their span tip to tip (the extent across the body of
+    /// For fliers (flapping or buzzing wings), their span tip to tip (the extent across the body of
     /// the vertices bound to their joints) over the body length; `None` otherwise. At least
     /// [`Params::wing_span`](crate::d3::Params::wing_span)'s least.
     pub wing_span_to_body_length: Option<f32>,
-    /// For fliers with flapping wings, their area (both wings, one face: the triangles bound
+    /// For fliers (flapping or buzzing wings), their area (both wings, one face: the triangles bound
     /// to their joints, halved) over the volume of the body and head (the triangles bound to
     /// spine joints alone) to the power 2/3; `None` otherwise. At least
     /// [`Params::wing_area`](crate::d3::Params::wing_area)'s least.

@@ -40,9 +40,9 @@ pub(crate) struct Proportions {
     pub(crate) foot: Foot,
     /// Thigh (upper arm) radius × shin (forearm) radius.
     pub(crate) thigh: f32,
-    /// Flapping wings' span tip to tip, × body length (at least).
+    /// Wings' span tip to tip (flapping or buzzing), × body length (at least).
     pub(crate) wing_span: f32,
-    /// Flapping wings' area (both wings, one face), × the body's volume to the power 2/3
+    /// Wings' area (flapping or buzzing; both wings, one face), × the body's volume to the power 2/3
     /// (at least).
     pub(crate) wing_area: f32,
     /// A tail fin's outline: forked or rounded, evenly.

@@ -11,7 +11,7 @@ use rand_core::Rng;
 use creature_autorig::{RigOptions, RootAt, rig};
 use creature_ffd::{Axis, Lattice};
 use creature_gait::{GaitOptions, Leg, LimbKind as GaitLimb};
-use creature_limbs::{Body, CreatureKind, HeadEnd, LimbKind, SpineBone, plan};
+use creature_limbs::{Body, CreatureKind, HeadEnd, LimbKind, Side, SpineBone, plan};
 use creature_skin::{Blend, nearest_k, skin_positions};
 
 use super::accessories::{BackRow, add_back_row};
@@ -553,7 +553,7 @@ struct BuiltLimbs {
 }
 
 /// Stage 8: limbs planned on the rig's sockets, each built as joints and a mesh skinned to
-/// them, in the creature's `proportions` (flapping wings sized for the body and head as `mesh`
+/// them, in the creature's `proportions` (wings sized for the body and head as `mesh`
 /// has them now).
 #[allow(clippy::too_many_arguments)]
 fn add_limbs(
@@ -614,6 +614,17 @@ fn add_limbs(
                 positions[socket.top_vertex as usize],
                 tail.position,
             )?;
+            // A pair on the back (a top socket) grows from either side of the spine, mirrored,
+            // even where the ring's top vertex is off the midline (both would grow from it).
+            let spine_at = body_rig.joints[socket.joint].position;
+            let point = match (limb.socket, limb.side) {
+                (creature_limbs::Socket::Top, Side::Left | Side::Right) => {
+                    let out = if limb.side == Side::Left { 1.0 } else { -1.0 };
+                    let x = spine_at.x + out * (point.x - spine_at.x).abs();
+                    Vec3::new(x, point.y, point.z)
+                }
+                _ => point,
+            };
             let joint = if limb.socket == creature_limbs::Socket::Tip {
                 // A tail fin hangs on the joint before the tail tip (the rig roots at the centre
                 // or the head, so the tip always has one).
@@ -1460,7 +1471,7 @@ fn measure(
 }
 
 /// The limbs' proportions as delivered (see [`Quality`]): the least thigh-over-shin radius of
-/// the legs, and the flapping wings' span over the body length and area over the body's
+/// the legs, and the wings' (flapping or buzzing) span over the body length and area over the body's
 /// volume to the power 2/3; measured on `mesh` by each vertex's most weighted joint.
 /// The neck's width over the narrower of the head's and the body's, across the body (`x`) as
 /// the front view shows them (see [`Quality::neck_to_head_and_body`]), of `mesh` (the body's
@@ -1547,7 +1558,7 @@ fn measure_limbs(
                 let ratio = thigh / shin;
                 thigh_to_shin = Some(thigh_to_shin.map_or(ratio, |r| r.min(ratio)));
             }
-            (LimbKind::FlappingWing, _) => wing_joints.extend(chain),
+            (LimbKind::FlappingWing | LimbKind::BuzzingWing, _) => wing_joints.extend(chain),
             _ => {}
         }
     }

@@ -267,7 +267,7 @@ pub(crate) struct LimbStyle {
     pub(crate) flat: bool,
 }
 
-/// The least size of a flier's flapping wings: their span tip to tip (metres) and their area
+/// The least size of a flier's wings (flapping or buzzing): their span tip to tip (metres) and their area
 /// (both wings, one face; square metres).
 #[derive(Debug, Clone, Copy, Default)]
 pub(crate) struct WingSize {
@@ -341,7 +341,7 @@ const WING_CHORD: f32 = 0.45;
 /// The widest a flapping wing's chord gets, × its length: past that it grows longer instead.
 const MAX_WING_CHORD: f32 = 0.6;
 
-/// A flapping wing's length and width: as planned (`planned` long), at least long enough for
+/// A wing's (flapping or buzzing) length and width: as planned (`planned` long), at least long enough for
 /// the span `wing.span` tip to tip (its root `root` from the body's midline, reaching across
 /// by `reach` per unit of length) and wide enough (then long enough) for `wing.area` over the
 /// two wings, its outline covering `share` of `length × width`.
@@ -800,7 +800,7 @@ pub(crate) fn add_limb(
                 _ => None,
             };
             let (length, width) = match &planform {
-                Some(p) if shape.kind == LimbKind::FlappingWing => {
+                Some(p) if matches!(shape.kind, LimbKind::FlappingWing | LimbKind::BuzzingWing) => {
                     let root = (mount.point.x - mount.centre.x).abs();
                     flapping_wing(length, root, along.x.abs(), wing, p.area())
                 }

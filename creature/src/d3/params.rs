@@ -122,10 +122,10 @@ pub struct Params {
     /// How much thicker a leg's thigh is than its shin (an arm's upper arm than its forearm):
     /// the thigh's radius × the shin's, drawn once per creature. From 1 to 3. Default 1.35..1.7.
     pub thigh_thickness: Span,
-    /// The least span of a flier's flapping wings, tip to tip, × its body length (a wing the
+    /// The least span of a flier's wings (flapping or buzzing), tip to tip, × its body length (a wing the
     /// planner drew longer stays longer). From 0.2 to 5. Default 1.3..1.8.
     pub wing_span: Span,
-    /// The least area of a flier's flapping wings (both wings, one face) × the volume of its
+    /// The least area of a flier's wings (flapping or buzzing; both wings, one face) × the volume of its
     /// body and head to the power 2/3: heavier bodies get bigger wings (wider, then longer).
     /// From 0.1 to 10. Default 1.2..2.0.
     pub wing_area: Span,

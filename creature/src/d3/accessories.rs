@@ -406,8 +406,10 @@ fn add_shell(
         mesh.indices.push([a[1], c[1], b[1]]);
     }
     // The rim: a dark band from the outer edge down to the inner one, facing out.
+    let mut sorted = edges.clone();
+    sorted.sort_unstable();
     for &(a, b) in &edges {
-        if edges.contains(&(b, a)) {
+        if sorted.binary_search(&(b, a)).is_ok() {
             continue;
         }
         let [a, b] = [copy[a as usize], copy[b as usize]];

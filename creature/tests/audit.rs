@@ -65,14 +65,16 @@ fn audit_swimmers() {
     run(Kind::Swimmer, &Check::ALL);
 }
 
-/// Fails if any of `seeds`' walkers fails any of `checks`.
+/// The walkers the regressions were found on: before bodies narrowed into a neck, without
+/// one, as then.
+const REGRESSION_WALKER: d3::Params = d3::Params::DEFAULT
+    .with_neck_width(1.0)
+    .with_kind(Kind::Walker);
+
+/// Fails if any of `seeds`' walkers ([`REGRESSION_WALKER`]) fails any of `checks`.
 fn walkers_pass(seeds: &[u64], checks: &[Check]) {
-    // Found before bodies narrowed into a neck: without one, as then.
-    let params = d3::Params::DEFAULT
-        .with_neck_width(1.0)
-        .with_kind(Kind::Walker);
     for &seed in seeds {
-        passes(seed, &params, checks);
+        passes(seed, &REGRESSION_WALKER, checks);
     }
 }
 
@@ -95,13 +97,7 @@ fn regression_a_full_turn_closing_its_loop_does_not_flick_a_leg() {
 fn regression_a_long_walker_turns_no_faster_than_its_feet_follow() {
     // Turning at a quarter turn a second whatever its length, a 5 m walker's front feet swept
     // round at 3.7 m/s (it walks at 2): carried past the midline between two frames.
-    let c = d3::generate(
-        5887,
-        &d3::Params::DEFAULT
-            .with_neck_width(1.0)
-            .with_kind(Kind::Walker),
-    )
-    .unwrap();
+    let c = d3::generate(5887, &REGRESSION_WALKER).unwrap();
     let turn = c.clips.iter().find(|k| k.name == "turn").unwrap();
     assert!(turn.duration() > 6.0, "{} s", turn.duration());
     walkers_pass(&[5887, 5634, 5616], &[Check::FeetCross]);
@@ -144,13 +140,7 @@ fn regression_sideways_knees_of_an_upright_leg_are_not_flipped_across_the_body()
     // seed 87 (nearly upright, knees bending sideways) had its knee turned in, toward the right
     // leg, and the two legs passed through each other in the turn.
     walkers_pass(&[87, 477, 785], &[Check::LegsIntersect]);
-    let c = d3::generate(
-        87,
-        &d3::Params::DEFAULT
-            .with_neck_width(1.0)
-            .with_kind(Kind::Walker),
-    )
-    .unwrap();
+    let c = d3::generate(87, &REGRESSION_WALKER).unwrap();
     let legs = &c.gait.as_ref().unwrap().legs;
     assert!(legs[0].pole.x > 0.0 && legs[1].pole.x < 0.0, "{legs:?}");
 }
@@ -563,18 +553,10 @@ fn regression_a_limited_swing_frame_that_would_touch_the_ground_moves_only_as_fa
 
 /// A walk over procedural terrain, as `--terrain` bakes and exports it (hills half the body's
 /// length high, a 12° slope, steps a fifth of the shortest leg high), audited on the terrain
-/// the file carries; the walker's front as drawn (`neck_width` 1), as its regressions were
-/// found on.
+/// the file carries; a [`REGRESSION_WALKER`], as its regressions were found on.
 fn terrain_walk_report(seed: u64) -> creature_audit::Report {
     use creature::terrain::{TerrainParams, terrain, terrain_mesh};
-    let c = d3::generate(
-        seed,
-        &d3::Params::DEFAULT
-            .with_kind(Kind::Walker)
-            .with_neck_width(1.0)
-            .with_clips(false),
-    )
-    .unwrap();
+    let c = d3::generate(seed, &REGRESSION_WALKER.with_clips(false)).unwrap();
     let leg = c
         .gait
         .as_ref()

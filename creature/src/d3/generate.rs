@@ -1489,34 +1489,32 @@ fn measure_neck(
         return None;
     }
     let carrier = spine[n - 2];
-    // The body's width at each joint: the skin bound to it most, from its leftmost vertex to
-    // its rightmost.
-    let width = |k: usize| mesh.width_across(body_vertices, spine[k]);
+    // The body's width at each joint short of the head: the skin bound to it most, from its
+    // leftmost vertex to its rightmost.
+    let widths: Vec<Option<f32>> = spine[..n - 2]
+        .iter()
+        .map(|&j| mesh.width_across(body_vertices, j))
+        .collect();
     // The widest joint short of the head, then the narrowest from it to the head: the
     // joints' skin, and the head's carrier's where it shows outside the skull.
-    let (widest, body) = (0..n - 2)
-        .filter_map(|k| Some((k, width(k)?)))
+    let (widest, body) = widths
+        .iter()
+        .enumerate()
+        .filter_map(|(k, w)| Some((k, (*w)?)))
         .max_by(|a, b| a.1.total_cmp(&b.1))?;
-    let x_span = |vertices: &mut dyn Iterator<Item = usize>| {
-        let (lo, hi) = vertices
-            .map(|v| mesh.positions[v].x)
-            .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), x| {
-                (lo.min(x), hi.max(x))
-            });
-        (hi >= lo).then_some(hi - lo)
-    };
-    let shown = x_span(
-        &mut (0..body_vertices.min(mesh.positions.len()))
-            .filter(|&v| mesh.dominant(v) == carrier && !head.in_skull(mesh.positions[v])),
+    let body_end = body_vertices.min(mesh.positions.len());
+    let shown = mesh.x_extent(
+        (0..body_end).filter(|&v| mesh.dominant(v) == carrier && !head.in_skull(mesh.positions[v])),
     );
-    let neck = (widest..n - 2)
-        .filter_map(width)
+    let neck = widths[widest..]
+        .iter()
+        .flatten()
+        .copied()
         .chain(shown)
         .min_by(f32::total_cmp)?;
     // The head's: its parts' (skull, face and ornaments) from the leftmost to the rightmost.
-    let head = x_span(
-        &mut (body_vertices..mesh.positions.len()).filter(|&v| mesh.dominant(v) == carrier),
-    )?;
+    let head = mesh
+        .x_extent((body_vertices..mesh.positions.len()).filter(|&v| mesh.dominant(v) == carrier))?;
     Some(neck / body.min(head).max(f32::MIN_POSITIVE))
 }
 

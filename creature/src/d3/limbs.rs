@@ -68,8 +68,15 @@ impl MeshBuilder {
     /// How wide (along `x`, across the body) the first `vertices` vertices bound most to
     /// `joint` reach, from the leftmost to the rightmost; `None` without one.
     pub(crate) fn width_across(&self, vertices: usize, joint: usize) -> Option<f32> {
-        let (lo, hi) = (0..vertices.min(self.positions.len()))
-            .filter(|&v| self.dominant(v) == joint)
+        self.x_extent(
+            (0..vertices.min(self.positions.len())).filter(|&v| self.dominant(v) == joint),
+        )
+    }
+
+    /// How wide (along `x`) `vertices` reach, from the leftmost to the rightmost; `None`
+    /// without one.
+    pub(crate) fn x_extent(&self, vertices: impl Iterator<Item = usize>) -> Option<f32> {
+        let (lo, hi) = vertices
             .map(|v| self.positions[v].x)
             .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), x| {
                 (lo.min(x), hi.max(x))

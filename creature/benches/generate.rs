@@ -7,7 +7,9 @@
 
 use core::hint::black_box;
 
+use creature::d3::{Animator, Intent};
 use creature::glam::Vec2;
+use creature::glam::Vec3;
 use creature::metaball::{Ball2, Falloff};
 use creature::{d2, d3, generate, generate_2d};
 use criterion::{Criterion, criterion_group, criterion_main};
@@ -133,6 +135,40 @@ fn bench_3d(c: &mut Criterion) {
     group.finish();
 }
 
+/// One live update of `walker` on `ground`, walking in a circle.
+fn bench_walker<G: creature::gait::Ground>(
+    group: &mut criterion::BenchmarkGroup<'_, criterion::measurement::WallTime>,
+    name: &str,
+    walker: &creature::d3::Creature,
+    ground: &G,
+) {
+    let mut animator = Animator::new(walker).expect("a walker");
+    for _ in 0..120 {
+        animator
+            .update(1.0 / 60.0, circling(&animator, walker.speed), ground)
+            .expect("walks");
+    }
+    group.bench_function(name, |b| {
+        b.iter(|| {
+            let intent = circling(&animator, walker.speed);
+            animator
+                .update(black_box(1.0 / 60.0), black_box(intent), ground)
+                .expect("walks");
+            black_box(animator.skinning_matrices().len())
+        });
+    });
+}
+
+/// Forward at `speed` along the animator's heading, turning at 0.5 rad/s: a circle (of radius
+/// 2 × speed) the creature keeps to, on the terrain, however long the bench runs.
+fn circling(animator: &Animator, speed: f32) -> Intent {
+    let heading = animator.heading();
+    Intent::Move {
+        velocity: Vec3::new(heading.sin(), 0.0, heading.cos()) * speed,
+        turn_rate: 0.5,
+    }
+}
+
 /// One live update of walker 7 (`d3::Animator`: gait, pose and skinning matrices) on flat
 /// ground and on the default procedural terrain, walking in a circle; of flier 7 and swimmer 7
 /// (steering, ground under and ahead, wings or wave, pose, skinning) going round over that
@@ -140,54 +176,57 @@ fn bench_3d(c: &mut Criterion) {
 /// the same run, sampling a baked `walk` clip of the same walker (`Creature::pose` at a frame,
 /// then each joint's skinning matrix).
 fn bench_animator(c: &mut Criterion) {
-    use creature::d3::{Animator, Intent};
     use creature::gait::Plane;
-    use creature::glam::{Mat4, Vec3};
+    use creature::glam::Mat4;
     use creature::terrain::{TerrainParams, terrain};
 
     let mut group = c.benchmark_group("animate_3d");
-    let walker = generate(7, &d3::Params::DEFAULT.with_kind(d3::Kind::Walker)).expect("valid");
-    let intent = Intent::Move {
-        velocity: Vec3::Z * walker.speed,
-        turn_rate: 0.5,
-    };
     let hills = terrain(7, &TerrainParams::DEFAULT).expect("valid");
-    for (name, ground) in [
-        (
-            "animator_update_walker_flat",
-            &Plane::GROUND as &dyn creature::gait::Ground,
-        ),
-        ("animator_update_walker_terrain", &hills),
-    ] {
-        let mut animator = Animator::new(&walker).expect("a walker");
-        for _ in 0..120 {
-            animator.update(1.0 / 60.0, intent, ground).expect("walks");
-        }
-        group.bench_function(name, |b| {
-            b.iter(|| {
-                animator
-                    .update(black_box(1.0 / 60.0), black_box(intent), ground)
-                    .expect("walks");
-                black_box(animator.skinning_matrices().len())
-            });
-        });
-    }
+    // Walker 32 is a median walker of seeds 0-399: 4 legs, 21 joints, 3,492 vertices (the
+    // medians are 4, 21 and about 3,500); walker 7 is a biped, two legs fewer.
+    let median = generate(32, &d3::Params::DEFAULT.with_kind(d3::Kind::Walker)).expect("valid");
+    let walker = generate(7, &d3::Params::DEFAULT.with_kind(d3::Kind::Walker)).expect("valid");
+    // Each ground by its own type, as a game calls `update` (a `&dyn Ground` would add a
+    // virtual call per ray).
+    bench_walker(
+        &mut group,
+        "animator_update_walker_flat",
+        &walker,
+        &Plane::GROUND,
+    );
+    bench_walker(
+        &mut group,
+        "animator_update_walker_terrain",
+        &walker,
+        &hills,
+    );
+    bench_walker(
+        &mut group,
+        "animator_update_median_walker_flat",
+        &median,
+        &Plane::GROUND,
+    );
+    bench_walker(
+        &mut group,
+        "animator_update_median_walker_terrain",
+        &median,
+        &hills,
+    );
     // Fliers and swimmers over the same hills, turning as the walker does.
     for (name, kind) in [
         ("animator_update_flier_terrain", d3::Kind::Flier),
         ("animator_update_swimmer_terrain", d3::Kind::Swimmer),
     ] {
         let c = generate(7, &d3::Params::DEFAULT.with_kind(kind)).expect("valid");
-        let intent = Intent::Move {
-            velocity: Vec3::Z * c.speed,
-            turn_rate: 0.5,
-        };
         let mut animator = Animator::new(&c).expect("a flier or swimmer");
         for _ in 0..120 {
-            animator.update(1.0 / 60.0, intent, &hills).expect("moves");
+            animator
+                .update(1.0 / 60.0, circling(&animator, c.speed), &hills)
+                .expect("moves");
         }
         group.bench_function(name, |b| {
             b.iter(|| {
+                let intent = circling(&animator, c.speed);
                 animator
                     .update(black_box(1.0 / 60.0), black_box(intent), &hills)
                     .expect("moves");

@@ -9,6 +9,7 @@
 //! cargo run --release --example generate -- --kind walker --count 16 --out out/
 //! cargo run --release --example generate -- --kind walker --in-place --seed 7 --out out/
 //! cargo run --release --example generate -- --kind walker --terrain 3 --seed 7 --out out/
+//! cargo run --release --example generate -- --kind flier --terrain 3 --seed 7 --out out/
 //! cargo run --release --example generate -- --dim 2d --seed 7 --out out/
 //! cargo run --release --example generate -- --help
 //! ```
@@ -16,8 +17,8 @@
 //! Options: `--dim 3d|2d` (default 3d), `--kind walker|flier|swimmer|random` (3D, default
 //! random), `--count N` (default 1), `--seed N` (default 0), `--out DIR` (default `out/`),
 //! `--texture-size N` (2D, default 256), `--bones` (2D: draw the bones on the PNG),
-//! `--in-place` (3D), `--terrain SEED` (3D walkers: a walk over procedural terrain, the terrain
-//! in the file), `--threads N` (default: every core), `--dry-run` (generate and encode, write
+//! `--in-place` (3D), `--terrain SEED` (3D: a walk, flight or swim over procedural terrain,
+//! the terrain in the file), `--threads N` (default: every core), `--dry-run` (generate and encode, write
 //! nothing).
 
 #![allow(clippy::std_instead_of_core, clippy::std_instead_of_alloc)]
@@ -68,9 +69,10 @@ struct Args {
     /// loop them as they are; the default keeps root motion, as engines want it.
     #[arg(long)]
     in_place: bool,
-    /// 3D walkers: instead of the flat-ground clips, bake `walk_to`, a walk from the origin to
-    /// a point 10 body lengths away over procedural terrain drawn from this seed (hills,
-    /// a 12° slope, steps), and put the terrain in the `.glb` as a second node.
+    /// 3D: instead of the flat-ground clips, bake a walker's `walk_to` (a flier's `fly_to`:
+    /// take-off, flight and landing; a swimmer's `swim_to`) from the origin to a point 10 body
+    /// lengths away over procedural terrain drawn from this seed (hills, a 12° slope, steps),
+    /// and put the terrain in the `.glb` as a second node.
     #[arg(long, value_name = "SEED")]
     terrain: Option<u64>,
     /// Worker threads for `--count` (default: every core, or `RAYON_NUM_THREADS`).
@@ -255,22 +257,22 @@ fn make_3d(seed: u64, job: &Job<'_>) -> Result<String, String> {
     let start = Instant::now();
     let creature = generate(seed, &job.params).map_err(err)?;
     let elapsed = start.elapsed();
-    let walk_to;
+    let to;
     let (clips, glb) = match job.terrain {
         None => (
             &creature.clips[..],
             export::glb_3d(&creature, &creature.clips).map_err(err)?,
         ),
         Some(terrain_seed) => {
-            let (clip, ground) = walk_over_terrain(&creature, terrain_seed).map_err(err)?;
-            walk_to = [if job.params.in_place {
+            let (clip, ground) = over_terrain(&creature, terrain_seed).map_err(err)?;
+            to = [if job.params.in_place {
                 clip.in_place()
             } else {
                 clip
             }];
-            let glb = export::glb_3d_on_terrain(&creature, &walk_to, &terrain_mesh(&ground))
-                .map_err(err)?;
-            (&walk_to[..], glb)
+            let glb =
+                export::glb_3d_on_terrain(&creature, &to, &terrain_mesh(&ground)).map_err(err)?;
+            (&to[..], glb)
         }
     };
     let image = export::preview_3d(&creature, 256).map_err(err)?;
@@ -295,29 +297,28 @@ fn make_3d(seed: u64, job: &Job<'_>) -> Result<String, String> {
     ))
 }
 
-/// `--terrain`: terrain from `seed` sized to `walker` (hills half its length high, a 12°
-/// slope, steps a fifth of its shortest leg high), and its walk from the origin to a point 10
-/// body lengths away over it.
-fn walk_over_terrain(
-    walker: &d3::Creature,
+/// `--terrain`: terrain from `seed` sized to `creature` (hills half its length high, a 12°
+/// slope, steps a fifth of its shortest walking leg high, or a tenth of its length without
+/// one), and its walk, flight or swim from the origin to a point 10 body lengths away over it.
+fn over_terrain(
+    creature: &d3::Creature,
     seed: u64,
 ) -> Result<(d3::Clip, creature::gait::HeightField), creature::Error> {
-    let length = walker.length;
-    let leg = walker
-        .gait
-        .as_ref()
-        .ok_or(creature::Error::NoGait)?
-        .legs
-        .iter()
-        .map(|l| l.size)
-        .fold(f32::INFINITY, f32::min);
+    let length = creature.length;
+    let step = creature.gait.as_ref().map_or(0.1 * length, |gait| {
+        0.2 * gait
+            .legs
+            .iter()
+            .map(|l| l.size)
+            .fold(f32::INFINITY, f32::min)
+    });
     let params = TerrainParams::DEFAULT
         .with_extent(24.0 * length, 193)
         .with_hills(0.5 * length, 6.0 * length)
         .with_slope(12.0)
-        .with_steps(0.2 * leg, 3.0 * length);
+        .with_steps(step, 3.0 * length);
     let ground = terrain(seed, &params)?;
-    let clip = walker.bake_walk_to(&ground, glam::Vec3::new(6.0, 0.0, 8.0) * length, 120.0)?;
+    let clip = creature.bake_to(&ground, glam::Vec3::new(6.0, 0.0, 8.0) * length, 120.0)?;
     Ok((clip, ground))
 }
 

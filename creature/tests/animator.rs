@@ -90,7 +90,7 @@ fn planted(c: &d3::Creature, animator: &Animator) -> Vec<bool> {
         .collect()
 }
 
-fn height<G: Ground>(ground: &G, p: Vec3) -> f32 {
+fn height<G: Ground + ?Sized>(ground: &G, p: Vec3) -> f32 {
     ground
         .cast_down_point(Vec3::new(p.x, 1e4, p.z), 2e4)
         .unwrap()
@@ -287,7 +287,7 @@ fn a_walk_baked_over_terrain_keeps_its_planted_feet_on_it_as_a_viewer_plays_it()
             .with_slope(15.0);
         let ground = terrain(seed, &params).unwrap();
         let target = Vec3::new(6.0, 0.0, 8.0) * c.length;
-        let clip = c.bake_walk_to(&ground, target, 240.0).unwrap();
+        let clip = c.bake_to(&ground, target, 240.0).unwrap();
         let end = clip.root_translation[clip.frames - 1];
         assert!(
             Vec3::new(end.x - target.x, 0.0, end.z - target.z).length() < c.length,
@@ -315,19 +315,87 @@ fn baking_a_walk_to_a_target_checks_its_input() {
     let c = walker(8);
     for seconds in [0.0, -1.0, f32::NAN, 1e4] {
         assert!(matches!(
-            c.bake_walk_to(&Plane::GROUND, Vec3::Z, seconds),
+            c.bake_to(&Plane::GROUND, Vec3::Z, seconds),
             Err(creature::Error::OutOfRange { .. })
         ));
     }
     assert!(matches!(
-        c.bake_walk_to(&Plane::GROUND, Vec3::NAN, 10.0),
+        c.bake_to(&Plane::GROUND, Vec3::NAN, 10.0),
         Err(creature::Error::NonFinite { .. })
     ));
-    let fish = d3::generate(1, &d3::Params::DEFAULT.with_kind(Kind::Swimmer)).unwrap();
+    // A walker whose gait set-up was taken away.
+    let mut lame = c.clone();
+    lame.gait = None;
     assert_eq!(
-        fish.bake_walk_to(&Plane::GROUND, Vec3::Z, 10.0).err(),
+        lame.bake_to(&Plane::GROUND, Vec3::Z, 10.0).err(),
         Some(creature::Error::NoGait)
     );
+}
+
+/// The lowest of `posed`'s heights above `ground` under each.
+fn lowest_posed_gap<G: Ground + ?Sized>(posed: &[Vec3], ground: &G) -> f32 {
+    posed
+        .iter()
+        .map(|&p| p.y - height(ground, p))
+        .fold(f32::INFINITY, f32::min)
+}
+
+#[test]
+fn a_flight_baked_over_terrain_takes_off_arrives_and_lands_as_a_viewer_plays_it() {
+    for seed in [1, 2] {
+        let c = flier(seed);
+        let hilly = hills(&c, seed, 0.5, 12.0);
+        let target = Vec3::new(6.0, 0.0, 8.0) * c.length;
+        for (ground, label) in [
+            (&hilly as &dyn Ground, "hills"),
+            (&Plane::GROUND as &dyn Ground, "flat"),
+        ] {
+            let label = format!("seed {seed} on {label}");
+            let clip = c.bake_to(ground, target, 120.0).unwrap();
+            assert_eq!(clip.name, "fly_to");
+            assert!(clip.contacts.is_empty());
+            let gaps: Vec<f32> = (0..clip.frames)
+                .map(|f| lowest_posed_gap(&c.posed_positions(&clip, f).unwrap(), ground))
+                .collect();
+            // Never in the ground; flying between its ends, on the ground at them (on flat
+            // ground its lowest vertex on it; on a slope its rest pose on the highest ground
+            // under its reach, its downhill side short of the ground under it).
+            let lowest = gaps.iter().fold(f32::INFINITY, |a, &b| a.min(b));
+            assert!(lowest > -1e-3 * c.length, "{label}: {lowest} in the ground");
+            let highest = gaps.iter().fold(0.0f32, |a, &b| a.max(b));
+            assert!(highest > 0.3 * c.length, "{label}: flies {highest} up");
+            let on = if label.ends_with("flat") {
+                0.01 * c.length
+            } else {
+                0.25 * highest
+            };
+            let (first, last) = (gaps[0], gaps[clip.frames - 1]);
+            assert!(first < on, "{label}: starts {first} up");
+            assert!(last < on, "{label}: ends {last} up");
+            let end = clip.root_translation[clip.frames - 1];
+            let off = Vec3::new(end.x - target.x, 0.0, end.z - target.z).length();
+            assert!(off < c.length, "{label}: lands {off} from the target");
+        }
+    }
+}
+
+#[test]
+fn a_swim_baked_over_the_seabed_arrives_above_it_as_a_viewer_plays_it() {
+    for seed in [1, 2] {
+        let c = swimmer(seed);
+        let ground = hills(&c, seed, 0.3, 10.0);
+        let target = Vec3::new(-8.0, 0.0, 6.0) * c.length;
+        let clip = c.bake_to(&ground, target, 120.0).unwrap();
+        assert_eq!(clip.name, "swim_to");
+        for f in 0..clip.frames {
+            let gap = lowest_posed_gap(&c.posed_positions(&clip, f).unwrap(), &ground);
+            assert!(gap > 0.0, "seed {seed} frame {f}: {gap} in the seabed");
+        }
+        let end = clip.root_translation[clip.frames - 1];
+        let off = Vec3::new(end.x - target.x, 0.0, end.z - target.z).length();
+        assert!(off < c.length, "seed {seed}: stops {off} from the target");
+        assert!(clip.frames < 120 * 30, "seed {seed}: never settled");
+    }
 }
 
 #[test]
@@ -660,9 +728,11 @@ fn a_flier_told_to_stand_lands_on_its_rest_pose_and_takes_off_when_told_to_go() 
                 wing_angles.push(q.angle_between(creature::glam::Quat::IDENTITY));
             }
         }
+        // Its lowest vertex on the ground (it stood its rest pose's height, a third of its
+        // length for a median flier, above it).
         let standing = lowest_gap(&c, &animator, &ground);
         assert!(
-            standing < 0.01 * c.length + c.quality.min_height,
+            standing < 0.01 * c.length,
             "seed {seed}: standing {standing} up"
         );
         let wings = wing_angles.iter().fold(0.0f32, |a, &b| a.max(b));

@@ -555,32 +555,40 @@ fn regression_a_limited_swing_frame_that_would_touch_the_ground_moves_only_as_fa
 /// length high, a 12° slope, steps a fifth of the shortest leg high), audited on the terrain
 /// the file carries; a [`REGRESSION_WALKER`], as its regressions were found on.
 fn terrain_walk_report(seed: u64) -> creature_audit::Report {
+    terrain_report(&REGRESSION_WALKER.with_clips(false), seed)
+}
+
+/// The audit of creature `seed` of `params` going over terrain to a point 10 body lengths
+/// away, as `--terrain` exports it, measured on that terrain (a walker's fails on the plane
+/// y = 0).
+fn terrain_report(params: &d3::Params, seed: u64) -> creature_audit::Report {
     use creature::terrain::{TerrainParams, terrain, terrain_mesh};
-    let c = d3::generate(seed, &REGRESSION_WALKER.with_clips(false)).unwrap();
-    let leg = c
-        .gait
-        .as_ref()
-        .unwrap()
-        .legs
-        .iter()
-        .map(|l| l.size)
-        .fold(f32::INFINITY, f32::min);
+    let c = d3::generate(seed, params).unwrap();
+    let step = c.gait.as_ref().map_or(0.1 * c.length, |gait| {
+        0.2 * gait
+            .legs
+            .iter()
+            .map(|l| l.size)
+            .fold(f32::INFINITY, f32::min)
+    });
     let params = TerrainParams::DEFAULT
         .with_extent(24.0 * c.length, 193)
         .with_hills(0.5 * c.length, 6.0 * c.length)
         .with_slope(12.0)
-        .with_steps(0.2 * leg, 3.0 * c.length);
+        .with_steps(step, 3.0 * c.length);
     let field = terrain(seed, &params).unwrap();
     let target = creature::glam::Vec3::new(6.0, 0.0, 8.0) * c.length;
-    let clip = c.bake_walk_to(&field, target, 120.0).unwrap();
+    let clip = c.bake_to(&field, target, 120.0).unwrap();
     let glb = creature::export::glb_3d_on_terrain(&c, &[clip], &terrain_mesh(&field)).unwrap();
     let mut model = creature_audit::Model::from_glb(&glb).unwrap();
     assert!(model.terrain.is_some());
     let report = creature_audit::audit(&model, &Limits::DEFAULT).unwrap();
-    // Measured on the plane y = 0 instead, the same walk is over and under the ground.
-    model.terrain = None;
-    let flat = creature_audit::audit(&model, &Limits::DEFAULT).unwrap();
-    assert!(flat.fails(Check::BelowGround) || flat.fails(Check::FootNeverDown));
+    if c.gait.is_some() {
+        // Measured on the plane y = 0 instead, the same walk is over and under the ground.
+        model.terrain = None;
+        let flat = creature_audit::audit(&model, &Limits::DEFAULT).unwrap();
+        assert!(flat.fails(Check::BelowGround) || flat.fails(Check::FootNeverDown));
+    }
     report
 }
 
@@ -1052,4 +1060,27 @@ fn regression_a_long_front_leg_steps_before_the_hind_foot_lands_on_it() {
     .with_snout_length(Span::new(2.230_136_2, 3.719_821_7))
     .with_ornaments(Span::new(0.751_980_3, 1.985_458_4), 0.938_962_34);
     passes(7_361_394_951_656_852_688, &params, &Check::ALL);
+}
+
+/// Fliers and swimmers over terrain (a flight from landed to landed, a swim over a seabed of
+/// hills, a slope and steps to a point 10 body lengths away, as `--terrain` exports them)
+/// hold every check on that terrain: nothing in the ground, no joint whipping. Seeds 0 to
+/// `CREATURE_TERRAIN_SEEDS - 1` (default 6) of each kind.
+#[test]
+fn flights_and_swims_over_terrain_pass_the_audit_on_the_terrain() {
+    let seeds = std::env::var("CREATURE_TERRAIN_SEEDS")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(6u64);
+    for kind in [Kind::Flier, Kind::Swimmer] {
+        let params = d3::Params::DEFAULT.with_kind(kind).with_clips(false);
+        let failed: Vec<String> = (0..seeds)
+            .filter_map(|seed| {
+                let report = terrain_report(&params, seed);
+                (!report.passes()).then(|| format!("seed {seed}: {}", listed(&report)))
+            })
+            .collect();
+        eprintln!("{kind:?} over terrain: {} of {seeds} fail", failed.len());
+        assert!(failed.is_empty(), "{kind:?}: {failed:#?}");
+    }
 }

@@ -66,7 +66,7 @@ fn glb_3d_on_terrain_adds_the_terrain_as_a_second_node() {
     )
     .unwrap();
     let ground = terrain(7, &TerrainParams::DEFAULT.with_extent(20.0, 41)).unwrap();
-    let clip = c.bake_walk_to(&ground, Vec3::Z * 2.0, 20.0).unwrap();
+    let clip = c.bake_to(&ground, Vec3::Z * 2.0, 20.0).unwrap();
     let mesh = terrain_mesh(&ground);
     let clips = [clip];
     let glb = export::glb_3d_on_terrain(&c, &clips, &mesh).unwrap();

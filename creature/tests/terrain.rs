@@ -216,7 +216,7 @@ fn the_exported_terrain_mesh_is_the_ground_the_walk_stood_on() {
         let mesh = terrain_mesh(&field);
         let heights = MeshHeights::new(&mesh, &field);
         let clip = c
-            .bake_walk_to(&field, Vec3::new(3.0, 0.0, 4.0) * c.length, 60.0)
+            .bake_to(&field, Vec3::new(3.0, 0.0, 4.0) * c.length, 60.0)
             .unwrap();
         let gap =
             |p: Vec3| (heights.height(p.x, p.z) - field.height(p.x, p.z).unwrap()).abs() / c.length;

@@ -802,11 +802,14 @@ fn gltf(w: &Workspace) -> Result<(), String> {
     c.args(["--kind", "random", "--count", "8", "--seed", "100", "--out"]);
     c.arg(dir.join("3d"));
     run(c)?;
-    // A walker crossing procedural terrain, the terrain a second node of its file.
-    let mut c = example(w, "generate");
-    c.args(["--kind", "walker", "--seed", "7", "--terrain", "3", "--out"]);
-    c.arg(dir.join("terrain"));
-    run(c)?;
+    // A walker, a flier and a swimmer crossing procedural terrain, the terrain a second node
+    // of each file.
+    for kind in ["walker", "flier", "swimmer"] {
+        let mut c = example(w, "generate");
+        c.args(["--kind", kind, "--seed", "7", "--terrain", "3", "--out"]);
+        c.arg(dir.join("terrain").join(kind));
+        run(c)?;
+    }
     verify_gltf(w, &dir)
 }
 

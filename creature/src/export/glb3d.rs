@@ -43,7 +43,7 @@ pub fn glb_3d(creature: &Creature, clips: &[Clip]) -> Result<Vec<u8>, Error> {
 
 /// [`glb_3d`] with the ground it walks on: `terrain` (for example
 /// [`terrain_mesh`](crate::terrain::terrain_mesh) of the height field a clip was baked on with
-/// [`Creature::bake_walk_to`]) as a second mesh node, `terrain`, unskinned, with an earthy
+/// [`Creature::bake_to`]) as a second mesh node, `terrain`, unskinned, with an earthy
 /// single-sided material, so a viewer shows the feet on the ground.
 ///
 /// ```
@@ -54,7 +54,7 @@ pub fn glb_3d(creature: &Creature, clips: &[Clip]) -> Result<Vec<u8>, Error> {
 ///
 /// let walker = generate(7, &Params::DEFAULT.with_kind(Kind::Walker).with_clips(false))?;
 /// let hills = terrain(7, &TerrainParams::DEFAULT)?;
-/// let walk = walker.bake_walk_to(&hills, Vec3::new(0.0, 0.0, 2.0) * walker.length, 20.0)?;
+/// let walk = walker.bake_to(&hills, Vec3::new(0.0, 0.0, 2.0) * walker.length, 20.0)?;
 /// let glb = export::glb_3d_on_terrain(&walker, &[walk], &terrain_mesh(&hills))?;
 /// assert_eq!(&glb[0..4], b"glTF");
 /// # Ok::<(), creature::Error>(())

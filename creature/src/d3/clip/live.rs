@@ -79,10 +79,10 @@ pub const ARRIVAL_RADIUS: f32 = 0.25;
 ///   faster and wider the faster it flies (at 0.8 of the clip's beat hovering, the clip's at its
 ///   speed, 1.2 times at twice it; see [`beat_frequency`](Self::beat_frequency)), and its
 ///   legs, arms and tail are the clip's damped chains, trailing tucked back. Told to
-///   [`Stand`](Intent::Stand), it lands in 1.5 s: it comes down onto its rest pose on the
-///   ground under it (the highest under its reach: on a slope its downhill feet do not reach),
-///   its wings and chains settling to rest; told anything else, it takes off in 0.75 s, rising
-///   before it moves off.
+///   [`Stand`](Intent::Stand), it lands: it comes down onto its rest pose, its lowest vertex on
+///   the ground under it (the highest under its reach: on a slope its downhill feet do not
+///   reach), its wings and chains settling to rest over 1.5 s; told anything else, it takes off
+///   in 0.75 s, rising before it moves off.
 /// - A swimmer swims at the height of its baked `swim` clip (its fins clear of the bottom)
 ///   plus 2% of its body length above the highest ground under and ahead of it. Its spine
 ///   waves as in that clip, faster the faster it swims (half the clip's rate at rest, the
@@ -795,6 +795,16 @@ impl Animator {
     pub const fn controller(&self) -> &Controller {
         &self.controller
     }
+
+    /// Whether the creature has come to rest: a walker with every foot planted, a flier
+    /// landed and still, a swimmer slowed to a twentieth of its speed.
+    fn settled(&self) -> bool {
+        match &self.drive {
+            Drive::Walk => self.controller.all_planted(),
+            Drive::Fly(flight) => flight.landed(self.length),
+            Drive::Swim(swimming) => swimming.speed() <= 0.05 * self.speed,
+        }
+    }
 }
 
 /// The longest time step an update takes: a longer one (a frame hitch) is taken as this.
@@ -1114,30 +1124,38 @@ fn parents_first(parents: &[Option<usize>]) -> Result<Vec<usize>, Error> {
 }
 
 impl Creature {
-    /// A clip named `walk_to` of this walker crossing `ground` to `target` (world; its height
-    /// is ignored) from the origin, facing +Z, driven by an [`Animator`] at [`CLIP_FPS`]
-    /// (see [`Intent::GoTo`]): it ends on arrival or after `max_seconds`. Its frames are the
-    /// animator's poses: the root's world transform and the local rotations of the legs' and
-    /// the neck's and tail's joints (and the hips' translations), with each leg's contacts.
+    /// A clip of this creature going over `ground` to `target` (world; its height is ignored)
+    /// from the origin, facing +Z, driven by an [`Animator`] at [`CLIP_FPS`] (see
+    /// [`Intent::GoTo`]), then standing: it ends once the creature has arrived and settled, or
+    /// after `max_seconds`. Its frames are the animator's poses: the root's world transform
+    /// and the local rotations of every joint the animator turns (and the hips' translations).
+    ///
+    /// - A walker's clip is `walk_to`: it walks there and ends with every foot planted; it
+    ///   carries each leg's contacts.
+    /// - A flier's is `fly_to`: it starts landed on the ground at the origin, takes off, flies
+    ///   there and lands (see [`Animator`]); its frames have no contacts.
+    /// - A swimmer's is `swim_to`: it swims there and ends once it has slowed to a sway.
     ///
     /// ```
     /// use creature::d3::{generate, Kind, Params};
     /// use creature::glam::Vec3;
     /// use creature::terrain::{terrain, TerrainParams};
     ///
-    /// let walker = generate(7, &Params::DEFAULT.with_kind(Kind::Walker).with_clips(false))?;
     /// let hills = terrain(7, &TerrainParams::DEFAULT)?;
-    /// let clip = walker.bake_walk_to(&hills, Vec3::new(1.0, 0.0, 3.0) * walker.length, 30.0)?;
+    /// let walker = generate(7, &Params::DEFAULT.with_kind(Kind::Walker).with_clips(false))?;
+    /// let clip = walker.bake_to(&hills, Vec3::new(1.0, 0.0, 3.0) * walker.length, 30.0)?;
     /// assert_eq!(clip.name, "walk_to");
     /// assert!(clip.frames > 1);
+    /// let bird = generate(7, &Params::DEFAULT.with_kind(Kind::Flier).with_clips(false))?;
+    /// assert_eq!(bird.bake_to(&hills, Vec3::new(0.0, 0.0, 3.0), 30.0)?.name, "fly_to");
     /// # Ok::<(), creature::Error>(())
     /// ```
     ///
     /// # Errors
-    /// As [`Animator::new`] (a creature without a gait: [`Error::NoGait`]) and
+    /// As [`Animator::new`] (a kind this version does not animate: [`Error::NoGait`]) and
     /// [`Animator::update`] (a non-finite target); [`Error::OutOfRange`] for `max_seconds`
     /// outside `[1 / CLIP_FPS, 600]`.
-    pub fn bake_walk_to<G: Ground + ?Sized>(
+    pub fn bake_to<G: Ground + ?Sized>(
         &self,
         ground: &G,
         target: Vec3,
@@ -1152,16 +1170,34 @@ impl Creature {
                 max: 600.0,
             });
         }
-        if self.gait.is_none() {
-            return Err(Error::NoGait);
+        if !target.is_finite() {
+            return Err(Error::NonFinite {
+                what: "intent target",
+            });
         }
         let mut animator = Animator::new(self)?;
+        let name = match animator.drive {
+            Drive::Walk => "walk_to",
+            Drive::Fly(_) => {
+                // Landed at the origin before the first frame (within a minute): the clip
+                // takes off.
+                for _ in 0..60 * CLIP_FPS as usize {
+                    animator.update(1.0 / CLIP_FPS, Intent::Stand, ground)?;
+                    if animator.settled() {
+                        break;
+                    }
+                }
+                "fly_to"
+            }
+            Drive::Swim(_) => "swim_to",
+        };
         let animated: Vec<usize> = (0..animator.turns.len())
             .filter(|&j| animator.turns[j] && j != animator.root)
             .collect();
         let most = (max_seconds * CLIP_FPS) as usize + 1;
+        let walker = matches!(animator.drive, Drive::Walk);
         let mut clip = Clip {
-            name: "walk_to",
+            name,
             fps: CLIP_FPS,
             frames: 0,
             root_translation: Vec::new(),
@@ -1178,9 +1214,10 @@ impl Creature {
             loop_error: 0.0,
         };
         let arrived = ARRIVAL_RADIUS * self.length;
+        let mut intent = Intent::GoTo(target);
         for frame in 0..most {
             let dt = if frame == 0 { 0.0 } else { 1.0 / CLIP_FPS };
-            animator.update(dt, Intent::GoTo(target), ground)?;
+            animator.update(dt, intent, ground)?;
             let root = animator.local[animator.root];
             clip.root_translation.push(Vec3::from(root.translation));
             clip.root_rotation
@@ -1194,20 +1231,24 @@ impl Creature {
                     t.push(Vec3::from(local.translation));
                 }
             }
-            clip.contacts.push(
-                animator
-                    .controller
-                    .leg_states()
-                    .iter()
-                    .map(|s| s.planted)
-                    .collect(),
-            );
+            if walker {
+                clip.contacts.push(
+                    animator
+                        .controller
+                        .leg_states()
+                        .iter()
+                        .map(|s| s.planted)
+                        .collect(),
+                );
+            }
             clip.frames += 1;
             let at = animator.position;
-            if Vec2::new(target.x - at.x, target.z - at.z).length() <= arrived
-                && animator.controller.all_planted()
-            {
-                break;
+            if Vec2::new(target.x - at.x, target.z - at.z).length() <= arrived {
+                // Arrived (a go-to's intent now, as a stand's): it stands, a flier lands.
+                intent = Intent::Stand;
+                if animator.settled() {
+                    break;
+                }
             }
         }
         clip.loop_error = super::loop_error(&clip);

@@ -5,7 +5,7 @@
 use alloc::boxed::Box;
 use alloc::vec::Vec;
 
-use glam::{Affine3A, Quat, Vec3};
+use glam::{Affine3A, Quat, Vec3, Vec3A};
 
 use creature_gait::{Controller, FlapParams, GaitOptions, Ground, SwimParams};
 
@@ -73,6 +73,8 @@ pub(super) struct Hold {
     radius: f32,
     /// Per joint, how far below it its skin may reach (metres).
     below: Vec<f32>,
+    /// Per joint, its skin's bottom rim at rest ([`bottom_rim`]).
+    rims: Vec<[Vec3A; 8]>,
     /// The least gap between the skin and the ground (metres).
     clearance: f32,
     /// The speed (m/s), smoothed.
@@ -106,6 +108,11 @@ pub(super) struct Flight {
     rest_below: Vec<f32>,
     /// How far it has landed: 0 flying, 1 standing on the ground.
     landed: f32,
+    /// How far its model origin rose or sank in the last update (metres).
+    sink: f32,
+    /// How high its lowest vertex is over its model origin at rest (metres, at least 0): a
+    /// landed flier is lowered by this onto the ground.
+    rest_lift: f32,
 }
 
 /// A swimmer's body wave.
@@ -157,6 +164,55 @@ fn rest_below(c: &Creature) -> Vec<f32> {
         .collect()
 }
 
+/// The slope a skin's bottom rim is chosen for: 30° (tan).
+const RIM_SLOPE: f32 = 0.577_350_3;
+
+/// Per joint, its skin's bottom rim at rest: in each of eight directions (every 45° about the
+/// vertical), the vertex that ground rising that way at [`RIM_SLOPE`] would reach first, as
+/// an offset from the joint; the joint's place where it has none.
+fn bottom_rims(c: &Creature) -> Vec<[Vec3A; 8]> {
+    use core::f32::consts::FRAC_1_SQRT_2 as D;
+    const DIRECTIONS: [(f32, f32); 8] = [
+        (1.0, 0.0),
+        (D, D),
+        (0.0, 1.0),
+        (-D, D),
+        (-1.0, 0.0),
+        (-D, -D),
+        (0.0, -1.0),
+        (D, -D),
+    ];
+    let joints = &c.skeleton.joints;
+    let mut rims = alloc::vec![[(f32::NEG_INFINITY, Vec3A::ZERO); 8]; joints.len()];
+    c.for_each_skinned(|j, p| {
+        let d = Vec3A::from(p - joints[j].position);
+        for (slot, (x, z)) in rims[j].iter_mut().zip(DIRECTIONS) {
+            // How far ground rising at the steepest slope `RIM_SLOPE` that way comes over
+            // the vertex, less the same at the joint.
+            let over = RIM_SLOPE * (d.x * x + d.z * z) - d.y;
+            if over > slot.0 {
+                *slot = (over, d);
+            }
+        }
+    });
+    rims.into_iter().map(|rim| rim.map(|(_, d)| d)).collect()
+}
+
+/// How high the lowest vertex is over the model origin at rest (at least 0; 0 for no mesh).
+fn rest_lift(c: &Creature) -> f32 {
+    let lowest = c
+        .mesh
+        .positions
+        .iter()
+        .map(|p| p.y)
+        .fold(f32::INFINITY, f32::min);
+    if lowest.is_finite() {
+        lowest.max(0.0)
+    } else {
+        0.0
+    }
+}
+
 /// How far the skin reaches horizontally from the model origin at rest (metres).
 fn skin_radius(c: &Creature) -> f32 {
     c.mesh
@@ -164,6 +220,21 @@ fn skin_radius(c: &Creature) -> f32 {
         .iter()
         .map(|p| glam::Vec2::new(p.x, p.z).length())
         .fold(0.0, f32::max)
+}
+
+impl Flight {
+    /// Whether it has landed (its rest pose on the ground) and come to rest: it moved up or
+    /// down no more than a ten-thousandth of `length` in the last update.
+    pub(super) fn landed(&self, length: f32) -> bool {
+        self.landed >= 1.0 && self.sink <= 1e-4 * length
+    }
+}
+
+impl Swimming {
+    /// How fast it swims now (m/s).
+    pub(super) const fn speed(&self) -> f32 {
+        self.hold.speed
+    }
 }
 
 impl Animator {
@@ -178,6 +249,7 @@ impl Animator {
                 height: FLY_HEIGHT * c.length,
                 radius: skin_radius(c),
                 below: c.joint_reach(),
+                rims: bottom_rims(c),
                 clearance: FLY_CLEARANCE * c.length,
                 speed: 0.0,
                 frequency: HOVER_BEAT * flap.frequency,
@@ -198,10 +270,15 @@ impl Animator {
             pitch: 0.0,
             rest_below: rest_below(c),
             landed: 0.0,
+            sink: 0.0,
+            rest_lift: rest_lift(c),
         };
         let controller = Controller::chains_only(c.length.max(1e-3), &GaitOptions::DEFAULT)?;
+        let turned: Vec<usize> = (flight.wings.iter().map(|w| w.0))
+            .chain(flight.chain_joints.iter().copied())
+            .collect();
         let drive = Drive::Fly(Box::new(flight));
-        Self::start(Self::bare(c, controller, TURN_RATE, drive)?)
+        Self::start(Self::bare(c, controller, TURN_RATE, drive)?.turning(&turned))
     }
 
     /// A swimmer's animator: at its swimming height over flat ground.
@@ -250,6 +327,7 @@ impl Animator {
                 height: lift + SWIM_CLEARANCE * c.length,
                 radius: skin_radius(c),
                 below,
+                rims: bottom_rims(c),
                 clearance: 0.5 * SWIM_CLEARANCE * c.length,
                 speed: 0.0,
                 frequency: REST_WAVE * params.frequency,
@@ -268,8 +346,23 @@ impl Animator {
             idle: 0.0,
         };
         let controller = Controller::chains_only(c.length.max(1e-3), &GaitOptions::DEFAULT)?;
+        // The spine's bones between the root and the tail's tip, and the fins.
+        let bones = swimming.spine.len().saturating_sub(1);
+        let turned: Vec<usize> = (swimming.spine.iter().take(bones).skip(1).copied())
+            .chain(swimming.fins.iter().map(|f| f.0))
+            .collect();
         let drive = Drive::Swim(Box::new(swimming));
-        Self::start(Self::bare(c, controller, TURN_RATE, drive)?)
+        Self::start(Self::bare(c, controller, TURN_RATE, drive)?.turning(&turned))
+    }
+
+    /// Marks `joints` as turned by the drive (their local rotations change).
+    fn turning(mut self, joints: &[usize]) -> Self {
+        for &j in joints {
+            if let Some(turns) = self.turns.get_mut(j) {
+                *turns = true;
+            }
+        }
+        self
     }
 
     /// Poses a new flier or swimmer over flat ground at `y = 0`; its first update starts
@@ -377,7 +470,7 @@ impl Animator {
     /// `below(joint)` under it, clears the ground under the joint by `clearance`.
     fn keep_above<G: Ground + ?Sized>(
         &mut self,
-        below: impl Fn(usize) -> f32,
+        (below, rims): (impl Fn(usize) -> f32, &[[Vec3A; 8]]),
         clearance: f32,
         ground: &G,
     ) {
@@ -387,8 +480,28 @@ impl Animator {
             let below = below(joint);
             let p = Vec3::from(world.translation);
             let from = p + Vec3::Y * above;
-            if let Some(hit) = ground.cast_down_point(from, 2.0 * above + below) {
-                lift = lift.max(hit.y + below + clearance - p.y);
+            let range = 2.0 * above + below;
+            let Some(hit) = ground.cast_down_point(from, range) else {
+                continue;
+            };
+            lift = lift.max(hit.y + below + clearance - p.y);
+            // Near the ground, its skin's bottom rim above the ground under each of its
+            // points too (on a slope, the rim's uphill side is nearer the ground).
+            let Some(rim) = rims.get(joint) else {
+                continue;
+            };
+            let reach = rim
+                .iter()
+                .map(|d| d.x.abs().max(d.z.abs()))
+                .fold(0.0, f32::max);
+            if p.y - below - clearance - hit.y < 2.0 * reach {
+                for &d in rim {
+                    let q = Vec3::from(world.transform_point3a(d));
+                    let from = Vec3::new(q.x, from.y, q.z);
+                    if let Some(hit) = ground.cast_down_point(from, from.y - q.y + range) {
+                        lift = lift.max(hit.y + clearance - q.y);
+                    }
+                }
             }
         }
         if lift > 0.0 && lift.is_finite() {
@@ -413,6 +526,7 @@ impl Animator {
     ) -> Result<(), Error> {
         // Landing: coming down onto its rest pose, the wings and the chains settling; taking
         // off, it rises before it flies off.
+        let before = self.position.y;
         let landed = if stand {
             (flight.landed + dt / LANDING_TIME).min(1.0)
         } else {
@@ -428,7 +542,10 @@ impl Animator {
             turn,
             share,
         } = self.steer(
-            (&flight.hold, flight.hold.height * (1.0 - down)),
+            (
+                &flight.hold,
+                flight.hold.height * (1.0 - down) - flight.rest_lift * down,
+            ),
             dt,
             (velocity, turn_rate),
             ground,
@@ -506,10 +623,14 @@ impl Animator {
         let hold = &flight.hold;
         let rest = &flight.rest_below;
         self.keep_above(
-            |j| hold.below[j] + (rest[j] - hold.below[j]) * down,
+            (
+                |j| hold.below[j] + (rest[j] - hold.below[j]) * down,
+                &hold.rims,
+            ),
             hold.clearance * (1.0 - down),
             ground,
         );
+        flight.sink = (self.position.y - before).abs();
         self.skin();
         Ok(())
     }
@@ -582,7 +703,7 @@ impl Animator {
         }
         self.forward_kinematics();
         let hold = &swimming.hold;
-        self.keep_above(|j| hold.below[j], hold.clearance, ground);
+        self.keep_above((|j| hold.below[j], &hold.rims), hold.clearance, ground);
         self.skin();
         Ok(())
     }

@@ -358,17 +358,14 @@ fn a_flight_baked_over_terrain_takes_off_arrives_and_lands_as_a_viewer_plays_it(
                 .map(|f| lowest_posed_gap(&c.posed_positions(&clip, f).unwrap(), ground))
                 .collect();
             // Never in the ground; flying between its ends, on the ground at them (on flat
-            // ground its lowest vertex on it; on a slope its rest pose on the highest ground
-            // under its reach, its downhill side short of the ground under it).
+            // ground its lowest vertex on it; on hills leaning with the plane of the ground
+            // under it, within 3% of its length: it stood 15% of its length above the hills
+            // for seed 1 when it landed level on the highest ground under its reach).
             let lowest = gaps.iter().fold(f32::INFINITY, |a, &b| a.min(b));
             assert!(lowest > -1e-3 * c.length, "{label}: {lowest} in the ground");
             let highest = gaps.iter().fold(0.0f32, |a, &b| a.max(b));
             assert!(highest > 0.3 * c.length, "{label}: flies {highest} up");
-            let on = if label.ends_with("flat") {
-                0.01 * c.length
-            } else {
-                0.25 * highest
-            };
+            let on = if label.ends_with("flat") { 0.01 } else { 0.03 } * c.length;
             let (first, last) = (gaps[0], gaps[clip.frames - 1]);
             assert!(first < on, "{label}: starts {first} up");
             assert!(last < on, "{label}: ends {last} up");

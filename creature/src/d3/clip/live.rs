@@ -79,10 +79,10 @@ pub const ARRIVAL_RADIUS: f32 = 0.25;
 ///   faster and wider the faster it flies (at 0.8 of the clip's beat hovering, the clip's at its
 ///   speed, 1.2 times at twice it; see [`beat_frequency`](Self::beat_frequency)), and its
 ///   legs, arms and tail are the clip's damped chains, trailing tucked back. Told to
-///   [`Stand`](Intent::Stand), it lands: it comes down onto its rest pose, its lowest vertex on
-///   the ground under it (the highest under its reach: on a slope its downhill feet do not
-///   reach), its wings and chains settling to rest over 1.5 s; told anything else, it takes off
-///   in 0.75 s, rising before it moves off.
+///   [`Stand`](Intent::Stand), it lands: it comes down onto its rest pose, leaning with the
+///   plane through the ground under its skin's bottom rim (up to 30°), its lowest vertex on
+///   that ground and none in it, its wings and chains settling to rest over 1.5 s; told
+///   anything else, it takes off in 0.75 s, rising before it moves off.
 /// - A swimmer swims at the height of its baked `swim` clip (its fins clear of the bottom)
 ///   plus 2% of its body length above the highest ground under and ahead of it. Its spine
 ///   waves as in that clip, faster the faster it swims (half the clip's rate at rest, the
@@ -679,9 +679,12 @@ impl Animator {
                 let arm = leg.kind == LimbKind::Arm;
                 // An arm's joint turned from its last pose no more than `arm_turn`.
                 let damped = |old: &Affine3A, new: Quat| {
+                    if !arm || arm_turn == f32::INFINITY {
+                        return new;
+                    }
                     let old = Quat::from_mat3a(&old.matrix3).normalize();
                     let angle = old.angle_between(new);
-                    if arm && angle > arm_turn {
+                    if angle > arm_turn {
                         old.slerp(new, arm_turn / angle).normalize()
                     } else {
                         new

@@ -73,8 +73,6 @@ pub(super) struct Hold {
     radius: f32,
     /// Per joint, how far below it its skin may reach (metres).
     below: Vec<f32>,
-    /// Per joint, its skin's bottom rim at rest ([`bottom_rim`]).
-    rims: Vec<[Vec3A; 8]>,
     /// The least gap between the skin and the ground (metres).
     clearance: f32,
     /// The speed (m/s), smoothed.
@@ -113,6 +111,13 @@ pub(super) struct Flight {
     /// How high its lowest vertex is over its model origin at rest (metres, at least 0): a
     /// landed flier is lowered by this onto the ground.
     rest_lift: f32,
+    /// Where it finds the ground it lands on ([`footprint`]).
+    footprint: [Vec3; 9],
+    /// Per joint, its skin's bottom rim at rest ([`bottom_rims`]), kept above the ground
+    /// landing.
+    rims: Vec<[Vec3A; 8]>,
+    /// Its lean (pitch, roll) with the ground it lands on, smoothed.
+    lean: glam::Vec2,
 }
 
 /// A swimmer's body wave.
@@ -171,6 +176,34 @@ const RIM_SLOPE: f32 = 0.577_350_3;
 /// vertical), the vertex that ground rising that way at [`RIM_SLOPE`] would reach first, as
 /// an offset from the joint; the joint's place where it has none.
 fn bottom_rims(c: &Creature) -> Vec<[Vec3A; 8]> {
+    let joints = &c.skeleton.joints;
+    let mut rims = alloc::vec![[(f32::NEG_INFINITY, Vec3A::ZERO); 8]; joints.len()];
+    c.for_each_skinned(|j, p| rim_candidate(&mut rims[j], Vec3A::from(p - joints[j].position)));
+    rims.into_iter().map(|rim| rim.map(|(_, d)| d)).collect()
+}
+
+/// The whole skin's bottom rim at rest ([`bottom_rims`] with the model origin for the joint)
+/// and its lowest vertex: where a landing flier finds the ground it stands on.
+fn footprint(c: &Creature) -> [Vec3; 9] {
+    let mut rim = [(f32::NEG_INFINITY, Vec3A::ZERO); 8];
+    let mut lowest = Vec3::ZERO;
+    for (k, &p) in c.mesh.positions.iter().enumerate() {
+        rim_candidate(&mut rim, Vec3A::from(p));
+        if k == 0 || p.y < lowest.y {
+            lowest = p;
+        }
+    }
+    let mut points = [lowest; 9];
+    for (point, (_, d)) in points.iter_mut().zip(rim) {
+        *point = Vec3::from(d);
+    }
+    points
+}
+
+/// Keeps `d` in each of `rim`'s eight directions (every 45° about the vertical, from +X
+/// toward +Z) where ground rising that way at [`RIM_SLOPE`] would reach it before the vertex
+/// kept there.
+fn rim_candidate(rim: &mut [(f32, Vec3A); 8], d: Vec3A) {
     use core::f32::consts::FRAC_1_SQRT_2 as D;
     const DIRECTIONS: [(f32, f32); 8] = [
         (1.0, 0.0),
@@ -182,20 +215,62 @@ fn bottom_rims(c: &Creature) -> Vec<[Vec3A; 8]> {
         (0.0, -1.0),
         (D, -D),
     ];
-    let joints = &c.skeleton.joints;
-    let mut rims = alloc::vec![[(f32::NEG_INFINITY, Vec3A::ZERO); 8]; joints.len()];
-    c.for_each_skinned(|j, p| {
-        let d = Vec3A::from(p - joints[j].position);
-        for (slot, (x, z)) in rims[j].iter_mut().zip(DIRECTIONS) {
-            // How far ground rising at the steepest slope `RIM_SLOPE` that way comes over
-            // the vertex, less the same at the joint.
-            let over = RIM_SLOPE * (d.x * x + d.z * z) - d.y;
-            if over > slot.0 {
-                *slot = (over, d);
-            }
+    for (slot, (x, z)) in rim.iter_mut().zip(DIRECTIONS) {
+        let over = RIM_SLOPE * (d.x * x + d.z * z) - d.y;
+        if over > slot.0 {
+            *slot = (over, d);
         }
-    });
-    rims.into_iter().map(|rim| rim.map(|(_, d)| d)).collect()
+    }
+}
+
+/// The plane through the ground under `points` (offsets from the model origin at rest, as
+/// [`footprint`]'s) with the model origin at `origin` turned by `yaw`: its height at the
+/// origin and its slopes along the body's forward and left axes as a pitch and a roll
+/// (radians, each within [`MAX_LEAN`](super::MAX_LEAN)); `None` unless three rays hit or
+/// the points span no area.
+fn ground_plane<G: Ground + ?Sized>(
+    ground: &G,
+    (origin, yaw): (Vec3, Quat),
+    points: &[Vec3],
+    (above, range): (f32, f32),
+) -> Option<(f32, glam::Vec2)> {
+    let mut hits = [(0.0f32, 0.0f32, 0.0f32); 9];
+    let mut n = 0;
+    for (hit, p) in hits.iter_mut().zip(points) {
+        let at = origin + yaw * Vec3::new(p.x, 0.0, p.z);
+        if let Some(g) = ground.cast_down_point(at + Vec3::Y * above, range) {
+            *hit = (p.x, p.z, g.y - origin.y);
+            n += 1;
+        }
+    }
+    if n < points.len() {
+        return None;
+    }
+    let count = n as f32;
+    let (mut mx, mut mz, mut mh) = (0.0f32, 0.0f32, 0.0f32);
+    for &(x, z, h) in &hits[..n] {
+        (mx, mz, mh) = (mx + x / count, mz + z / count, mh + h / count);
+    }
+    let (mut xx, mut xz, mut zz, mut xh, mut zh) = (0.0f32, 0.0f32, 0.0f32, 0.0f32, 0.0f32);
+    for &(x, z, h) in &hits[..n] {
+        let (x, z, h) = (x - mx, z - mz, h - mh);
+        (xx, xz, zz) = (xx + x * x, xz + x * z, zz + z * z);
+        (xh, zh) = (xh + x * h, zh + z * h);
+    }
+    let det = xx * zz - xz * xz;
+    if !(det > 1e-9 * (xx + zz) * (xx + zz)) {
+        return None;
+    }
+    let (p, q) = ((xh * zz - zh * xz) / det, (zh * xx - xh * xz) / det);
+    let lean = |slope: f32| {
+        glam::Vec2::new(1.0, slope)
+            .to_angle()
+            .clamp(-super::MAX_LEAN, super::MAX_LEAN)
+    };
+    Some((
+        origin.y + mh - p * mx - q * mz,
+        glam::Vec2::new(-lean(q), lean(p)),
+    ))
 }
 
 /// How high the lowest vertex is over the model origin at rest (at least 0; 0 for no mesh).
@@ -249,7 +324,6 @@ impl Animator {
                 height: FLY_HEIGHT * c.length,
                 radius: skin_radius(c),
                 below: c.joint_reach(),
-                rims: bottom_rims(c),
                 clearance: FLY_CLEARANCE * c.length,
                 speed: 0.0,
                 frequency: HOVER_BEAT * flap.frequency,
@@ -272,6 +346,9 @@ impl Animator {
             landed: 0.0,
             sink: 0.0,
             rest_lift: rest_lift(c),
+            footprint: footprint(c),
+            rims: bottom_rims(c),
+            lean: glam::Vec2::ZERO,
         };
         let controller = Controller::chains_only(c.length.max(1e-3), &GaitOptions::DEFAULT)?;
         let turned: Vec<usize> = (flight.wings.iter().map(|w| w.0))
@@ -327,7 +404,6 @@ impl Animator {
                 height: lift + SWIM_CLEARANCE * c.length,
                 radius: skin_radius(c),
                 below,
-                rims: bottom_rims(c),
                 clearance: 0.5 * SWIM_CLEARANCE * c.length,
                 speed: 0.0,
                 frequency: REST_WAVE * params.frequency,
@@ -374,11 +450,13 @@ impl Animator {
     }
 
     /// Where a flier or swimmer goes in `dt` at `velocity` turning at `turn_rate`: its model
-    /// origin follows the highest ground under and ahead of it (held `height` above it),
-    /// rising faster than it sinks; afresh, it is put there. Nothing is changed.
+    /// origin follows the highest ground under and ahead of it (held `height` above it; a
+    /// landing flier's `landing = (plane, share)`, that share of the way from there to the
+    /// height `plane` of the ground it lands on), rising faster than it sinks; afresh, it is
+    /// put there. Nothing is changed.
     fn steer<G: Ground + ?Sized>(
         &mut self,
-        (hold, height): (&Hold, f32),
+        (hold, height, landing): (&Hold, f32, Option<(f32, f32)>),
         dt: f32,
         (velocity, turn_rate): (Vec3, f32),
         ground: &G,
@@ -392,7 +470,8 @@ impl Animator {
         let mut position = self.position + velocity * dt;
         let top = self.ground_top(hold, position, velocity, ground);
         if let Some(top) = top {
-            let target = top + height;
+            let base = landing.map_or(top, |(plane, share)| top + (plane - top) * share);
+            let target = base + height;
             position.y = if self.fresh {
                 target
             } else {
@@ -470,7 +549,7 @@ impl Animator {
     /// `below(joint)` under it, clears the ground under the joint by `clearance`.
     fn keep_above<G: Ground + ?Sized>(
         &mut self,
-        (below, rims): (impl Fn(usize) -> f32, &[[Vec3A; 8]]),
+        (below, rims): (impl Fn(usize) -> f32, Option<&[[Vec3A; 8]]>),
         clearance: f32,
         ground: &G,
     ) {
@@ -487,7 +566,7 @@ impl Animator {
             lift = lift.max(hit.y + below + clearance - p.y);
             // Near the ground, its skin's bottom rim above the ground under each of its
             // points too (on a slope, the rim's uphill side is nearer the ground).
-            let Some(rim) = rims.get(joint) else {
+            let Some(rim) = rims.and_then(|rims| rims.get(joint)) else {
                 continue;
             };
             let reach = rim
@@ -534,6 +613,19 @@ impl Animator {
         };
         let down = landed * landed * (3.0 - 2.0 * landed);
         let (velocity, turn_rate) = (velocity * (1.0 - down), turn_rate * (1.0 - down));
+        // Landing, it comes down onto the plane of the ground under its footprint, leaning
+        // with it.
+        let plane = if down > 0.0 {
+            let above = RAY_ABOVE * self.length;
+            ground_plane(
+                ground,
+                (self.position, Quat::from_rotation_y(self.heading)),
+                &flight.footprint,
+                (above, above + RAY_BELOW * self.length),
+            )
+        } else {
+            None
+        };
         let Steer {
             heading,
             position,
@@ -545,6 +637,7 @@ impl Animator {
             (
                 &flight.hold,
                 flight.hold.height * (1.0 - down) - flight.rest_lift * down,
+                plane.map(|(height, _)| (height, down)),
             ),
             dt,
             (velocity, turn_rate),
@@ -587,6 +680,13 @@ impl Animator {
             .clamp(-MAX_PITCH, MAX_PITCH)
             * relative.min(1.0);
         let pitch = flight.pitch + (pitch_target - flight.pitch) * share;
+        let lean_target = plane.map_or(glam::Vec2::ZERO, |(_, lean)| lean * down);
+        let lean = if self.fresh {
+            lean_target
+        } else {
+            flight.lean + (lean_target - flight.lean) * share
+        };
+        flight.lean = lean;
         (self.position, self.heading, self.turn) = (position, heading, turn);
         (flight.beat, flight.bob, flight.pitch) = (beat, bob_phase, pitch);
         flight.landed = landed;
@@ -594,7 +694,8 @@ impl Animator {
         self.fresh = false;
         let yaw = Quat::from_rotation_y(heading);
         let rotation =
-            (yaw * Quat::from_rotation_x(pitch) * Quat::from_rotation_z(bank)).normalize();
+            (yaw * Quat::from_rotation_x(pitch + lean.x) * Quat::from_rotation_z(bank + lean.y))
+                .normalize();
         self.local[self.root] = Affine3A::from_rotation_translation(
             rotation,
             position + yaw * self.rest_root + Vec3::Y * bob,
@@ -625,7 +726,8 @@ impl Animator {
         self.keep_above(
             (
                 |j| hold.below[j] + (rest[j] - hold.below[j]) * down,
-                &hold.rims,
+                // Landing, its skin's bottom rims too.
+                (down > 0.0).then_some(&flight.rims[..]),
             ),
             hold.clearance * (1.0 - down),
             ground,
@@ -652,7 +754,7 @@ impl Animator {
             turn,
             ..
         } = self.steer(
-            (&swimming.hold, swimming.hold.height),
+            (&swimming.hold, swimming.hold.height, None),
             dt,
             (velocity, turn_rate),
             ground,
@@ -703,7 +805,7 @@ impl Animator {
         }
         self.forward_kinematics();
         let hold = &swimming.hold;
-        self.keep_above((|j| hold.below[j], &hold.rims), hold.clearance, ground);
+        self.keep_above((|j| hold.below[j], None), hold.clearance, ground);
         self.skin();
         Ok(())
     }

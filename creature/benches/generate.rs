@@ -169,12 +169,12 @@ fn circling(animator: &Animator, speed: f32) -> Intent {
     }
 }
 
-/// One live update of walker 7 (`d3::Animator`: gait, pose and skinning matrices) on flat
-/// ground and on the default procedural terrain, walking in a circle; of flier 7 and swimmer 7
-/// (steering, ground under and ahead, wings or wave, pose, skinning) going round over that
-/// terrain; and, as the reference in
-/// the same run, sampling a baked `walk` clip of the same walker (`Creature::pose` at a frame,
-/// then each joint's skinning matrix).
+/// One live update (`d3::Animator`: gait, pose and skinning matrices) of walker 7 and of
+/// median walker 32 on flat ground and on the default procedural terrain, walking in a circle
+/// along its heading; of flier 7 and swimmer 7 (steering, ground under and ahead, wings or
+/// wave, pose, skinning) going round over that terrain; and, as the reference in the same
+/// run, sampling a baked `walk` clip of walker 7 (`Creature::pose` at a frame, then each
+/// joint's skinning matrix).
 fn bench_animator(c: &mut Criterion) {
     use creature::gait::Plane;
     use creature::glam::Mat4;

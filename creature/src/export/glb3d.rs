@@ -44,7 +44,9 @@ pub fn glb_3d(creature: &Creature, clips: &[Clip]) -> Result<Vec<u8>, Error> {
 /// [`glb_3d`] with the ground it walks on: `terrain` (for example
 /// [`terrain_mesh`](crate::terrain::terrain_mesh) of the height field a clip was baked on with
 /// [`Creature::bake_to`]) as a second mesh node, `terrain`, unskinned, with an earthy
-/// single-sided material, so a viewer shows the feet on the ground.
+/// single-sided material, so a viewer shows the feet on the ground. The skeleton's root joint
+/// sits under a node of its own, `rig`, beside the two meshes (Blender then imports the
+/// terrain as an object of its own, not a child of the creature's armature).
 ///
 /// ```
 /// use creature::d3::{generate, Kind, Params};
@@ -207,10 +209,19 @@ fn scene(
         name: Some("creature".into()),
         ..Default::default()
     });
-    let mut nodes = vec![root_node, mesh_node];
-    if let Some(terrain) = terrain {
-        nodes.push(terrain_node(&mut root, &mut bin, terrain));
-    }
+    let nodes = match terrain {
+        None => vec![root_node, mesh_node],
+        Some(terrain) => {
+            // The skeleton under a node of its own: with its root joint at the scene's top,
+            // Blender's importer made the whole scene the armature and the terrain its child.
+            let rig = root.push(json::Node {
+                children: Some(vec![root_node]),
+                name: Some("rig".into()),
+                ..Default::default()
+            });
+            vec![rig, mesh_node, terrain_node(&mut root, &mut bin, terrain)]
+        }
+    };
     let scene = root.push(json::Scene {
         name: Some("creature".into()),
         nodes,

@@ -298,8 +298,8 @@ fn make_3d(seed: u64, job: &Job<'_>) -> Result<String, String> {
 }
 
 /// `--terrain`: terrain from `seed` sized to `creature` (hills half its length high, a 12°
-/// slope, steps a fifth of its shortest walking leg high, or a tenth of its length without
-/// one), and its walk, flight or swim from the origin to a point 10 body lengths away over it.
+/// slope, steps a fifth of its gait's shortest limb high, or a tenth of its length without a
+/// gait), and its walk, flight or swim from the origin to a point 10 body lengths away over it.
 fn over_terrain(
     creature: &d3::Creature,
     seed: u64,

@@ -372,6 +372,42 @@ fn a_flight_baked_over_terrain_takes_off_arrives_and_lands_as_a_viewer_plays_it(
             let end = clip.root_translation[clip.frames - 1];
             let off = Vec3::new(end.x - target.x, 0.0, end.z - target.z).length();
             assert!(off < c.length, "{label}: lands {off} from the target");
+            assert!(clip.frames < 120 * 30, "{label}: never settled");
+        }
+    }
+}
+
+#[test]
+fn a_flier_landing_on_a_slope_leans_with_it() {
+    // A 20° slope rising toward +Z; facing up it (heading 0) the flier's nose rises, and at
+    // any heading its up axis ends along the slope's normal.
+    let (sin, cos) = 20f32.to_radians().sin_cos();
+    let normal = Vec3::new(0.0, cos, -sin);
+    let slope = Plane::new(Vec3::ZERO, normal).unwrap();
+    for seed in [1, 2] {
+        let c = flier(seed);
+        let root = root(&c);
+        for heading in [0.0f32, 1.0, -2.5] {
+            let mut animator = Animator::new(&c).unwrap().with_pose(Vec3::ZERO, heading);
+            for _ in 0..30 * 5 {
+                animator.update(1.0 / 30.0, Intent::Stand, &slope).unwrap();
+            }
+            let body = animator.world_transforms()[root].matrix3;
+            let up = Vec3::from(body.y_axis);
+            let off = up.angle_between(normal).to_degrees();
+            assert!(
+                off < 3.0,
+                "seed {seed} heading {heading}: up {off}° off the normal"
+            );
+            if heading == 0.0 {
+                let forward = Vec3::from(body.z_axis);
+                assert!(
+                    forward.y > 0.3,
+                    "seed {seed}: nose at {forward} facing uphill"
+                );
+            }
+            let gap = lowest_gap(&c, &animator, &slope);
+            assert!(gap.abs() < 0.01 * c.length, "seed {seed}: stands {gap} up");
         }
     }
 }

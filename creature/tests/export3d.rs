@@ -75,6 +75,26 @@ fn glb_3d_on_terrain_adds_the_terrain_as_a_second_node() {
     // The terrain's material, mesh and node; the creature's scene lists three nodes.
     assert_eq!(json.matches("\"name\":\"terrain\"").count(), 3, "{json}");
     assert!(json.contains("\"name\":\"walk_to\""));
+    // The skeleton under a node of its own, the scene's first, beside the two meshes (with its
+    // root joint at the top, Blender made the terrain a child of the creature's armature).
+    let doc: serde_json::Value = serde_json::from_str(&json).unwrap();
+    let nodes = &doc["nodes"];
+    let name = |i: &serde_json::Value| nodes[i.as_u64().unwrap() as usize]["name"].clone();
+    let top: Vec<_> = doc["scenes"][0]["nodes"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .collect();
+    let names: Vec<_> = top.iter().map(|&i| name(i)).collect();
+    assert_eq!(names, ["rig", "creature", "terrain"], "{json}");
+    let rig = &nodes[top[0].as_u64().unwrap() as usize];
+    let children: Vec<_> = rig["children"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(name)
+        .collect();
+    assert_eq!(children, ["spine_0"], "{json}");
     assert!(glb.len() > export::glb_3d(&c, &clips).unwrap().len());
     // A broken terrain mesh is an error.
     let mut broken = mesh.clone();

@@ -144,8 +144,9 @@ pub struct Animator {
     head: Option<usize>,
     /// Per joint, the leg (index into `legs`) whose hip it is.
     leg_at: Vec<Option<usize>>,
-    /// Per joint, whether a walker's local transform turns (the root, the legs' joints, the
-    /// neck's and tail's bending joints); the others only sit at their rest offset.
+    /// Per joint, whether its local transform turns: a walker's root, legs' joints and neck's
+    /// and tail's bending joints; a flier's wings and chains; a swimmer's spine and fins. The
+    /// others only sit at their rest offset.
     turns: Vec<bool>,
     /// The time step the smoothing shares were last computed for, and the shares (terrain,
     /// turn bend).
@@ -1040,23 +1041,7 @@ fn fit_sole<G: Ground + ?Sized>(
         .iter()
         .zip(rim)
         .map(|(&(d, h), r)| (d.x, d.z, h + r.y));
-    let n = RIM_SAMPLES as f32;
-    let (mut sx, mut sz, mut sh) = (0.0f32, 0.0f32, 0.0f32);
-    for (x, z, h) in ground.clone() {
-        (sx, sz, sh) = (sx + x, sz + z, sh + h);
-    }
-    let (mx, mz, mh) = (sx / n, sz / n, sh / n);
-    let (mut xx, mut xz, mut zz, mut xh, mut zh) = (0.0f32, 0.0f32, 0.0f32, 0.0f32, 0.0f32);
-    for (x, z, h) in ground.clone() {
-        let (x, z, h) = (x - mx, z - mz, h - mh);
-        (xx, xz, zz) = (xx + x * x, xz + x * z, zz + z * z);
-        (xh, zh) = (xh + x * h, zh + z * h);
-    }
-    let det = xx * zz - xz * xz;
-    let plane = (det > 1e-12 * (xx + zz) * (xx + zz)).then(|| {
-        let (p, q) = ((xh * zz - zh * xz) / det, (zh * xx - xh * xz) / det);
-        (mh - p * mx - q * mz, p, q)
-    });
+    let plane = plane_fit(ground.clone());
     let off_plane = plane.map_or(f32::INFINITY, |(a, p, q)| {
         ground
             .map(|(x, z, h)| (h - a - p * x - q * z).abs())
@@ -1068,6 +1053,27 @@ fn fit_sole<G: Ground + ?Sized>(
         clearance: -highest,
         plane: plane.unwrap_or((0.0, 0.0, 0.0)),
         off_plane,
+    })
+}
+
+/// The least-squares plane `h = a + p x + q z` through `samples` `(x, z, h)`: `(a, p, q)`, or
+/// `None` where the samples span no area (or there are none).
+fn plane_fit(samples: impl Iterator<Item = (f32, f32, f32)> + Clone) -> Option<(f32, f32, f32)> {
+    let (mut n, mut sx, mut sz, mut sh) = (0.0f32, 0.0f32, 0.0f32, 0.0f32);
+    for (x, z, h) in samples.clone() {
+        (n, sx, sz, sh) = (n + 1.0, sx + x, sz + z, sh + h);
+    }
+    let (mx, mz, mh) = (sx / n, sz / n, sh / n);
+    let (mut xx, mut xz, mut zz, mut xh, mut zh) = (0.0f32, 0.0f32, 0.0f32, 0.0f32, 0.0f32);
+    for (x, z, h) in samples {
+        let (x, z, h) = (x - mx, z - mz, h - mh);
+        (xx, xz, zz) = (xx + x * x, xz + x * z, zz + z * z);
+        (xh, zh) = (xh + x * h, zh + z * h);
+    }
+    let det = xx * zz - xz * xz;
+    (det > 1e-12 * (xx + zz) * (xx + zz)).then(|| {
+        let (p, q) = ((xh * zz - zh * xz) / det, (zh * xx - xh * xz) / det);
+        (mh - p * mx - q * mz, p, q)
     })
 }
 
@@ -1155,7 +1161,8 @@ impl Creature {
     /// ```
     ///
     /// # Errors
-    /// As [`Animator::new`] (a kind this version does not animate: [`Error::NoGait`]) and
+    /// As [`Animator::new`] (a walker without a gait set-up, or a kind this version does not
+    /// animate: [`Error::NoGait`]) and
     /// [`Animator::update`] (a non-finite target); [`Error::OutOfRange`] for `max_seconds`
     /// outside `[1 / CLIP_FPS, 600]`.
     pub fn bake_to<G: Ground + ?Sized>(

@@ -172,12 +172,14 @@ fn rest_below(c: &Creature) -> Vec<f32> {
 /// The slope a skin's bottom rim is chosen for: 30° (tan).
 const RIM_SLOPE: f32 = 0.577_350_3;
 
-/// Per joint, its skin's bottom rim at rest: in each of eight directions (every 45° about the
-/// vertical), the vertex that ground rising that way at [`RIM_SLOPE`] would reach first, as
-/// an offset from the joint; the joint's place where it has none.
+/// Per joint, its skin's bottom rim at rest: of the vertices bound to it, in each of eight
+/// directions (every 45° about the vertical), the one that ground rising that way at
+/// [`RIM_SLOPE`] would reach first, as an offset from the joint; the joint's place where it
+/// has none.
 fn bottom_rims(c: &Creature) -> Vec<[Vec3A; 8]> {
     let joints = &c.skeleton.joints;
     let mut rims = alloc::vec![[(f32::NEG_INFINITY, Vec3A::ZERO); 8]; joints.len()];
+    // Each vertex on every joint it is bound to (it moves partly with each).
     c.for_each_skinned(|j, p| rim_candidate(&mut rims[j], Vec3A::from(p - joints[j].position)));
     rims.into_iter().map(|rim| rim.map(|(_, d)| d)).collect()
 }
@@ -226,51 +228,30 @@ fn rim_candidate(rim: &mut [(f32, Vec3A); 8], d: Vec3A) {
 /// The plane through the ground under `points` (offsets from the model origin at rest, as
 /// [`footprint`]'s) with the model origin at `origin` turned by `yaw`: its height at the
 /// origin and its slopes along the body's forward and left axes as a pitch and a roll
-/// (radians, each within [`MAX_LEAN`](super::MAX_LEAN)); `None` unless three rays hit or
-/// the points span no area.
+/// (radians, each within [`MAX_LEAN`](super::MAX_LEAN)); `None` unless every ray hits finite
+/// ground and the points span an area.
 fn ground_plane<G: Ground + ?Sized>(
     ground: &G,
     (origin, yaw): (Vec3, Quat),
-    points: &[Vec3],
+    points: &[Vec3; 9],
     (above, range): (f32, f32),
 ) -> Option<(f32, glam::Vec2)> {
     let mut hits = [(0.0f32, 0.0f32, 0.0f32); 9];
-    let mut n = 0;
     for (hit, p) in hits.iter_mut().zip(points) {
         let at = origin + yaw * Vec3::new(p.x, 0.0, p.z);
-        if let Some(g) = ground.cast_down_point(at + Vec3::Y * above, range) {
-            *hit = (p.x, p.z, g.y - origin.y);
-            n += 1;
+        let g = ground.cast_down_point(at + Vec3::Y * above, range)?;
+        if !g.y.is_finite() {
+            return None;
         }
+        *hit = (p.x, p.z, g.y - origin.y);
     }
-    if n < points.len() {
-        return None;
-    }
-    let count = n as f32;
-    let (mut mx, mut mz, mut mh) = (0.0f32, 0.0f32, 0.0f32);
-    for &(x, z, h) in &hits[..n] {
-        (mx, mz, mh) = (mx + x / count, mz + z / count, mh + h / count);
-    }
-    let (mut xx, mut xz, mut zz, mut xh, mut zh) = (0.0f32, 0.0f32, 0.0f32, 0.0f32, 0.0f32);
-    for &(x, z, h) in &hits[..n] {
-        let (x, z, h) = (x - mx, z - mz, h - mh);
-        (xx, xz, zz) = (xx + x * x, xz + x * z, zz + z * z);
-        (xh, zh) = (xh + x * h, zh + z * h);
-    }
-    let det = xx * zz - xz * xz;
-    if !(det > 1e-9 * (xx + zz) * (xx + zz)) {
-        return None;
-    }
-    let (p, q) = ((xh * zz - zh * xz) / det, (zh * xx - xh * xz) / det);
+    let (a, p, q) = super::plane_fit(hits.into_iter())?;
     let lean = |slope: f32| {
         glam::Vec2::new(1.0, slope)
             .to_angle()
             .clamp(-super::MAX_LEAN, super::MAX_LEAN)
     };
-    Some((
-        origin.y + mh - p * mx - q * mz,
-        glam::Vec2::new(-lean(q), lean(p)),
-    ))
+    Some((origin.y + a, glam::Vec2::new(-lean(q), lean(p))))
 }
 
 /// How high the lowest vertex is over the model origin at rest (at least 0; 0 for no mesh).
@@ -299,7 +280,8 @@ fn skin_radius(c: &Creature) -> f32 {
 
 impl Flight {
     /// Whether it has landed (its rest pose on the ground) and come to rest: it moved up or
-    /// down no more than a ten-thousandth of `length` in the last update.
+    /// down no more than a ten-thousandth of `length` in the last update (over no ground at
+    /// all, it has "landed" where it hovers).
     pub(super) fn landed(&self, length: f32) -> bool {
         self.landed >= 1.0 && self.sink <= 1e-4 * length
     }

@@ -207,7 +207,7 @@ def main():
     ap.add_argument("--render", metavar="DIR", help="also render two PNGs per file (middle and last frame) into DIR")
     ap.add_argument("--ground-tol", type=float, default=None,
                     help="max |distance| of the closest vertex to the terrain (default 10%% of creature size; "
-                         "use inf for fliers)")
+                         "use inf for fliers and swimmers)")
     args = ap.parse_args(argv)
     print(f"Blender {bpy.app.version_string}")
     failed = []

@@ -332,6 +332,15 @@ fn baking_a_walk_to_a_target_checks_its_input() {
     );
 }
 
+/// Panics unless `clip`, baked for 120 s at most, ends within `length` of `target`
+/// (horizontally) before its last allowed frame: it arrived and settled.
+fn ends_settled_at(clip: &d3::Clip, target: Vec3, length: f32, label: &str) {
+    let end = clip.root_translation[clip.frames - 1];
+    let off = Vec3::new(end.x - target.x, 0.0, end.z - target.z).length();
+    assert!(off < length, "{label}: ends {off} from the target");
+    assert!(clip.frames < 120 * 30, "{label}: never settled");
+}
+
 /// The lowest of `posed`'s heights above `ground` under each.
 fn lowest_posed_gap<G: Ground + ?Sized>(posed: &[Vec3], ground: &G) -> f32 {
     posed
@@ -369,10 +378,7 @@ fn a_flight_baked_over_terrain_takes_off_arrives_and_lands_as_a_viewer_plays_it(
             let (first, last) = (gaps[0], gaps[clip.frames - 1]);
             assert!(first < on, "{label}: starts {first} up");
             assert!(last < on, "{label}: ends {last} up");
-            let end = clip.root_translation[clip.frames - 1];
-            let off = Vec3::new(end.x - target.x, 0.0, end.z - target.z).length();
-            assert!(off < c.length, "{label}: lands {off} from the target");
-            assert!(clip.frames < 120 * 30, "{label}: never settled");
+            ends_settled_at(&clip, target, c.length, &label);
         }
     }
 }
@@ -424,10 +430,7 @@ fn a_swim_baked_over_the_seabed_arrives_above_it_as_a_viewer_plays_it() {
             let gap = lowest_posed_gap(&c.posed_positions(&clip, f).unwrap(), &ground);
             assert!(gap > 0.0, "seed {seed} frame {f}: {gap} in the seabed");
         }
-        let end = clip.root_translation[clip.frames - 1];
-        let off = Vec3::new(end.x - target.x, 0.0, end.z - target.z).length();
-        assert!(off < c.length, "seed {seed}: stops {off} from the target");
-        assert!(clip.frames < 120 * 30, "seed {seed}: never settled");
+        ends_settled_at(&clip, target, c.length, &format!("seed {seed}"));
     }
 }
 

@@ -18,7 +18,9 @@
 //! random), `--count N` (default 1), `--seed N` (default 0), `--out DIR` (default `out/`),
 //! `--texture-size N` (2D, default 256), `--bones` (2D: draw the bones on the PNG),
 //! `--in-place` (3D), `--terrain SEED` (3D: a walk, flight or swim over procedural terrain,
-//! the terrain in the file), `--threads N` (default: every core), `--dry-run` (generate and encode, write
+//! the terrain in the file), `--body-scale X`, `--head-size X`, `--snout-length X`,
+//! `--neck-width X` (3D: that parameter fixed at X, as the web playground sets it),
+//! `--threads N` (default: every core), `--dry-run` (generate and encode, write
 //! nothing).
 
 #![allow(clippy::std_instead_of_core, clippy::std_instead_of_alloc)]
@@ -75,6 +77,19 @@ struct Args {
     /// and put the terrain in the `.glb` as a second node.
     #[arg(long, value_name = "SEED")]
     terrain: Option<u64>,
+    /// 3D: every creature's body scale (`Params::body_scale` fixed at this value; default: a
+    /// random scale from 0.5 to 2).
+    #[arg(long, value_name = "X")]
+    body_scale: Option<f32>,
+    /// 3D: the head's size (`Params::head_size` fixed at this value).
+    #[arg(long, value_name = "X")]
+    head_size: Option<f32>,
+    /// 3D: the snout's length (`Params::snout_length` fixed at this value).
+    #[arg(long, value_name = "X")]
+    snout_length: Option<f32>,
+    /// 3D: how narrow the neck is (`Params::neck_width`).
+    #[arg(long, value_name = "X")]
+    neck_width: Option<f32>,
     /// Worker threads for `--count` (default: every core, or `RAYON_NUM_THREADS`).
     #[arg(long, value_name = "N")]
     threads: Option<NonZeroUsize>,
@@ -167,6 +182,27 @@ fn main() -> ExitCode {
     }
 }
 
+/// The 3D parameters `args` ask for: the defaults, with each value given fixed.
+fn params_3d(args: &Args) -> d3::Params {
+    let mut params = d3::Params::DEFAULT
+        .with_kind(args.kind.into())
+        .with_in_place(args.in_place)
+        .with_clips(args.terrain.is_none());
+    if let Some(s) = args.body_scale {
+        params = params.with_body_scale(creature::Span::new(s, s));
+    }
+    if let Some(s) = args.head_size {
+        params = params.with_head_size(creature::Span::new(s, s));
+    }
+    if let Some(s) = args.snout_length {
+        params = params.with_snout_length(creature::Span::new(s, s));
+    }
+    if let Some(w) = args.neck_width {
+        params = params.with_neck_width(w);
+    }
+    params
+}
+
 /// Generates seeds `args.seed..=end`; `Ok(false)` if some seeds failed (each was reported).
 fn run(args: &Args, end: u64) -> Result<bool, String> {
     if !args.dry_run {
@@ -174,10 +210,7 @@ fn run(args: &Args, end: u64) -> Result<bool, String> {
     }
     let job = Job {
         dim: args.dim,
-        params: d3::Params::DEFAULT
-            .with_kind(args.kind.into())
-            .with_in_place(args.in_place)
-            .with_clips(args.terrain.is_none()),
+        params: params_3d(args),
         params_2d: d2::Params::DEFAULT.with_texture_size(args.texture_size),
         bones: args.bones,
         terrain: args.terrain,
@@ -297,26 +330,15 @@ fn make_3d(seed: u64, job: &Job<'_>) -> Result<String, String> {
     ))
 }
 
-/// `--terrain`: terrain from `seed` sized to `creature` (hills half its length high, a 12°
-/// slope, steps a fifth of its gait's shortest limb high, or a tenth of its length without a
-/// gait), and its walk, flight or swim from the origin to a point 10 body lengths away over it.
+/// `--terrain`: terrain from `seed` sized to `creature` (`TerrainParams::for_creature`: hills
+/// half its length high, a 12° slope, steps a fifth of its gait's shortest limb high, or a
+/// tenth of its length without a gait), and its walk, flight or swim from the origin to a point 10 body lengths away over it.
 fn over_terrain(
     creature: &d3::Creature,
     seed: u64,
 ) -> Result<(d3::Clip, creature::gait::HeightField), creature::Error> {
     let length = creature.length;
-    let step = creature.gait.as_ref().map_or(0.1 * length, |gait| {
-        0.2 * gait
-            .legs
-            .iter()
-            .map(|l| l.size)
-            .fold(f32::INFINITY, f32::min)
-    });
-    let params = TerrainParams::DEFAULT
-        .with_extent(24.0 * length, 193)
-        .with_hills(0.5 * length, 6.0 * length)
-        .with_slope(12.0)
-        .with_steps(step, 3.0 * length);
+    let params = TerrainParams::for_creature(creature);
     let ground = terrain(seed, &params)?;
     let clip = creature.bake_to(&ground, glam::Vec3::new(6.0, 0.0, 8.0) * length, 120.0)?;
     Ok((clip, ground))

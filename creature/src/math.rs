@@ -1,6 +1,6 @@
 //! Scalar float helpers with a `std` and a `libm` backend; call sites never branch.
 
-#[cfg(feature = "std")]
+#[cfg(all(feature = "std", not(feature = "libm")))]
 mod backend {
     #[inline]
     pub(crate) fn exp(x: f32) -> f32 {
@@ -28,7 +28,7 @@ mod backend {
     }
 }
 
-#[cfg(not(feature = "std"))]
+#[cfg(feature = "libm")]
 mod backend {
     #[inline]
     pub(crate) fn exp(x: f32) -> f32 {

@@ -94,6 +94,39 @@ impl TerrainParams {
         self
     }
 
+    /// Terrain sized to `creature`, as the `generate` example's `--terrain` makes it: a square
+    /// 24 body lengths wide (193 samples a side), hills half its length high and six lengths
+    /// apart on a 12° slope, and steps three lengths apart, a fifth of its gait's shortest leg
+    /// high (a tenth of its length for a creature without a gait).
+    ///
+    /// ```
+    /// use creature::d3::{generate, Kind, Params};
+    /// use creature::terrain::{terrain, TerrainParams};
+    ///
+    /// let walker = generate(7, &Params::DEFAULT.with_kind(Kind::Walker).with_clips(false))?;
+    /// let params = TerrainParams::for_creature(&walker);
+    /// assert_eq!(params.size, 24.0 * walker.length);
+    /// let ground = terrain(3, &params)?;
+    /// assert_eq!(ground.columns(), 193);
+    /// # Ok::<(), creature::Error>(())
+    /// ```
+    #[must_use]
+    pub fn for_creature(creature: &crate::d3::Creature) -> Self {
+        let length = creature.length;
+        let step = creature.gait.as_ref().map_or(0.1 * length, |gait| {
+            0.2 * gait
+                .legs
+                .iter()
+                .map(|l| l.size)
+                .fold(f32::INFINITY, f32::min)
+        });
+        Self::DEFAULT
+            .with_extent(24.0 * length, 193)
+            .with_hills(0.5 * length, 6.0 * length)
+            .with_slope(12.0)
+            .with_steps(step, 3.0 * length)
+    }
+
     /// Checks every field against its documented range; [`terrain`] calls this first.
     ///
     /// # Errors

@@ -564,18 +564,7 @@ fn terrain_walk_report(seed: u64) -> creature_audit::Report {
 fn terrain_report(params: &d3::Params, seed: u64) -> creature_audit::Report {
     use creature::terrain::{TerrainParams, terrain, terrain_mesh};
     let c = d3::generate(seed, params).unwrap();
-    let step = c.gait.as_ref().map_or(0.1 * c.length, |gait| {
-        0.2 * gait
-            .legs
-            .iter()
-            .map(|l| l.size)
-            .fold(f32::INFINITY, f32::min)
-    });
-    let params = TerrainParams::DEFAULT
-        .with_extent(24.0 * c.length, 193)
-        .with_hills(0.5 * c.length, 6.0 * c.length)
-        .with_slope(12.0)
-        .with_steps(step, 3.0 * c.length);
+    let params = TerrainParams::for_creature(&c);
     let field = terrain(seed, &params).unwrap();
     let target = creature::glam::Vec3::new(6.0, 0.0, 8.0) * c.length;
     let clip = c.bake_to(&field, target, 120.0).unwrap();

@@ -721,3 +721,63 @@ fn regression_a_pair_of_wings_on_the_back_is_mirrored() {
         assert!(pairs > 0, "seed {seed}: no wings");
     }
 }
+
+/// Regression: a walker whose tail narrows to a point (a tiny body, narrow slices, seven
+/// profiles blended) put a back spike on its tail's vanishing skin: 20 triangles without area
+/// (the case `valid_params_give_a_valid_3d_creature` found once `libm` won over `std`; with
+/// `std`'s last bits the spike was barely above the limit). A piece under 1% of the spine's
+/// length is skipped now.
+#[test]
+fn no_back_spike_on_a_tail_pinched_to_a_point() {
+    let mut wings = d3::WingWeights::DEFAULT;
+    (wings.feathered, wings.bat) = (0.0, 396.666_17);
+    let mut back = d3::BackWeights::DEFAULT;
+    (back.spikes, back.plates, back.shell) = (577.311_3, 912.878_85, 673.828_25);
+    let mut patterns = d3::PatternWeights::DEFAULT;
+    patterns.plain = 0.001;
+    (
+        patterns.stripes,
+        patterns.spots,
+        patterns.bands,
+        patterns.gradient,
+    ) = (0.0, 0.0, 0.0, 0.0);
+    let fixed = |v: f32| Span::new(v, v);
+    let params = d3::Params::DEFAULT
+        .with_kind(d3::Kind::Walker)
+        .with_profiles(7)
+        .with_resolution(4, 13)
+        .with_limb_sides(3)
+        .with_flat_normals(false)
+        .with_slices(
+            fixed(0.3),
+            Span::new(2.249_582_5, 2.729_203_7),
+            Span::new(0.3, 2.887_431_1),
+        )
+        .with_swimmer_slices(fixed(0.3), fixed(0.3), fixed(0.3))
+        .with_body_scale(fixed(0.1))
+        .with_speed_factor(fixed(0.1))
+        .with_bone_length(0.1)
+        .with_spine_bones(IntSpan::new(5, 6))
+        .with_spine_bend(12.251_735)
+        .with_head_size(fixed(0.5))
+        .with_neck_width(0.2)
+        .with_eye_size(fixed(0.05))
+        .with_snout_length(fixed(0.0))
+        .with_ornaments(fixed(0.0), 0.0)
+        .with_ground_clearance(fixed(0.0))
+        .with_thigh_thickness(fixed(1.0))
+        .with_wings(
+            Span::new(0.2, 4.986_420_6),
+            Span::new(1.738_902_6, 5.564_807_4),
+        )
+        .with_wing_kinds(wings)
+        .with_back_ornaments(Span::new(0.563_353_8, 2.065_056_6), 0.513_894_1)
+        .with_back_kinds(back)
+        .with_shell_size(Span::new(0.516_597_6, 0.811_322_2))
+        .with_saturation(fixed(0.0))
+        .with_countershading(fixed(0.0))
+        .with_patterns(patterns);
+    let c = generate(1_202_798_772_737_850_067, &params).unwrap();
+    let problems = check(&c);
+    assert!(problems.is_empty(), "{problems:?}");
+}

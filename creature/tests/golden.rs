@@ -4,8 +4,10 @@
 //! `cargo xtask bless` (it runs this file with `CREATURE_BLESS=1`), review the diff and add a
 //! CHANGELOG line: same seed, same creature is a promise.
 //!
-//! The hashes are of the exact bits, computed with the `std` float backend on x86_64; another
-//! platform's `exp` may differ in the last bit and change them.
+//! The hashes are of the exact bits, one file per float backend: `2d.txt` with the `std`
+//! backend on x86_64 (another platform's `exp` may differ in the last bit and change them),
+//! `2d-libm.txt` with the `libm` feature (which wins over `std`, and turns glam's SIMD off),
+//! the same on every platform.
 
 #![cfg(feature = "std")]
 #![allow(clippy::unwrap_used)]
@@ -92,8 +94,14 @@ fn golden_hashes() {
     check_or_bless("2d.txt", &text);
 }
 
-/// Compares `text` with `tests/golden/{file}`, or rewrites the file when `CREATURE_BLESS=1`.
+/// Compares `text` with `tests/golden/{file}` (with the `libm` feature, `{stem}-libm.txt`: its
+/// float results differ from `std`'s), or rewrites the file when `CREATURE_BLESS=1`.
 pub(crate) fn check_or_bless(file: &str, text: &str) {
+    let file = if cfg!(feature = "libm") {
+        file.replace(".txt", "-libm.txt")
+    } else {
+        file.to_string()
+    };
     let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
         .join("tests/golden")
         .join(file);

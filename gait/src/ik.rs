@@ -1,6 +1,21 @@
 //! Analytic two-bone inverse kinematics with a pole hint.
 
-use glam::{BVec4A, Mat3, Mat3A, Mat4, Quat, Vec3, Vec4};
+use glam::{Mat3, Mat3A, Mat4, Quat, Vec3, Vec4};
+
+/// The lanes' quaternion products and normalisations follow glam's order of operations, so they
+/// match its `Quat` bit for bit: SSE2's on x86 (glam's SIMD), the scalar one elsewhere and with
+/// this crate's `libm` feature (which turns glam's `scalar-math` on). Other SIMD back ends of
+/// glam (wasm's `simd128`, NEON) have orders of their own, which these do not follow.
+///
+/// What `Vec4`'s lane tests return: `BVec4A` where glam uses SIMD, `BVec4` with glam's
+/// `scalar-math`, which this crate's `libm` feature turns on (the same float results on every
+/// platform).
+#[cfg(not(feature = "libm"))]
+pub(crate) type BVec4A = glam::BVec4A;
+/// What `Vec4`'s lane tests return: `BVec4` with glam's `scalar-math`, which this crate's
+/// `libm` feature turns on (the same float results on every platform).
+#[cfg(feature = "libm")]
+pub(crate) type BVec4A = glam::BVec4;
 
 use crate::math::sqrt;
 
@@ -480,6 +495,11 @@ impl Q4 {
     }
 
     /// `a * b` in the order of operations of glam's SSE2 `Quat::mul_quat`.
+    #[cfg(all(
+        any(target_arch = "x86", target_arch = "x86_64"),
+        target_feature = "sse2",
+        not(feature = "libm")
+    ))]
     #[inline(always)]
     fn mul(a: Self, b: Self) -> Self {
         Self {
@@ -490,7 +510,28 @@ impl Q4 {
         }
     }
 
+    /// `a * b` in the order of operations of glam's scalar `Quat::mul_quat`.
+    #[cfg(not(all(
+        any(target_arch = "x86", target_arch = "x86_64"),
+        target_feature = "sse2",
+        not(feature = "libm")
+    )))]
+    #[inline(always)]
+    fn mul(a: Self, b: Self) -> Self {
+        Self {
+            x: a.w * b.x + a.x * b.w + a.y * b.z - a.z * b.y,
+            y: a.w * b.y - a.x * b.z + a.y * b.w + a.z * b.x,
+            z: a.w * b.z + a.x * b.y - a.y * b.x + a.z * b.w,
+            w: a.w * b.w - a.x * b.x - a.y * b.y - a.z * b.z,
+        }
+    }
+
     /// `Quat::normalize` (glam's SSE2 order: `(x² + z²) + (y² + w²)`, then a division).
+    #[cfg(all(
+        any(target_arch = "x86", target_arch = "x86_64"),
+        target_feature = "sse2",
+        not(feature = "libm")
+    ))]
     #[inline(always)]
     fn normalize(self) -> Self {
         let length =
@@ -500,6 +541,25 @@ impl Q4 {
             y: self.y / length,
             z: self.z / length,
             w: self.w / length,
+        }
+    }
+
+    /// `Quat::normalize` (glam's scalar order: `x² + y² + z² + w²`, then a product with the
+    /// reciprocal of its root).
+    #[cfg(not(all(
+        any(target_arch = "x86", target_arch = "x86_64"),
+        target_feature = "sse2",
+        not(feature = "libm")
+    )))]
+    #[inline(always)]
+    fn normalize(self) -> Self {
+        let recip = Vec4::ONE
+            / (self.x * self.x + self.y * self.y + self.z * self.z + self.w * self.w).sqrt();
+        Self {
+            x: self.x * recip,
+            y: self.y * recip,
+            z: self.z * recip,
+            w: self.w * recip,
         }
     }
 

@@ -2,7 +2,7 @@
 //! Call sites never branch on the backend; vector math goes through glam, which picks its
 //! backend by the same features.
 
-#[cfg(feature = "std")]
+#[cfg(all(feature = "std", not(feature = "libm")))]
 mod backend {
     #[inline]
     pub(crate) fn sin(x: f32) -> f32 {
@@ -34,7 +34,7 @@ mod backend {
     }
 }
 
-#[cfg(all(not(feature = "std"), feature = "libm"))]
+#[cfg(feature = "libm")]
 mod backend {
     #[inline]
     pub(crate) fn sin(x: f32) -> f32 {

@@ -1,8 +1,8 @@
-//! Scalar float helpers for the mesher with a `std` backend and a `libm` backend (std wins
-//! when both are on), so call sites never branch. Vector math goes through glam, which picks
+//! Scalar float helpers for the mesher with a `std` backend and a `libm` backend (libm wins
+//! when both are on: its results are the same on every platform), so call sites never branch. Vector math goes through glam, which picks
 //! its backend the same way.
 
-#[cfg(feature = "std")]
+#[cfg(all(feature = "std", not(feature = "libm")))]
 mod backend {
     pub(crate) fn tan(x: f32) -> f32 {
         x.tan()
@@ -18,7 +18,7 @@ mod backend {
     }
 }
 
-#[cfg(all(not(feature = "std"), feature = "libm"))]
+#[cfg(feature = "libm")]
 mod backend {
     pub(crate) fn tan(x: f32) -> f32 {
         libm::tanf(x)

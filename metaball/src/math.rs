@@ -1,8 +1,9 @@
-//! Scalar float helpers with a `std` backend and a `libm` backend (std wins when both are on),
+//! Scalar float helpers with a `std` backend and a `libm` backend (libm wins when both are on:
+//! its results are the same on every platform),
 //! so call sites never branch. Vector math goes through glam, which picks its backend the same
 //! way.
 
-#[cfg(feature = "std")]
+#[cfg(all(feature = "std", not(feature = "libm")))]
 mod backend {
     #[inline]
     pub(crate) fn exp(x: f32) -> f32 {
@@ -26,7 +27,7 @@ mod backend {
     }
 }
 
-#[cfg(all(not(feature = "std"), feature = "libm"))]
+#[cfg(feature = "libm")]
 mod backend {
     #[inline]
     pub(crate) fn exp(x: f32) -> f32 {

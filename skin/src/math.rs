@@ -2,28 +2,28 @@
 //! Everything vector-valued goes through glam's methods, which pick the backend themselves.
 
 /// Square root.
-#[cfg(feature = "std")]
+#[cfg(all(feature = "std", not(feature = "libm")))]
 #[inline]
 pub(crate) fn sqrt(x: f32) -> f32 {
     x.sqrt()
 }
 
 /// Square root.
-#[cfg(not(feature = "std"))]
+#[cfg(any(feature = "libm", not(feature = "std")))]
 #[inline]
 pub(crate) fn sqrt(x: f32) -> f32 {
     libm::sqrtf(x)
 }
 
 /// `x` raised to `y`.
-#[cfg(feature = "std")]
+#[cfg(all(feature = "std", not(feature = "libm")))]
 #[inline]
 pub(crate) fn powf(x: f32, y: f32) -> f32 {
     x.powf(y)
 }
 
 /// `x` raised to `y`.
-#[cfg(not(feature = "std"))]
+#[cfg(any(feature = "libm", not(feature = "std")))]
 #[inline]
 pub(crate) fn powf(x: f32, y: f32) -> f32 {
     libm::powf(x, y)

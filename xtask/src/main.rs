@@ -13,6 +13,8 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, ExitCode};
 use std::time::Instant;
 
+mod web;
+
 /// The micro-crates' folders, in dependency-free order. Each is checked when it is a workspace
 /// member; all are leaves, so every one must build without `std`.
 const MICRO_CRATES: [&str; 7] = [
@@ -30,9 +32,10 @@ tasks:
   tidy         project rules: README and CHANGELOG per crate, no #[should_panic]
   fmt          cargo fmt --check
   clippy       cargo clippy (default and all features, all targets) with -D warnings
-  test         cargo test --workspace --all-features (unit, integration, property, doc tests)
+  test         cargo test --workspace --all-features (unit, integration, property, doc tests;
+               `libm` wins over `std`), then the facade's golden hashes with `std`
   libm         clippy and tests of every micro-crate with only its `libm` feature (the
-               configuration no_std users get; `test` runs with std, which wins over libm)
+               configuration no_std users get)
   sweep        10,000 seeds of `creature::generate_2d` and of each 3D kind in release, every
                creature checked; the 3D ones also exported and audited (`tests/audit.rs`)
   gltf         generate a few creatures with the `generate` example and verify their .glb
@@ -41,6 +44,11 @@ tasks:
                no_std staticlib when that target cannot be installed)
   package      cargo package --workspace: every publishable crate packages and builds alone
   bench-build  cargo bench --workspace --no-run: benches keep compiling
+  web-test     build the playground (web/: wasm, wasm-bindgen, three.js) into target/web/site
+               and test it in Debian's headless chromium (installed with apt-get when
+               missing) with web/test/browser.mjs (playwright-core): no console errors, a
+               creature drawn, a click walked to, a herd of 300, downloads byte-identical to
+               the generate example's (both built with `libm`), the browser's timings printed
   fuzz [--secs N] [TARGET]
                build the cargo-fuzz targets under fuzz/ (RUSTC_BOOTSTRAP=1, installing
                cargo-fuzz when missing) and run each (or TARGET) for N seconds (default
@@ -49,6 +57,9 @@ tasks:
                every target 20 s with libFuzzer's seed fixed)
 
 not part of ci:
+  web [--serve] [--port N]
+               build the playground into target/web/site (with --serve, serve it on
+               http://127.0.0.1:N/, default 8000)
   bless        regenerate golden files: runs every crate's `tests/golden.rs` with
                CREATURE_BLESS=1 (review the diff, and add a CHANGELOG line)
   verify-gltf DIR
@@ -66,7 +77,7 @@ environment:
 
 type Task = fn(&Workspace) -> Result<(), String>;
 
-const TASKS: [(&str, Task); 12] = [
+const TASKS: [(&str, Task); 13] = [
     ("tidy", tidy),
     ("fmt", fmt),
     ("clippy", clippy),
@@ -78,6 +89,7 @@ const TASKS: [(&str, Task); 12] = [
     ("no-std", no_std),
     ("package", package),
     ("bench-build", bench_build),
+    ("web-test", web::web_ci),
     ("fuzz", fuzz_smoke),
 ];
 
@@ -112,6 +124,7 @@ fn main() -> ExitCode {
             }
             None => Err(format!("verify-gltf needs a folder\n\n{USAGE}")),
         },
+        "web" => step("web", |w| web::web_task(w, &args[1..]), &workspace),
         "fuzz" if args.len() == 1 => step("fuzz", fuzz_smoke, &workspace),
         "fuzz" => match fuzz_args(&args[1..]) {
             Ok((secs, target)) => step(
@@ -320,12 +333,20 @@ fn test(w: &Workspace) -> Result<(), String> {
     let mut c = w.cargo();
     c.args(["test", "--workspace", "--all-features", "--locked"]);
     seeded(&mut c);
-    run(c)
+    run(c)?;
+    // `--all-features` has `libm`, which wins over `std`: the facade's exact golden hashes of
+    // the `std` backend (its default) are checked here.
+    if w.has_facade() {
+        let mut c = w.cargo();
+        c.args(["test", "-p", "creature", "--locked", "--test", "golden"]);
+        run(c)?;
+    }
+    Ok(())
 }
 
 /// The micro-crates with `--no-default-features --features libm`: clippy on the libraries and
 /// their tests, then the unit and integration tests (property tests need `std` and are skipped
-/// by their `required-features`). This is the only run where the `libm` math backends execute.
+/// by their `required-features`). (`test` runs the `libm` backends too, with `std`).
 fn libm(w: &Workspace) -> Result<(), String> {
     if w.micro_crates.is_empty() {
         return Ok(());
@@ -622,6 +643,14 @@ fn bless(w: &Workspace) -> Result<(), String> {
         c.args(["test", "-p", &package, "--all-features", "--test", "golden"]);
         c.env("CREATURE_BLESS", "1");
         run(c)?;
+        // The facade's hashes are exact, one file per float backend: `--all-features` has
+        // `libm` (it wins over `std`); the default features have `std`.
+        if package == "creature" {
+            let mut c = w.cargo();
+            c.args(["test", "-p", &package, "--test", "golden"]);
+            c.env("CREATURE_BLESS", "1");
+            run(c)?;
+        }
         blessed += 1;
     }
     println!("bless: regenerated the golden files of {blessed} crates; review `git diff`");

@@ -8,7 +8,7 @@
 //! mostly to that joint), sunk a little into it, leaning back; its height is
 //! [`Params::back_ornament_size`] × the body's half-height there, so a row tapers with the
 //! body toward the tail and the neck. Pieces keep apart: a joint closer to the last piece than
-//! half that piece's height is skipped. Only joints where the spine runs within 37° of level
+//! half that piece's height is skipped, and so is a piece under 1% of the spine's length. Only joints where the spine runs within 37° of level
 //! carry one (a raised neck does not), and never the head's, its carrier or the tail's tip.
 
 use alloc::vec::Vec;
@@ -165,6 +165,9 @@ const GAP: f32 = 0.5;
 /// Segments around a plate (a spike has a horn's).
 const SEGMENTS: usize = 6;
 
+/// The least height of a piece of a row, × the spine's length (1%): smaller ones are skipped.
+const MIN_HEIGHT: f32 = 0.01;
+
 /// Adds `row` along the spine of `rig` on the body of `mesh` (its first `body_vertices`
 /// vertices, at `surface` on the body's surface), in `accent` or a horn colour; returns how
 /// many pieces it added (a shell is one).
@@ -208,6 +211,14 @@ pub(crate) fn add_back_row(
     };
     let spine = &rig.spine;
     let n = spine.len();
+    let spine_length: f32 = spine
+        .windows(2)
+        .map(|w| {
+            rig.joints[w[0]]
+                .position
+                .distance(rig.joints[w[1]].position)
+        })
+        .sum();
     let mut placed = 0;
     let mut last: Option<(Vec3, f32)> = None;
     // Not the tail's tip (the spine's first joint), nor the head's carrier and tip (its last
@@ -229,7 +240,9 @@ pub(crate) fn add_back_row(
             continue;
         };
         let height = row.size * (top.y - at.y);
-        if height <= 0.0 || !height.is_finite() {
+        // A piece too small to see is skipped: on a body pinched to a point its triangles
+        // would have no area.
+        if !(height > MIN_HEIGHT * spine_length) {
             continue;
         }
         if let Some((p, h)) = last

@@ -1,7 +1,9 @@
 //! Reaction: the body's bob, breathing, sway (yaw), pitch and roll from its feet, each leg's
 //! hip roll, and the reaction scaled back so no planted foot is out of reach.
 
-use glam::{BVec4A, Mat3A, Quat, Vec2, Vec3, Vec3A, Vec4};
+use glam::{Mat3A, Quat, Vec2, Vec3, Vec3A, Vec4};
+
+use crate::ik::BVec4A;
 
 use super::joints::lane;
 use super::{Controller, LegState};

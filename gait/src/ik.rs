@@ -2,20 +2,26 @@
 
 use glam::{Mat3, Mat3A, Mat4, Quat, Vec3, Vec4};
 
-/// The lanes' quaternion products and normalisations follow glam's order of operations, so they
-/// match its `Quat` bit for bit: SSE2's on x86 (glam's SIMD), the scalar one elsewhere and with
-/// this crate's `libm` feature (which turns glam's `scalar-math` on). Other SIMD back ends of
-/// glam (wasm's `simd128`, NEON) have orders of their own, which these do not follow.
-///
-/// What `Vec4`'s lane tests return: `BVec4A` where glam uses SIMD, `BVec4` with glam's
-/// `scalar-math`, which this crate's `libm` feature turns on (the same float results on every
-/// platform).
-#[cfg(not(feature = "libm"))]
-pub(crate) type BVec4A = glam::BVec4A;
-/// What `Vec4`'s lane tests return: `BVec4` with glam's `scalar-math`, which this crate's
-/// `libm` feature turns on (the same float results on every platform).
-#[cfg(feature = "libm")]
-pub(crate) type BVec4A = glam::BVec4;
+/// Whether glam runs its SSE2 code: on x86 with SSE2, unless any crate in the build turns on
+/// glam's `scalar-math` (this crate's `libm` feature does; it drops `Vec4`'s 16-byte
+/// alignment). The lanes' quaternion products and normalisations follow glam's order of
+/// operations, so they match its `Quat` bit for bit: SSE2's, or else the scalar one. Glam's
+/// other SIMD back ends (wasm's `simd128`, NEON) have orders of their own, which these do not
+/// follow.
+const GLAM_SSE2: bool = cfg!(all(
+    any(target_arch = "x86", target_arch = "x86_64"),
+    target_feature = "sse2"
+)) && core::mem::align_of::<Vec4>() == 16;
+
+/// `Vec4::select` on every component of a lane vector (`$T { $f, .. }`), the mask left to
+/// glam's own type (`BVec4A` with SIMD, `BVec4` with `scalar-math`, which any crate in the
+/// build may turn on).
+macro_rules! select_lanes {
+    ($mask:expr, $a:expr, $b:expr, $T:ident { $($f:ident),* }) => {{
+        let (mask, a, b) = ($mask, $a, $b);
+        $T { $($f: Vec4::select(mask, a.$f, b.$f)),* }
+    }};
+}
 
 use crate::math::sqrt;
 
@@ -308,7 +314,8 @@ pub(crate) fn solve_lanes(p: &Lanes, out: [&mut TwoBone; 4]) {
         reached.test(2),
         reached.test(3),
     );
-    let [e0, e1, e2, e3] = V3::select(exact, target, root.add(dir.scale(clamped))).split();
+    let [e0, e1, e2, e3] =
+        select_lanes!(exact, target, root.add(dir.scale(clamped)), V3 { x, y, z }).split();
     (o0.end, o1.end, o2.end, o3.end) = (e0, e1, e2, e3);
     let folded = clamped.cmple(zero) | upper.cmpeq(zero);
     let along = ((upper * upper - lower * lower + clamped * clamped)
@@ -461,15 +468,6 @@ impl V3 {
             z: self.x * o.y - o.x * self.y,
         }
     }
-
-    #[inline(always)]
-    fn select(mask: BVec4A, a: Self, b: Self) -> Self {
-        Self {
-            x: Vec4::select(mask, a.x, b.x),
-            y: Vec4::select(mask, a.y, b.y),
-            z: Vec4::select(mask, a.z, b.z),
-        }
-    }
 }
 
 /// Four quaternions, one per lane.
@@ -494,91 +492,52 @@ impl Q4 {
         ]
     }
 
-    /// `a * b` in the order of operations of glam's SSE2 `Quat::mul_quat`.
-    #[cfg(all(
-        any(target_arch = "x86", target_arch = "x86_64"),
-        target_feature = "sse2",
-        not(feature = "libm")
-    ))]
+    /// `a * b` in glam's order of operations (see [`GLAM_SSE2`]).
     #[inline(always)]
     fn mul(a: Self, b: Self) -> Self {
-        Self {
-            x: (a.x * b.w + a.w * b.x) + (a.y * b.z - a.z * b.y),
-            y: (a.w * b.y - a.x * b.z) + (a.z * b.x + a.y * b.w),
-            z: (a.x * b.y + a.w * b.z) + (a.z * b.w - a.y * b.x),
-            w: (a.w * b.w - a.x * b.x) + (-(a.z * b.z) - a.y * b.y),
+        if GLAM_SSE2 {
+            // SSE2's `Quat::mul_quat`.
+            Self {
+                x: (a.x * b.w + a.w * b.x) + (a.y * b.z - a.z * b.y),
+                y: (a.w * b.y - a.x * b.z) + (a.z * b.x + a.y * b.w),
+                z: (a.x * b.y + a.w * b.z) + (a.z * b.w - a.y * b.x),
+                w: (a.w * b.w - a.x * b.x) + (-(a.z * b.z) - a.y * b.y),
+            }
+        } else {
+            // The scalar `Quat::mul_quat`.
+            Self {
+                x: a.w * b.x + a.x * b.w + a.y * b.z - a.z * b.y,
+                y: a.w * b.y - a.x * b.z + a.y * b.w + a.z * b.x,
+                z: a.w * b.z + a.x * b.y - a.y * b.x + a.z * b.w,
+                w: a.w * b.w - a.x * b.x - a.y * b.y - a.z * b.z,
+            }
         }
     }
 
-    /// `a * b` in the order of operations of glam's scalar `Quat::mul_quat`.
-    #[cfg(not(all(
-        any(target_arch = "x86", target_arch = "x86_64"),
-        target_feature = "sse2",
-        not(feature = "libm")
-    )))]
-    #[inline(always)]
-    fn mul(a: Self, b: Self) -> Self {
-        Self {
-            x: a.w * b.x + a.x * b.w + a.y * b.z - a.z * b.y,
-            y: a.w * b.y - a.x * b.z + a.y * b.w + a.z * b.x,
-            z: a.w * b.z + a.x * b.y - a.y * b.x + a.z * b.w,
-            w: a.w * b.w - a.x * b.x - a.y * b.y - a.z * b.z,
-        }
-    }
-
-    /// `Quat::normalize` (glam's SSE2 order: `(x² + z²) + (y² + w²)`, then a division).
-    #[cfg(all(
-        any(target_arch = "x86", target_arch = "x86_64"),
-        target_feature = "sse2",
-        not(feature = "libm")
-    ))]
+    /// `Quat::normalize` in glam's order of operations (see [`GLAM_SSE2`]): SSE2's
+    /// `(x² + z²) + (y² + w²)` then a division, or the scalar `x² + y² + z² + w²` then a
+    /// product with the reciprocal of its root.
     #[inline(always)]
     fn normalize(self) -> Self {
-        let length =
-            ((self.x * self.x + self.z * self.z) + (self.y * self.y + self.w * self.w)).sqrt();
-        Self {
-            x: self.x / length,
-            y: self.y / length,
-            z: self.z / length,
-            w: self.w / length,
+        if GLAM_SSE2 {
+            let length =
+                ((self.x * self.x + self.z * self.z) + (self.y * self.y + self.w * self.w)).sqrt();
+            Self {
+                x: self.x / length,
+                y: self.y / length,
+                z: self.z / length,
+                w: self.w / length,
+            }
+        } else {
+            let recip = Vec4::ONE
+                / (self.x * self.x + self.y * self.y + self.z * self.z + self.w * self.w).sqrt();
+            Self {
+                x: self.x * recip,
+                y: self.y * recip,
+                z: self.z * recip,
+                w: self.w * recip,
+            }
         }
-    }
-
-    /// `Quat::normalize` (glam's scalar order: `x² + y² + z² + w²`, then a product with the
-    /// reciprocal of its root).
-    #[cfg(not(all(
-        any(target_arch = "x86", target_arch = "x86_64"),
-        target_feature = "sse2",
-        not(feature = "libm")
-    )))]
-    #[inline(always)]
-    fn normalize(self) -> Self {
-        let recip = Vec4::ONE
-            / (self.x * self.x + self.y * self.y + self.z * self.z + self.w * self.w).sqrt();
-        Self {
-            x: self.x * recip,
-            y: self.y * recip,
-            z: self.z * recip,
-            w: self.w * recip,
-        }
-    }
-
-    #[inline(always)]
-    fn select(mask: BVec4A, a: Self, b: Self) -> Self {
-        Self {
-            x: Vec4::select(mask, a.x, b.x),
-            y: Vec4::select(mask, a.y, b.y),
-            z: Vec4::select(mask, a.z, b.z),
-            w: Vec4::select(mask, a.w, b.w),
-        }
-    }
-
-    #[inline(always)]
-    fn finite(self) -> BVec4A {
-        self.x.is_finite_mask()
-            & self.y.is_finite_mask()
-            & self.z.is_finite_mask()
-            & self.w.is_finite_mask()
     }
 }
 
@@ -693,9 +652,13 @@ fn bone_rotation4(frame: Q4, along: Vec4, across: Vec4) -> Q4 {
     let q = if all_forward {
         q
     } else {
-        Q4::select(forward, q, Q4::mul(q, flip))
+        select_lanes!(forward, q, Q4::mul(q, flip), Q4 { x, y, z, w })
     };
-    let keep = bone & q.finite();
+    let keep = bone
+        & q.x.is_finite_mask()
+        & q.y.is_finite_mask()
+        & q.z.is_finite_mask()
+        & q.w.is_finite_mask();
     if keep.all() {
         return q;
     }
@@ -705,7 +668,7 @@ fn bone_rotation4(frame: Q4, along: Vec4, across: Vec4) -> Q4 {
         z: zero,
         w: Vec4::ONE,
     };
-    Q4::select(keep, q, identity)
+    select_lanes!(keep, q, identity, Q4 { x, y, z, w })
 }
 
 /// The rotation taking +Y onto `dir` and +Z onto `bend` (orthonormal).

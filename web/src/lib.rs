@@ -22,6 +22,24 @@ use creature::terrain::{TerrainParams, terrain, terrain_mesh};
 use creature::{Error, Span};
 use wasm_bindgen::prelude::*;
 
+#[cfg(target_arch = "wasm32")]
+#[wasm_bindgen]
+extern "C" {
+    /// `console.error`.
+    #[wasm_bindgen(js_namespace = console, js_name = error)]
+    fn console_error(message: &str);
+}
+
+/// Runs when the module loads: a panic (a bug: bad input gets an error) says what happened on
+/// the console, not only "unreachable".
+#[cfg(target_arch = "wasm32")]
+#[wasm_bindgen(start)]
+pub fn start() {
+    std::panic::set_hook(Box::new(|info| {
+        console_error(&format!("creature-web: {info}"))
+    }));
+}
+
 /// The largest seed JavaScript's numbers carry exactly (2^53 − 1).
 const MAX_SEED: f64 = 9_007_199_254_740_991.0;
 
@@ -222,7 +240,7 @@ impl World {
     /// a side, with no creature yet: the herd's ground.
     ///
     /// # Errors
-    /// A bad seed, or a size out of `(0, 10000]`.
+    /// A bad seed, or a size out of [`TerrainParams::size`]'s range.
     #[wasm_bindgen(constructor)]
     pub fn new(seed: f64, size: f32) -> Result<World, JsError> {
         let params = TerrainParams::DEFAULT.with_extent(size, 193);
@@ -544,7 +562,7 @@ impl World {
             )));
         }
         let margin = 0.4 * self.size;
-        for live in &mut self.creatures {
+        for (i, live) in self.creatures.iter_mut().enumerate() {
             let intent = match live.target {
                 Some(t) => {
                     let p = live.animator.position();
@@ -563,7 +581,9 @@ impl World {
                 let z = (unit(&mut self.state) * 2.0 - 1.0) * margin;
                 live.target = Some(Vec3::new(x, 0.0, z));
             }
-            live.animator.update(dt, intent, &self.ground).map_err(js)?;
+            live.animator
+                .update(dt, intent, &self.ground)
+                .map_err(|e| js(format!("creature {i}: {e}")))?;
         }
         Ok(())
     }

@@ -14,9 +14,17 @@ const canvas = $('view');
 const playground = { ready: false, frames: 0, updateMs: 0, mode: 'single' };
 window.playground = playground;
 
+// After an error the frame loop goes on but moves nothing until a creature is made again.
+let broken = false;
 function fail(e) {
   console.error(e);
   statusLine.textContent = `error: ${e.message ?? e}`;
+  broken = true;
+}
+
+/** The herd size field, clamped to 10–1,000. */
+function herdSize() {
+  return Math.min(1000, Math.max(10, Math.round(Number($('herd-size').value) || 10)));
 }
 
 await init();
@@ -37,7 +45,7 @@ const controls = new OrbitControls(camera, canvas);
 controls.enableDamping = true;
 
 const skinMaterial = new THREE.MeshStandardMaterial({ vertexColors: true, roughness: 0.75 });
-const groundMaterial = new THREE.MeshStandardMaterial({ color: 0x7d9a5b, roughness: 0.95 });
+const groundMaterial = new THREE.MeshStandardMaterial({ vertexColors: true, roughness: 0.95 });
 const marker = new THREE.Mesh(
   new THREE.RingGeometry(0.7, 1, 32).rotateX(-Math.PI / 2),
   new THREE.MeshBasicMaterial({ color: 0xffe066, side: THREE.DoubleSide }),
@@ -63,11 +71,32 @@ function seedOf(id) {
   return Number($(id).value);
 }
 
+/** The terrain's mesh, coloured grass on the level, rock on steep faces (a step's riser). */
 function terrainGeometry() {
   const g = new THREE.BufferGeometry();
-  g.setAttribute('position', new THREE.BufferAttribute(world.terrain_positions(), 3));
-  g.setAttribute('normal', new THREE.BufferAttribute(world.terrain_normals(), 3));
+  const positions = world.terrain_positions();
+  const normals = world.terrain_normals();
+  g.setAttribute('position', new THREE.BufferAttribute(positions, 3));
+  g.setAttribute('normal', new THREE.BufferAttribute(normals, 3));
   g.setIndex(new THREE.BufferAttribute(world.terrain_indices(), 1));
+  const colours = new Float32Array(positions.length);
+  const grass = new THREE.Color(0x6f9a4e);
+  const dry = new THREE.Color(0xa4a35f);
+  const rock = new THREE.Color(0x8a8175);
+  const c = new THREE.Color();
+  let low = Infinity;
+  let high = -Infinity;
+  for (let k = 1; k < positions.length; k += 3) {
+    low = Math.min(low, positions[k]);
+    high = Math.max(high, positions[k]);
+  }
+  for (let k = 0; k < positions.length; k += 3) {
+    const up = normals[k + 1];
+    const h = high > low ? (positions[k + 1] - low) / (high - low) : 0;
+    c.copy(grass).lerp(dry, 0.6 * h).lerp(rock, 1 - THREE.MathUtils.smoothstep(up, 0.8, 0.93));
+    c.toArray(colours, k);
+  }
+  g.setAttribute('color', new THREE.BufferAttribute(colours, 3));
   return g;
 }
 
@@ -139,6 +168,7 @@ function single() {
   const seed = seedOf('seed');
   world = World.for_creature(seedOf('terrain-seed'), kind, seed, ...params());
   showWorld();
+  broken = false;
   const length = world.length(0);
   const [x, y, z] = world.place(0);
   marker.scale.setScalar(0.25 * length);
@@ -158,7 +188,8 @@ function herd(n) {
   const kind = $('kind').value;
   const first = seedOf('seed');
   const size = 80;
-  world = new World(seedOf('terrain-seed'), size);
+  // Built aside and shown only once every creature is in it.
+  const herdWorld = new World(seedOf('terrain-seed'), size);
   let s = first >>> 0;
   const random = () => {
     // mulberry32: the herd's places, the same for the same seed.
@@ -169,13 +200,20 @@ function herd(n) {
     return ((t ^ (t >>> 14)) >>> 0) / 4294967296;
   };
   const p = params();
-  for (let k = 0; k < n; k++) {
-    const x = (random() - 0.5) * 0.8 * size;
-    const z = (random() - 0.5) * 0.8 * size;
-    const i = world.add(kind, first + k, ...p, x, z, random() * 2 * Math.PI);
-    world.set_wander(i, true);
+  try {
+    for (let k = 0; k < n; k++) {
+      const x = (random() - 0.5) * 0.8 * size;
+      const z = (random() - 0.5) * 0.8 * size;
+      const i = herdWorld.add(kind, first + k, ...p, x, z, random() * 2 * Math.PI);
+      herdWorld.set_wander(i, true);
+    }
+  } catch (e) {
+    herdWorld.free();
+    throw e;
   }
+  world = herdWorld;
   showWorld();
+  broken = false;
   marker.scale.setScalar(1);
   controls.target.set(0, 0, 0);
   camera.position.set(0, 0.45 * size, -0.75 * size);
@@ -189,7 +227,7 @@ const raycaster = new THREE.Raycaster();
 let down = null;
 canvas.addEventListener('pointerdown', (e) => { down = [e.clientX, e.clientY]; });
 canvas.addEventListener('pointerup', (e) => {
-  if (!down || !world || tab !== '3d') return;
+  if (!down || !world || !terrainMesh || tab !== '3d') return;
   const moved = Math.hypot(e.clientX - down[0], e.clientY - down[1]);
   down = null;
   if (moved > 5) return;
@@ -233,18 +271,18 @@ const guard = (f) => () => {
 };
 $('new').addEventListener('click', guard(() => {
   $('seed').value = seedOf('seed') + 1;
-  if (playground.mode === 'herd') herd(Number($('herd-size').value));
+  if (playground.mode === 'herd') herd(herdSize());
   else single();
 }));
 for (const id of ['kind', 'seed', 'terrain-seed', 'body-scale', 'head-size', 'snout-length', 'neck-width']) {
   $(id).addEventListener('change', guard(() => {
-    if (playground.mode === 'herd') herd(Number($('herd-size').value));
+    if (playground.mode === 'herd') herd(herdSize());
     else single();
   }));
 }
 $('herd').addEventListener('click', guard(() => {
   statusLine.textContent = 'generating the herd…';
-  setTimeout(guard(() => herd(Math.min(1000, Math.max(10, Number($('herd-size').value))))), 0);
+  setTimeout(guard(() => herd(herdSize())), 0);
 }));
 $('single').addEventListener('click', guard(single));
 $('download-glb').addEventListener('click', guard(() => {
@@ -277,6 +315,8 @@ function single2d() {
     eyes = [];
   }
   if (flat) flat.free();
+  flat = null;
+  flatMesh = null;
   const seed = seedOf('seed-2d');
   flat = new Creature2d(seed, 256);
   const g = new THREE.BufferGeometry();
@@ -302,6 +342,7 @@ function single2d() {
   const pad = 0.1 * Math.max(x1 - x0, y1 - y0);
   camera2d.userData.box = [x0 - pad, y0 - pad, x1 + pad, y1 + pad];
   resize();
+  broken = false;
   statusLine.textContent = `2D creature ${seed}: ${flat.uvs().length / 2} vertices`;
 }
 
@@ -354,7 +395,10 @@ window.addEventListener('keydown', (e) => {
 function resize() {
   const w = canvas.clientWidth;
   const h = canvas.clientHeight;
-  if (canvas.width !== Math.floor(w * renderer.getPixelRatio())) renderer.setSize(w, h, false);
+  const ratio = renderer.getPixelRatio();
+  if (canvas.width !== Math.floor(w * ratio) || canvas.height !== Math.floor(h * ratio)) {
+    renderer.setSize(w, h, false);
+  }
   camera.aspect = w / h;
   camera.updateProjectionMatrix();
   const box = camera2d.userData.box;
@@ -381,7 +425,9 @@ function frame(now) {
   fps += (1 / Math.max(dt, 1e-3) - fps) * 0.05;
   try {
     resize();
-    if (tab === '3d' && world) {
+    if (broken) {
+      // Nothing moves until a creature is made again.
+    } else if (tab === '3d' && world) {
       const t0 = performance.now();
       world.update(dt);
       pushPoses();
@@ -395,8 +441,8 @@ function frame(now) {
         const step = to.sub(controls.target).multiplyScalar(Math.min(1, 3 * dt));
         controls.target.add(step);
         camera.position.add(step);
-        if (!world.target(0)) marker.visible = false;
       }
+      if (!world.target(0)) marker.visible = false;
       controls.update();
       renderer.render(scene, camera);
       if (playground.frames % 30 === 0) {
@@ -410,7 +456,6 @@ function frame(now) {
     playground.frames += 1;
   } catch (e) {
     fail(e);
-    return;
   }
   requestAnimationFrame(frame);
 }
@@ -441,6 +486,37 @@ Object.assign(playground, {
     const v = new THREE.Vector3(x, y, z).project(camera);
     const r = canvas.getBoundingClientRect();
     return [r.left + ((v.x + 1) / 2) * r.width, r.top + ((1 - v.y) / 2) * r.height];
+  },
+  /** The ground point under the screen point `(x, y)` (CSS pixels), or null. */
+  groundAt(x, y) {
+    const r = canvas.getBoundingClientRect();
+    const ndc = new THREE.Vector2(((x - r.left) / r.width) * 2 - 1, -((y - r.top) / r.height) * 2 + 1);
+    raycaster.setFromCamera(ndc, camera);
+    const hit = raycaster.intersectObject(terrainMesh)[0];
+    return hit ? [hit.point.x, hit.point.y, hit.point.z] : null;
+  },
+  /** The fraction of the canvas the creatures cover: a render without them compared. */
+  creaturePixels() {
+    const grab = () => {
+      renderer.render(scene, camera);
+      const c = document.createElement('canvas');
+      c.width = 200;
+      c.height = 140;
+      const g = c.getContext('2d', { willReadFrequently: true });
+      g.drawImage(canvas, 0, 0, c.width, c.height);
+      return g.getImageData(0, 0, c.width, c.height).data;
+    };
+    const shown = grab();
+    for (const m of meshes) m.visible = false;
+    const hidden = grab();
+    for (const m of meshes) m.visible = true;
+    let differing = 0;
+    for (let k = 0; k < shown.length; k += 4) {
+      const d = Math.abs(shown[k] - hidden[k]) + Math.abs(shown[k + 1] - hidden[k + 1])
+        + Math.abs(shown[k + 2] - hidden[k + 2]);
+      if (d > 24) differing++;
+    }
+    return differing / (shown.length / 4);
   },
   /** How much of the canvas differs from its background colour (0 to 1), and its colours. */
   canvasStats() {

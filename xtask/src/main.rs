@@ -33,7 +33,8 @@ tasks:
   fmt          cargo fmt --check
   clippy       cargo clippy (default and all features, all targets) with -D warnings
   test         cargo test --workspace --all-features (unit, integration, property, doc tests;
-               `libm` wins over `std`), then the facade's golden hashes with `std`
+               `libm` wins over `std`), then the micro-crates' tests and the facade's golden
+               hashes with their default features (`std`)
   libm         clippy and tests of every micro-crate with only its `libm` feature (the
                configuration no_std users get)
   sweep        10,000 seeds of `creature::generate_2d` and of each 3D kind in release, every
@@ -47,7 +48,7 @@ tasks:
   web-test     build the playground (web/: wasm, wasm-bindgen, three.js) into target/web/site
                and test it in Debian's headless chromium (installed with apt-get when
                missing) with web/test/browser.mjs (playwright-core): no console errors, a
-               creature drawn, a click walked to, a herd of 300, downloads byte-identical to
+               creature drawn, a click walked, flown and swum to, a herd of 300, downloads byte-identical to
                the generate example's (both built with `libm`), the browser's timings printed
   fuzz [--secs N] [TARGET]
                build the cargo-fuzz targets under fuzz/ (RUSTC_BOOTSTRAP=1, installing
@@ -334,8 +335,18 @@ fn test(w: &Workspace) -> Result<(), String> {
     c.args(["test", "--workspace", "--all-features", "--locked"]);
     seeded(&mut c);
     run(c)?;
-    // `--all-features` has `libm`, which wins over `std`: the facade's exact golden hashes of
-    // the `std` backend (its default) are checked here.
+    // `--all-features` has `libm`, which wins over `std`: the micro-crates' tests with their
+    // default features (`std` math, glam's SIMD: what users get by default), and the facade's
+    // exact golden hashes of the `std` backend, are run here.
+    if !w.micro_crates.is_empty() {
+        let mut c = w.cargo();
+        c.args(["test", "--locked"]);
+        for name in &w.micro_crates {
+            c.args(["-p", &format!("creature-{name}")]);
+        }
+        seeded(&mut c);
+        run(c)?;
+    }
     if w.has_facade() {
         let mut c = w.cargo();
         c.args(["test", "-p", "creature", "--locked", "--test", "golden"]);

@@ -57,6 +57,7 @@ pub(crate) fn web_task(w: &Workspace, args: &[String]) -> Result<(), String> {
 /// The `web` step of `cargo xtask ci`: builds the page, serves it on an ephemeral port and
 /// runs `web/test/browser.mjs` in headless chromium against it.
 pub(crate) fn web_ci(w: &Workspace) -> Result<(), String> {
+    node_20()?;
     let site = build(w)?;
     let chromium = chromium()?;
     let out = w.root.join("target").join("web").join("cli");
@@ -97,8 +98,9 @@ pub(crate) fn web_ci(w: &Workspace) -> Result<(), String> {
     run(c).map_err(|e| format!("{e}: the browser test failed (its output is above)"))
 }
 
-/// Builds the page into `target/web/site` (the module in release with the `libm` feature,
-/// wasm-bindgen's JavaScript, three.js, the page's files); returns that folder.
+/// Builds the page into `target/web/site` (the module with the `libm` feature in the `web`
+/// profile: release with link-time optimisation; wasm's 128-bit SIMD on for the compiler's
+/// loops, which leaves every float result as it is), wasm-bindgen's JavaScript, three.js, the page's files); returns that folder.
 fn build(w: &Workspace) -> Result<PathBuf, String> {
     let mut c = Command::new("rustup");
     c.args(["target", "add", WASM_TARGET]);
@@ -107,7 +109,8 @@ fn build(w: &Workspace) -> Result<PathBuf, String> {
     c.args([
         "build",
         "--locked",
-        "--release",
+        "--profile",
+        "web",
         "-p",
         "creature-web",
         "--features",
@@ -115,15 +118,19 @@ fn build(w: &Workspace) -> Result<PathBuf, String> {
         "--target",
         WASM_TARGET,
     ]);
+    c.env(
+        "CARGO_TARGET_WASM32_UNKNOWN_UNKNOWN_RUSTFLAGS",
+        "-C target-feature=+simd128",
+    );
     run(c)?;
     let bindgen = wasm_bindgen(w)?;
     let site = w.root.join("target").join("web").join("site");
     let _ = fs::remove_dir_all(&site);
-    let wasm = w
-        .root
-        .join("target")
+    let target = std::env::var_os("CARGO_TARGET_DIR")
+        .map_or_else(|| w.root.join("target"), |t| w.root.join(t));
+    let wasm = target
         .join(WASM_TARGET)
-        .join("release")
+        .join("web")
         .join("creature_web.wasm");
     let mut c = Command::new(bindgen);
     c.args(["--target", "web", "--no-typescript", "--out-dir"])
@@ -131,13 +138,11 @@ fn build(w: &Workspace) -> Result<PathBuf, String> {
         .arg(&wasm);
     run(c)?;
     let web = w.root.join("web");
-    if !web.join("node_modules").join("three").exists()
-        || !web.join("node_modules").join("playwright-core").exists()
-    {
-        let mut c = Command::new("npm");
-        c.current_dir(&web).args(["ci", "--no-audit", "--no-fund"]);
-        run(c).map_err(|e| format!("{e}: the playground needs npm (Node.js) for three.js"))?;
-    }
+    // What the lockfile says, every time (a few seconds: npm keeps its cache).
+    let mut c = Command::new("npm");
+    c.current_dir(&web).args(["ci", "--no-audit", "--no-fund"]);
+    run(c)
+        .map_err(|e| format!("{e}: the playground needs npm (Node.js 20 or later) for three.js"))?;
     let three = web.join("node_modules").join("three");
     let copies = [
         (
@@ -198,8 +203,35 @@ fn wasm_bindgen(w: &Workspace) -> Result<PathBuf, String> {
     Ok(local)
 }
 
-/// Debian's chromium, installed with apt-get (as root) when missing.
+/// Checks that `node` is version 20 or later (playwright-core needs it).
+fn node_20() -> Result<(), String> {
+    let out = Command::new("node")
+        .arg("--version")
+        .output()
+        .map_err(|e| {
+            format!("`node` was not found ({e}): the browser test needs Node.js 20 or later")
+        })?;
+    let version = String::from_utf8_lossy(&out.stdout).trim().to_string();
+    let major: u32 = version
+        .trim_start_matches('v')
+        .split('.')
+        .next()
+        .and_then(|m| m.parse().ok())
+        .unwrap_or(0);
+    if major < 20 {
+        return Err(format!(
+            "node `{version}`: the browser test needs Node.js 20 or later (playwright-core)"
+        ));
+    }
+    Ok(())
+}
+
+/// The browser: `$CHROMIUM` when set, else Debian's chromium, installed with apt-get (as
+/// root) when missing.
 fn chromium() -> Result<PathBuf, String> {
+    if let Some(path) = std::env::var_os("CHROMIUM") {
+        return Ok(PathBuf::from(path));
+    }
     let path = PathBuf::from(CHROMIUM);
     if path.exists() {
         return Ok(path);

@@ -3,8 +3,6 @@
 
 use glam::{Mat3A, Quat, Vec2, Vec3, Vec3A, Vec4};
 
-use crate::ik::BVec4A;
-
 use super::joints::lane;
 use super::{Controller, LegState};
 use crate::ik::V3;
@@ -288,8 +286,10 @@ impl Controller {
             *hips = lanes.hip.transform(&rotation, origin);
             // Four legs at a time: `foot.distance_squared(hip) > reach²` (arms: never), for the
             // planted feet (missing lanes repeat the first leg).
-            let planted = |k: usize| lane(states, k).planted;
-            let planted = BVec4A::new(planted(0), planted(1), planted(2), planted(3));
+            // A mask of glam's own type (it depends on glam's features).
+            let planted = |k: usize| f32::from(u8::from(lane(states, k).planted));
+            let planted =
+                Vec4::new(planted(0), planted(1), planted(2), planted(3)).cmpgt(Vec4::ZERO);
             let d = feet.sub(*hips);
             out |= (d.dot(d).cmpgt(lanes.reach2) & planted).any();
         }

@@ -54,7 +54,16 @@ mod backend {
     }
     #[inline]
     pub(crate) fn sqrt(x: f32) -> f32 {
-        libm::sqrtf(x)
+        // IEEE 754 rounds a square root correctly: `std`'s (one instruction) has exactly
+        // libm's bits, where libm's own is software (on wasm, several times slower).
+        #[cfg(feature = "std")]
+        {
+            x.sqrt()
+        }
+        #[cfg(not(feature = "std"))]
+        {
+            libm::sqrtf(x)
+        }
     }
     #[inline]
     pub(crate) fn floor(x: f32) -> f32 {

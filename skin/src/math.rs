@@ -1,15 +1,16 @@
 //! Scalar float helpers with a `std` backend and a `libm` backend, so call sites never branch.
 //! Everything vector-valued goes through glam's methods, which pick the backend themselves.
 
-/// Square root.
-#[cfg(all(feature = "std", not(feature = "libm")))]
+/// Square root: `std`'s whenever it is there, with `libm` too (IEEE 754 rounds a square root
+/// correctly, so it has exactly libm's bits, where libm's own is software on wasm).
+#[cfg(feature = "std")]
 #[inline]
 pub(crate) fn sqrt(x: f32) -> f32 {
     x.sqrt()
 }
 
 /// Square root.
-#[cfg(any(feature = "libm", not(feature = "std")))]
+#[cfg(not(feature = "std"))]
 #[inline]
 pub(crate) fn sqrt(x: f32) -> f32 {
     libm::sqrtf(x)

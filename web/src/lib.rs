@@ -646,12 +646,10 @@ fn flat(v: &[Vec3]) -> Vec<f32> {
 }
 
 /// A 2D creature (the 2D seed's metaball creature): its textured mesh and the seed page's
-/// idle wiggle, skinned here.
+/// idle wiggle, skinned by the facade.
 #[wasm_bindgen]
 pub struct Creature2d {
     creature: d2::Creature,
-    /// Each bone's rest world transform (position, angle).
-    rest: Vec<(Vec2, f32)>,
 }
 
 #[wasm_bindgen]
@@ -665,8 +663,7 @@ impl Creature2d {
     pub fn new(seed: f64, texture_size: u32) -> Result<Creature2d, JsError> {
         let params = d2::Params::DEFAULT.with_texture_size(texture_size);
         let creature = creature::generate_2d(seed_from(seed).map_err(js)?, &params).map_err(js)?;
-        let rest = creature.pose(&[]);
-        Ok(Self { creature, rest })
+        Ok(Self { creature })
     }
 
     /// The mesh's texture coordinates, `u, v` each (`v` down from the texture's top row).
@@ -720,47 +717,27 @@ impl Creature2d {
             .map_or_else(Vec::new, |t| t.rgba.clone())
     }
 
-    /// The mesh skinned to the idle wiggle at `t` seconds: `x, y, z` per vertex (`z`, from
-    /// 0 to 1, draws higher parts on top).
+    /// The mesh skinned to the idle wiggle at `t` seconds (`d2::Creature::posed_positions`):
+    /// `x, y, z` per vertex (`z`, from 0 to 1, draws higher parts on top).
     #[must_use]
     pub fn pose(&self, t: f32) -> Vec<f32> {
-        let posed = self.creature.pose(&self.creature.idle_rotations(t));
-        let mesh = &self.creature.mesh;
-        let mut out = Vec::with_capacity(3 * mesh.positions.len());
-        for ((p, joints), weights) in mesh.positions.iter().zip(&mesh.joints).zip(&mesh.weights) {
-            let v = p.truncate();
-            let mut at = Vec2::ZERO;
-            for (&j, &w) in joints.iter().zip(weights) {
-                let j = usize::from(j);
-                if w == 0.0 {
-                    continue;
-                }
-                let (Some(&(rest, rest_angle)), Some(&(now, angle))) =
-                    (self.rest.get(j), posed.get(j))
-                else {
-                    continue;
-                };
-                at += w * (now + Vec2::from_angle(angle - rest_angle).rotate(v - rest));
-            }
-            out.extend_from_slice(&[at.x, at.y, p.z]);
-        }
-        out
+        let c = &self.creature;
+        c.posed_positions(&c.idle_rotations(t))
+            .iter()
+            .zip(&c.mesh.positions)
+            .flat_map(|(at, rest)| [at.x, at.y, rest.z])
+            .collect()
     }
 
     /// The eyes at `t` seconds of the idle wiggle: `x, y, radius` each.
     #[must_use]
     pub fn eyes(&self, t: f32) -> Vec<f32> {
-        let posed = self.creature.pose(&self.creature.idle_rotations(t));
-        let mut out = Vec::new();
-        for eye in &self.creature.eyes {
-            if let (Some(&(rest, rest_angle)), Some(&(now, angle))) =
-                (self.rest.get(eye.bone), posed.get(eye.bone))
-            {
-                let at = now + Vec2::from_angle(angle - rest_angle).rotate(eye.position - rest);
-                out.extend_from_slice(&[at.x, at.y, eye.radius]);
-            }
-        }
-        out
+        let c = &self.creature;
+        c.posed_eyes(&c.idle_rotations(t))
+            .iter()
+            .zip(&c.eyes)
+            .flat_map(|(at, eye)| [at.x, at.y, eye.radius])
+            .collect()
     }
 }
 

@@ -214,6 +214,62 @@ impl Creature {
         }
         out
     }
+
+    /// The mesh's vertices posed with `rotations` (as [`pose`](Self::pose) takes them), by
+    /// linear-blend skinning from the rest pose, as a viewer skins the exported `.glb`: `x, y`
+    /// per vertex (a vertex's `z`, its draw order, does not move). A joint index with no bone
+    /// (an edited creature) contributes nothing.
+    ///
+    /// ```
+    /// # fn main() -> Result<(), creature::Error> {
+    /// let c = creature::generate_2d(7, &creature::d2::Params::DEFAULT.with_texture(false))?;
+    /// let rest = c.posed_positions(&[]);
+    /// assert_eq!(rest.len(), c.mesh.positions.len());
+    /// for (posed, at_rest) in rest.iter().zip(&c.mesh.positions) {
+    ///     assert!(posed.distance(at_rest.truncate()) < 1e-4);
+    /// }
+    /// assert_ne!(rest, c.posed_positions(&c.idle_rotations(2.0)));
+    /// # Ok(()) }
+    /// ```
+    #[must_use]
+    pub fn posed_positions(&self, rotations: &[f32]) -> Vec<Vec2> {
+        let (rest, now) = (self.pose(&[]), self.pose(rotations));
+        let m = &self.mesh;
+        m.positions
+            .iter()
+            .zip(&m.joints)
+            .zip(&m.weights)
+            .map(|((p, joints), weights)| {
+                let v = p.truncate();
+                let mut at = Vec2::ZERO;
+                for (&j, &w) in joints.iter().zip(weights) {
+                    if let (Some(&(p0, a0)), Some(&(p1, a1))) =
+                        (rest.get(usize::from(j)), now.get(usize::from(j)))
+                        && w != 0.0
+                    {
+                        at += w * (p1 + Vec2::from_angle(a1 - a0).rotate(v - p0));
+                    }
+                }
+                at
+            })
+            .collect()
+    }
+
+    /// The eyes' centres posed with `rotations` (as [`pose`](Self::pose) takes them): each
+    /// rides its bone. An eye on a bone that does not exist stays where it is.
+    #[must_use]
+    pub fn posed_eyes(&self, rotations: &[f32]) -> Vec<Vec2> {
+        let (rest, now) = (self.pose(&[]), self.pose(rotations));
+        self.eyes
+            .iter()
+            .map(|eye| match (rest.get(eye.bone), now.get(eye.bone)) {
+                (Some(&(p0, a0)), Some(&(p1, a1))) => {
+                    p1 + Vec2::from_angle(a1 - a0).rotate(eye.position - p0)
+                }
+                _ => eye.position,
+            })
+            .collect()
+    }
 }
 
 /// How long the 2D creature's looping idle wiggle takes to repeat (seconds; see

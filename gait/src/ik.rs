@@ -3,15 +3,15 @@
 use glam::{Mat3, Mat3A, Mat4, Quat, Vec3, Vec4};
 
 /// Whether glam runs its SSE2 code: on x86 with SSE2, unless any crate in the build turns on
-/// glam's `scalar-math` (this crate's `libm` feature does; it drops `Vec4`'s 16-byte
-/// alignment). The lanes' quaternion products and normalisations follow glam's order of
-/// operations, so they match its `Quat` bit for bit: SSE2's, or else the scalar one. Glam's
-/// other SIMD back ends (wasm's `simd128`, NEON) have orders of their own, which these do not
-/// follow.
+/// glam's `scalar-math` (this crate's `libm` feature does; it drops `Quat`'s 16-byte
+/// alignment, whatever glam's `cuda` says). The lanes' quaternion products and normalisations
+/// follow glam's order of operations, so they match its `Quat` bit for bit: SSE2's, or else
+/// the scalar one. Glam's other back ends (wasm's `simd128`, NEON, the nightly `core-simd`)
+/// have orders of their own, which these do not follow.
 const GLAM_SSE2: bool = cfg!(all(
     any(target_arch = "x86", target_arch = "x86_64"),
     target_feature = "sse2"
-)) && core::mem::align_of::<Vec4>() == 16;
+)) && core::mem::align_of::<Quat>() == 16;
 
 /// `Vec4::select` on every component of a lane vector (`$T { $f, .. }`), the mask left to
 /// glam's own type (`BVec4A` with SIMD, `BVec4` with `scalar-math`, which any crate in the

@@ -11,15 +11,19 @@ const statusLine = $('status');
 const canvas = $('view');
 
 // What the browser test reads: errors, readiness, state and the figures it prints.
-const playground = { ready: false, frames: 0, updateMs: 0, mode: 'single' };
+const playground = { ready: false, frames: 0, simTime: 0, updateMs: 0, mode: 'single' };
 window.playground = playground;
 
-// After an error the frame loop goes on but moves nothing until a creature is made again.
-let broken = false;
-function fail(e) {
+// After an error in a tab's frame or rebuild, that tab keeps drawing but moves nothing until its
+// creature is made again; the other tab is not affected.
+const broken = { '3d': false, '2d': false };
+function report(e) {
   console.error(e);
   statusLine.textContent = `error: ${e.message ?? e}`;
-  broken = true;
+}
+function fail(e) {
+  report(e);
+  broken[tab] = true;
 }
 
 /** The herd size field, clamped to 10–1,000. */
@@ -168,7 +172,7 @@ function single() {
   const seed = seedOf('seed');
   world = World.for_creature(seedOf('terrain-seed'), kind, seed, ...params());
   showWorld();
-  broken = false;
+  broken['3d'] = false;
   const length = world.length(0);
   const [x, y, z] = world.place(0);
   marker.scale.setScalar(0.25 * length);
@@ -213,7 +217,7 @@ function herd(n) {
   }
   world = herdWorld;
   showWorld();
-  broken = false;
+  broken['3d'] = false;
   marker.scale.setScalar(1);
   controls.target.set(0, 0, 0);
   camera.position.set(0, 0.45 * size, -0.75 * size);
@@ -269,6 +273,14 @@ const guard = (f) => () => {
     fail(e);
   }
 };
+// A failed download reports and leaves the live creature alone.
+const guardDownload = (f) => () => {
+  try {
+    f();
+  } catch (e) {
+    report(e);
+  }
+};
 $('new').addEventListener('click', guard(() => {
   $('seed').value = seedOf('seed') + 1;
   if (playground.mode === 'herd') herd(herdSize());
@@ -285,11 +297,11 @@ $('herd').addEventListener('click', guard(() => {
   setTimeout(guard(() => herd(herdSize())), 0);
 }));
 $('single').addEventListener('click', guard(single));
-$('download-glb').addEventListener('click', guard(() => {
+$('download-glb').addEventListener('click', guardDownload(() => {
   const kind = $('kind').value;
   download(glb_3d(kind, seedOf('seed'), ...params()), `${kind}-${seedOf('seed')}.glb`, 'model/gltf-binary');
 }));
-$('download-png').addEventListener('click', guard(() => {
+$('download-png').addEventListener('click', guardDownload(() => {
   const kind = $('kind').value;
   download(preview_3d_png(kind, seedOf('seed'), ...params()), `${kind}-${seedOf('seed')}.png`, 'image/png');
 }));
@@ -342,7 +354,7 @@ function single2d() {
   const pad = 0.1 * Math.max(x1 - x0, y1 - y0);
   camera2d.userData.box = [x0 - pad, y0 - pad, x1 + pad, y1 + pad];
   resize();
-  broken = false;
+  broken['2d'] = false;
   statusLine.textContent = `2D creature ${seed}: ${flat.uvs().length / 2} vertices`;
 }
 
@@ -365,10 +377,10 @@ $('new-2d').addEventListener('click', guard(() => {
   single2d();
 }));
 $('seed-2d').addEventListener('change', guard(single2d));
-$('download-glb-2d').addEventListener('click', guard(() => {
+$('download-glb-2d').addEventListener('click', guardDownload(() => {
   download(glb_2d(seedOf('seed-2d')), `creature-${seedOf('seed-2d')}.glb`, 'model/gltf-binary');
 }));
-$('download-png-2d').addEventListener('click', guard(() => {
+$('download-png-2d').addEventListener('click', guardDownload(() => {
   download(preview_2d_png(seedOf('seed-2d')), `creature-${seedOf('seed-2d')}.png`, 'image/png');
 }));
 
@@ -425,32 +437,32 @@ function frame(now) {
   fps += (1 / Math.max(dt, 1e-3) - fps) * 0.05;
   try {
     resize();
-    if (broken) {
-      // Nothing moves until a creature is made again.
-    } else if (tab === '3d' && world) {
-      const t0 = performance.now();
-      world.update(dt);
-      pushPoses();
-      const ms = performance.now() - t0;
-      playground.updateMs += (ms - playground.updateMs) * 0.1;
-      if (playground.mode === 'single') {
-        // The camera follows the creature, keeping its offset.
-        const [x, y, z] = world.place(0);
-        const length = world.length(0);
-        const to = new THREE.Vector3(x, y + 0.4 * length, z);
-        const step = to.sub(controls.target).multiplyScalar(Math.min(1, 3 * dt));
-        controls.target.add(step);
-        camera.position.add(step);
+    if (tab === '3d' && world) {
+      if (!broken['3d']) {
+        const t0 = performance.now();
+        world.update(dt);
+        pushPoses();
+        const ms = performance.now() - t0;
+        playground.updateMs += (ms - playground.updateMs) * 0.1;
+        playground.simTime += dt;
+        if (playground.mode === 'single') {
+          // The camera follows the creature, keeping its offset.
+          const [x, y, z] = world.place(0);
+          const length = world.length(0);
+          const to = new THREE.Vector3(x, y + 0.4 * length, z);
+          const step = to.sub(controls.target).multiplyScalar(Math.min(1, 3 * dt));
+          controls.target.add(step);
+          camera.position.add(step);
+        }
+        if (!world.target(0)) marker.visible = false;
       }
-      if (!world.target(0)) marker.visible = false;
       controls.update();
       renderer.render(scene, camera);
       if (playground.frames % 30 === 0) {
-        $('status').dataset.fps = fps.toFixed(0);
         document.title = `creature playground — ${fps.toFixed(0)} fps, animator ${playground.updateMs.toFixed(2)} ms`;
       }
     } else if (tab === '2d' && flat) {
-      pose2d(now / 1000);
+      if (!broken['2d']) pose2d(now / 1000);
       renderer.render(scene2d, camera2d);
     }
     playground.frames += 1;
@@ -464,6 +476,7 @@ function frame(now) {
 Object.assign(playground, {
   /** Creature 0's place and target, and the world's size. */
   state() {
+    if (!world || world.len() === 0) return null;
     const target = world.target(0);
     return {
       mode: playground.mode,
@@ -473,6 +486,7 @@ Object.assign(playground, {
       length: world.length(0),
       kind: world.kind(0),
       frames: playground.frames,
+      simTime: playground.simTime,
       updateMs: playground.updateMs,
     };
   },

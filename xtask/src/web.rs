@@ -118,10 +118,23 @@ fn build(w: &Workspace) -> Result<PathBuf, String> {
         "--target",
         WASM_TARGET,
     ]);
-    c.env(
-        "CARGO_TARGET_WASM32_UNKNOWN_UNKNOWN_RUSTFLAGS",
-        "-C target-feature=+simd128",
-    );
+    // Added to the caller's flags (cargo takes `CARGO_ENCODED_RUSTFLAGS`, then `RUSTFLAGS`, over
+    // a target's own): with `--target`, they reach only the module's build.
+    match std::env::var("CARGO_ENCODED_RUSTFLAGS") {
+        Ok(flags) if !flags.is_empty() => {
+            c.env(
+                "CARGO_ENCODED_RUSTFLAGS",
+                format!("{flags}\x1f-Ctarget-feature=+simd128"),
+            );
+        }
+        _ => {
+            let flags = std::env::var("RUSTFLAGS").unwrap_or_default();
+            c.env(
+                "RUSTFLAGS",
+                format!("{flags} -C target-feature=+simd128").trim_start(),
+            );
+        }
+    }
     run(c)?;
     let bindgen = wasm_bindgen(w)?;
     let site = w.root.join("target").join("web").join("site");

@@ -218,7 +218,8 @@ impl Creature {
     /// The mesh's vertices posed with `rotations` (as [`pose`](Self::pose) takes them), by
     /// linear-blend skinning from the rest pose, as a viewer skins the exported `.glb`: `x, y`
     /// per vertex (a vertex's `z`, its draw order, does not move). A joint index with no bone
-    /// (an edited creature) contributes nothing.
+    /// (an edited creature) keeps its share of the vertex where it is; a weight that is not
+    /// above 0 (or NaN) counts as 0.
     ///
     /// ```
     /// # fn main() -> Result<(), creature::Error> {
@@ -243,12 +244,15 @@ impl Creature {
                 let v = p.truncate();
                 let mut at = Vec2::ZERO;
                 for (&j, &w) in joints.iter().zip(weights) {
-                    if let (Some(&(p0, a0)), Some(&(p1, a1))) =
-                        (rest.get(usize::from(j)), now.get(usize::from(j)))
-                        && w != 0.0
-                    {
-                        at += w * (p1 + Vec2::from_angle(a1 - a0).rotate(v - p0));
+                    if !(w > 0.0) {
+                        continue;
                     }
+                    at += w * match (rest.get(usize::from(j)), now.get(usize::from(j))) {
+                        (Some(&(p0, a0)), Some(&(p1, a1))) => {
+                            p1 + Vec2::from_angle(a1 - a0).rotate(v - p0)
+                        }
+                        _ => v,
+                    };
                 }
                 at
             })
@@ -297,4 +301,39 @@ fn wiggle(bones: &[Bone], t: f32, frequency: impl Fn(f32) -> f32) -> Vec<f32> {
             }
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Regression (review): a joint index with no bone dropped its share of the vertex (pulling
+    /// it toward the origin), and a NaN weight made the vertex NaN.
+    #[test]
+    fn posed_positions_keep_a_missing_bones_share_and_skip_bad_weights() {
+        let bone = Bone {
+            parent: None,
+            offset: Vec2::ZERO,
+            position: Vec2::new(1.0, 0.0),
+            rotation: 0.0,
+            thickness: 1.0,
+            multiplier: 1.0,
+            colour: Vec3::ONE,
+            texture_weights: Vec2::new(0.5, 0.5),
+            kind: BoneKind::Root,
+        };
+        let mut c = Creature {
+            bones: alloc::vec![bone],
+            ..Creature::default()
+        };
+        c.mesh.positions = alloc::vec![Vec3::new(2.0, 3.0, 0.5); 2];
+        c.mesh.joints = alloc::vec![[0, 7, 0, 0], [0, 0, 0, 0]];
+        c.mesh.weights = alloc::vec![[0.5, 0.5, 0.0, 0.0], [1.0, f32::NAN, 0.0, 0.0]];
+        let quarter = core::f32::consts::FRAC_PI_2;
+        let posed = c.posed_positions(&[quarter]);
+        // Bone 0 turns (2, 3) a quarter turn about (1, 0): (-2, 1); bone 7 does not exist.
+        let turned = Vec2::new(-2.0, 1.0);
+        assert!(posed[0].distance(0.5 * turned + 0.5 * Vec2::new(2.0, 3.0)) < 1e-5);
+        assert!(posed[1].distance(turned) < 1e-5, "{}", posed[1]);
+    }
 }

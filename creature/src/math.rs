@@ -141,6 +141,81 @@ pub(crate) fn exp_poly(x: f32) -> f32 {
     p * f32::from_bits(((n + 127) as u32) << 23)
 }
 
+/// glam's lengths and normalisations with the square root taken by [`sqrt`]. Under `libm`,
+/// glam calls libm's software square root (on wasm, where `std`'s is one instruction, it was
+/// a sixth of the live animator's time); these give glam's bits all the same (glam's scalar order
+/// of operations, which `libm` turns on, and a square root rounded exactly either way).
+/// Without `libm`, glam's own.
+pub(crate) trait Roots: Sized {
+    /// `length`.
+    fn norm(self) -> f32;
+    /// `normalize`.
+    fn unit(self) -> Self;
+    /// `normalize_or`.
+    fn unit_or(self, fallback: Self) -> Self;
+    /// `try_normalize`.
+    fn try_unit(self) -> Option<Self>;
+}
+
+macro_rules! roots {
+    ($($T:ty),*) => {$(
+        impl Roots for $T {
+            #[inline]
+            fn norm(self) -> f32 {
+                #[cfg(feature = "libm")]
+                return sqrt(self.dot(self));
+                #[cfg(not(feature = "libm"))]
+                return self.length();
+            }
+            #[inline]
+            fn unit(self) -> Self {
+                #[cfg(feature = "libm")]
+                return self * (1.0 / self.norm());
+                #[cfg(not(feature = "libm"))]
+                return self.normalize();
+            }
+            #[inline]
+            fn unit_or(self, fallback: Self) -> Self {
+                self.try_unit().unwrap_or(fallback)
+            }
+            #[inline]
+            fn try_unit(self) -> Option<Self> {
+                #[cfg(feature = "libm")]
+                {
+                    let rcp = 1.0 / self.norm();
+                    (rcp.is_finite() && rcp > 0.0).then(|| self * rcp)
+                }
+                #[cfg(not(feature = "libm"))]
+                return self.try_normalize();
+            }
+        }
+    )*};
+}
+
+roots!(glam::Vec2, glam::Vec3, glam::Vec3A, glam::Vec4);
+
+impl Roots for glam::Quat {
+    #[inline]
+    fn norm(self) -> f32 {
+        glam::Vec4::from(self).norm()
+    }
+    #[inline]
+    fn unit(self) -> Self {
+        #[cfg(feature = "libm")]
+        return Self::from_vec4(glam::Vec4::from(self).unit());
+        #[cfg(not(feature = "libm"))]
+        return self.normalize();
+    }
+    #[inline]
+    fn unit_or(self, fallback: Self) -> Self {
+        self.try_unit().unwrap_or(fallback)
+    }
+    #[inline]
+    fn try_unit(self) -> Option<Self> {
+        glam::Vec4::from(self).try_unit().map(Self::from_vec4)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -189,5 +264,39 @@ mod tests {
         assert_eq!(exp_poly(-1000.0), exp_poly(-87.0));
         assert_eq!(exp_poly(f32::NAN), exp_poly(-87.0));
         assert!(exp_poly(1000.0).is_finite());
+    }
+
+    #[test]
+    fn roots_are_glams_lengths_and_normalisations_bit_for_bit() {
+        use glam::{Quat, Vec3, Vec3A, Vec4};
+        let mut x = 0x9E37_79B9u32;
+        let mut next = || {
+            x ^= x << 13;
+            x ^= x >> 17;
+            x ^= x << 5;
+            f32::from_bits(x & 0x807F_FFFF | 0x3F00_0000) * 3.0
+        };
+        for _ in 0..2000 {
+            let (a, b, c, d) = (next(), next(), next(), next());
+            let v = Vec3::new(a, b, c);
+            assert_eq!(v.norm().to_bits(), v.length().to_bits());
+            assert_eq!(v.unit(), v.normalize());
+            assert_eq!(v.try_unit(), v.try_normalize());
+            assert_eq!(v.unit_or(Vec3::X), v.normalize_or(Vec3::X));
+            let w = Vec3A::new(a, b, c);
+            assert_eq!(w.unit(), w.normalize());
+            let q = Quat::from_xyzw(a, b, c, d);
+            assert_eq!(q.unit(), q.normalize());
+            assert_eq!(Vec4::new(a, b, c, d).norm(), Vec4::new(a, b, c, d).length());
+        }
+        for v in [
+            Vec3::ZERO,
+            Vec3::splat(f32::NAN),
+            Vec3::splat(1e-30),
+            Vec3::splat(3e38),
+        ] {
+            assert_eq!(v.try_unit(), v.try_normalize());
+            assert_eq!(v.unit_or(Vec3::Y), v.normalize_or(Vec3::Y));
+        }
     }
 }

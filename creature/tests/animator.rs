@@ -781,3 +781,46 @@ fn a_flier_told_to_stand_lands_on_its_rest_pose_and_takes_off_when_told_to_go() 
         assert!(up > 0.3 * c.length, "seed {seed}: taken off {up} up");
     }
 }
+
+/// Regression: a planted foot turned with the body's heading, so as a walker turned its soles
+/// spun on the ground about their joints, their toes sweeping over it (1-3% of the body's
+/// length over a stance at half the walker's turn rate). Measured on the mesh as skinned:
+/// while a foot stays planted, none of its vertices moves over the ground by more than 0.2%.
+#[test]
+fn regression_planted_soles_do_not_spin_as_the_body_turns_over_them() {
+    for seed in [3, 11, 32, 58] {
+        let c = walker(seed);
+        let ground = terrain(seed, &TerrainParams::for_creature(&c)).unwrap();
+        let feet = foot_vertices(&c);
+        let mut animator = Animator::new(&c).unwrap();
+        let turn = 0.5 * animator.max_turn_rate();
+        // Per leg, where its vertices were when it last landed.
+        let mut landed: Vec<Option<Vec<Vec3>>> = vec![None; feet.len()];
+        let mut worst = 0.0f32;
+        for _ in 0..60 * 8 {
+            let heading = animator.heading();
+            let velocity = Vec3::new(heading.sin(), 0.0, heading.cos()) * c.speed;
+            let intent = Intent::Move {
+                velocity,
+                turn_rate: turn,
+            };
+            animator.update(1.0 / 60.0, intent, &ground).unwrap();
+            let posed = skinned(&c, &animator);
+            for ((foot, planted), at) in feet.iter().zip(planted(&c, &animator)).zip(&mut landed) {
+                if !planted {
+                    *at = None;
+                    continue;
+                }
+                let now: Vec<Vec3> = foot.iter().map(|&v| posed[v]).collect();
+                let first = at.get_or_insert_with(|| now.clone());
+                for (a, b) in first.iter().zip(&now) {
+                    worst = worst.max(Vec3::new(a.x - b.x, 0.0, a.z - b.z).length() / c.length);
+                }
+            }
+        }
+        assert!(
+            worst <= 0.002,
+            "walker {seed}: a planted sole's vertex moved {worst} body lengths over the ground"
+        );
+    }
+}

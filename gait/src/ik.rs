@@ -23,7 +23,7 @@ macro_rules! select_lanes {
     }};
 }
 
-use crate::math::sqrt;
+use crate::math::{Roots, sqrt, sqrt4};
 
 /// A solved two-bone chain: root (hip or shoulder), middle joint (knee or elbow) and end
 /// (foot or hand), in the same space as the inputs.
@@ -181,12 +181,12 @@ impl Shape {
     #[inline]
     pub(crate) fn aim(root: Vec3, target: Vec3, pole: Vec3) -> Self {
         let offset = target - root;
-        let distance = offset.length();
+        let distance = offset.norm();
         let dir = if distance.is_finite() && distance > 1e-12 {
             offset / distance
         } else if pole.length_squared() > 1e-24 {
             // Target on the root: fold along any direction perpendicular to the pole.
-            pole.normalize().any_orthonormal_vector()
+            pole.unit().any_orthonormal_vector()
         } else {
             Vec3::NEG_Y
         };
@@ -208,7 +208,7 @@ impl Shape {
             (self.root, self.target, self.pole, self.dir, self.distance);
         // Bend direction: the pole's part perpendicular to the chain.
         let bend = (pole - dir * pole.dot(dir))
-            .try_normalize()
+            .try_unit()
             .unwrap_or_else(|| dir.any_orthonormal_vector());
 
         let reach = upper + lower;
@@ -287,7 +287,7 @@ pub(crate) fn solve_lanes(p: &Lanes, out: [&mut TwoBone; 4]) {
 
     // `Shape::aim`.
     let offset = target.sub(root);
-    let distance = offset.dot(offset).sqrt();
+    let distance = sqrt4(offset.dot(offset));
     let common = distance.is_finite_mask() & distance.cmpgt(Vec4::splat(1e-12));
     let dir = V3 {
         x: offset.x / distance,
@@ -297,7 +297,7 @@ pub(crate) fn solve_lanes(p: &Lanes, out: [&mut TwoBone; 4]) {
 
     // `Shape::bend`.
     let off_axis = pole.sub(dir.scale(pole.dot(dir)));
-    let rcp = Vec4::ONE / off_axis.dot(off_axis).sqrt();
+    let rcp = Vec4::ONE / sqrt4(off_axis.dot(off_axis));
     let common = common & rcp.is_finite_mask() & rcp.cmpgt(zero);
     let bend = off_axis.scale(rcp);
     let reach = upper + lower;
@@ -322,7 +322,7 @@ pub(crate) fn solve_lanes(p: &Lanes, out: [&mut TwoBone; 4]) {
         / (Vec4::splat(2.0) * clamped))
         .max(-upper)
         .min(upper);
-    let across = (upper * upper - along * along).max(zero).sqrt();
+    let across = sqrt4((upper * upper - along * along).max(zero));
     let along = Vec4::select(folded, zero, along);
     let across = Vec4::select(folded, zero, across);
     let [m0, m1, m2, m3] = root.add(dir.scale(along)).add(bend.scale(across)).split();
@@ -521,7 +521,7 @@ impl Q4 {
     fn normalize(self) -> Self {
         if GLAM_SSE2 {
             let length =
-                ((self.x * self.x + self.z * self.z) + (self.y * self.y + self.w * self.w)).sqrt();
+                sqrt4((self.x * self.x + self.z * self.z) + (self.y * self.y + self.w * self.w));
             Self {
                 x: self.x / length,
                 y: self.y / length,
@@ -530,7 +530,7 @@ impl Q4 {
             }
         } else {
             let recip = Vec4::ONE
-                / (self.x * self.x + self.y * self.y + self.z * self.z + self.w * self.w).sqrt();
+                / sqrt4(self.x * self.x + self.y * self.y + self.z * self.z + self.w * self.w);
             Self {
                 x: self.x * recip,
                 y: self.y * recip,
@@ -560,7 +560,7 @@ fn from_axes4(x: V3, y: V3, z: V3) -> Q4 {
     // Usually every lane takes the same branch (legs are alike): then only its formulas.
     if low == 0 && z_case == 0xf {
         let four = opm22 - sum10;
-        let inv = Vec4::splat(0.5) / four.sqrt();
+        let inv = Vec4::splat(0.5) / sqrt4(four);
         return Q4 {
             x: (m02 + m20) * inv,
             y: (m12 + m21) * inv,
@@ -570,7 +570,7 @@ fn from_axes4(x: V3, y: V3, z: V3) -> Q4 {
     }
     if low == 0 && z_case == 0 {
         let four = opm22 + sum10;
-        let inv = Vec4::splat(0.5) / four.sqrt();
+        let inv = Vec4::splat(0.5) / sqrt4(four);
         return Q4 {
             x: (m12 - m21) * inv,
             y: (m20 - m02) * inv,
@@ -580,7 +580,7 @@ fn from_axes4(x: V3, y: V3, z: V3) -> Q4 {
     }
     if low == 0xf && x_case == 0xf {
         let four = omm22 - dif10;
-        let inv = Vec4::splat(0.5) / four.sqrt();
+        let inv = Vec4::splat(0.5) / sqrt4(four);
         return Q4 {
             x: four * inv,
             y: (m01 + m10) * inv,
@@ -593,7 +593,7 @@ fn from_axes4(x: V3, y: V3, z: V3) -> Q4 {
         Vec4::select(case_x, omm22 - dif10, omm22 + dif10),
         Vec4::select(case_z, opm22 - sum10, opm22 + sum10),
     );
-    let inv = Vec4::splat(0.5) / four.sqrt();
+    let inv = Vec4::splat(0.5) / sqrt4(four);
     let own = four * inv;
     let p01 = (m01 + m10) * inv;
     let p02 = (m02 + m20) * inv;
@@ -623,7 +623,7 @@ fn bone_rotation4(frame: Q4, along: Vec4, across: Vec4) -> Q4 {
     let zero = Vec4::ZERO;
     let r2 = along * along + across * across;
     let bone = r2.cmpgt(zero) & r2.is_finite_mask();
-    let r = r2.sqrt();
+    let r = sqrt4(r2);
     let forward = along.cmpge(zero);
     let all_forward = forward.all();
     let (x, w) = if all_forward {
@@ -634,7 +634,7 @@ fn bone_rotation4(frame: Q4, along: Vec4, across: Vec4) -> Q4 {
             Vec4::select(forward, r + along, across),
         )
     };
-    let inv = Vec4::ONE / (x * x + w * w).sqrt();
+    let inv = Vec4::ONE / sqrt4(x * x + w * w);
     let half = Q4 {
         x: x * inv,
         y: zero,
@@ -674,7 +674,7 @@ fn bone_rotation4(frame: Q4, along: Vec4, across: Vec4) -> Q4 {
 /// The rotation taking +Y onto `dir` and +Z onto `bend` (orthonormal).
 #[inline]
 fn chain_frame(dir: Vec3, bend: Vec3) -> Quat {
-    Quat::from_mat3(&Mat3::from_cols(dir.cross(bend), dir, bend)).normalize()
+    Quat::from_mat3(&Mat3::from_cols(dir.cross(bend), dir, bend)).unit()
 }
 
 /// The rotation of a bone whose direction is `along · dir + across · bend` in the chain's

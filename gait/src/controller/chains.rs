@@ -8,7 +8,7 @@ use glam::Vec3;
 use super::Controller;
 use crate::error::GaitError;
 use crate::leg::{Chain, Pose};
-use crate::math::{ceil, clamp_sym, quat_yxz, sqrt};
+use crate::math::{Roots, ceil, clamp_sym, quat_yxz, sqrt};
 
 /// Chains are integrated in sub-steps of at most this many seconds…
 const CHAIN_SUBSTEP: f32 = 1.0 / 120.0;
@@ -96,8 +96,8 @@ impl Controller {
                     // Constant segment length: project onto the sphere around the parent.
                     let parent = state.positions[k - 1];
                     let dir = (moved - parent)
-                        .try_normalize()
-                        .unwrap_or_else(|| (rest[k] - rest[k - 1]).normalize_or(Vec3::NEG_Z));
+                        .try_unit()
+                        .unwrap_or_else(|| (rest[k] - rest[k - 1]).unit_or(Vec3::NEG_Z));
                     let fixed = parent + dir * len;
                     state.velocities[k] = (fixed - x) / h;
                     state.positions[k] = fixed;
@@ -107,7 +107,7 @@ impl Controller {
             state.positions[0] = rest[0];
             for k in 1..state.positions.len() {
                 let parent = state.positions[k - 1];
-                let dir = (state.positions[k] - parent).normalize_or(Vec3::NEG_Z);
+                let dir = (state.positions[k] - parent).unit_or(Vec3::NEG_Z);
                 state.positions[k] = parent + dir * len;
             }
         }
@@ -153,7 +153,7 @@ impl Controller {
 /// written into `out` (reused storage).
 fn chain_rest(chain: &Chain, pose: &Pose, yaw: f32, out: &mut Vec<Vec3>) {
     let yaw = clamp_sym(yaw, core::f32::consts::FRAC_PI_2);
-    let dir = quat_yxz(yaw, 0.0, 0.0) * chain.direction.normalize_or(Vec3::NEG_Z);
+    let dir = quat_yxz(yaw, 0.0, 0.0) * chain.direction.unit_or(Vec3::NEG_Z);
     out.clear();
     out.extend(
         (0..=chain.segments)

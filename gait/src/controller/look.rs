@@ -4,7 +4,7 @@ use glam::{Quat, Vec2, Vec3, Vec3A};
 
 use super::{Controller, transform_a};
 use crate::leg::Pose;
-use crate::math::{atan2, clamp_sym, quat_yxz};
+use crate::math::{Roots, atan2, clamp_sym, quat_yxz};
 
 impl Controller {
     pub(super) fn intend(&mut self, pose: &Pose, angular_velocity: Vec3) {
@@ -12,7 +12,7 @@ impl Controller {
         let (yaw_t, pitch_t) = match self.look_target {
             Some(target) => {
                 let local = pose.inverse_transform_point(target) - self.head;
-                let flat = Vec2::new(local.x, local.z).length();
+                let flat = Vec2::new(local.x, local.z).norm();
                 if local.length_squared() > 1e-12 {
                     (atan2(local.x, local.z), atan2(local.y, flat))
                 } else {
@@ -38,9 +38,9 @@ impl Controller {
             _ => {
                 let full = quat_yxz(look.yaw, -look.pitch, 0.0);
                 look.rotation = if self.blend == 1.0 {
-                    full.normalize()
+                    full.unit()
                 } else {
-                    Quat::IDENTITY.slerp(full, self.blend).normalize()
+                    Quat::IDENTITY.slerp(full, self.blend).unit()
                 };
                 let local = Vec3A::from(self.head + full * Vec3::Z * (2.0 * self.mean_size));
                 self.look_cache = Some((key, local));

@@ -20,7 +20,7 @@ use crate::error::{GaitError, finite, finite3, in_range};
 use crate::ground::Ground;
 use crate::ik::{TwoBone, V3, solve_two_bone};
 use crate::leg::{Chain, Layout, Leg, LimbKind, Pose};
-use crate::math::{abs, floor_non_negative, smoothing, sqrt};
+use crate::math::{Roots, abs, floor_non_negative, smoothing, sqrt};
 use crate::metrics::GaitMetrics;
 use crate::options::GaitOptions;
 
@@ -362,11 +362,11 @@ impl Controller {
         // A squared length within the squared limit (exact: 1e8 and 1e6 are floats) has a
         // length within the limit, so the square root is only taken to report an error.
         if !(velocity.length_squared() <= MAX_SPEED * MAX_SPEED) {
-            in_range(velocity.length(), "speed", 0.0, MAX_SPEED)?;
+            in_range(velocity.norm(), "speed", 0.0, MAX_SPEED)?;
         }
         if !(angular_velocity.length_squared() <= MAX_ANGULAR_SPEED * MAX_ANGULAR_SPEED) {
             in_range(
-                angular_velocity.length(),
+                angular_velocity.norm(),
                 "angular speed",
                 0.0,
                 MAX_ANGULAR_SPEED,
@@ -458,7 +458,7 @@ fn validate_pose(pose: Pose) -> Result<Pose, GaitError> {
         // Finite components whose squares overflow: scaled by the largest first, the length
         // is between 1 and 2 and the division exact enough.
         let scaled = Vec4::from(pose.rotation) / Vec4::from(pose.rotation).abs().max_element();
-        let rotation = Quat::from_vec4(scaled / scaled.length());
+        let rotation = Quat::from_vec4(scaled / scaled.norm());
         return Ok(Pose::new(pose.translation, rotation));
     }
     let len = sqrt(len2);

@@ -8,7 +8,7 @@ use super::{Controller, LegState};
 use crate::ik::V3;
 use crate::leg::{LimbKind, Pose};
 use crate::math::{
-    atan2, atan2_lanes, clamp_sym, quat_yxz, quat_yxz_sin_cos, sin_cos, sin_cos_lanes,
+    Roots, atan2, atan2_lanes, clamp_sym, quat_yxz, quat_yxz_sin_cos, sin_cos, sin_cos_lanes,
     sin_turns_arg, sqrt,
 };
 
@@ -273,7 +273,7 @@ impl Controller {
         let reaction = self.reaction;
         // The reacted body's hips, four legs at a time; kept for the IK when every planted foot
         // is within reach of them (as usual), which then need not place them again.
-        let rotation = Mat3A::from_quat((pose.rotation * reaction.rotation).normalize());
+        let rotation = Mat3A::from_quat((pose.rotation * reaction.rotation).unit());
         let origin = pose.translation + reaction.offset;
         let mut out = false;
         for (((lanes, hips), feet), states) in self
@@ -298,7 +298,7 @@ impl Controller {
             return;
         }
         let out_of_reach = |offset: Vec3, rotation: Quat| {
-            let rotation = Mat3A::from_quat((pose.rotation * rotation).normalize());
+            let rotation = Mat3A::from_quat((pose.rotation * rotation).unit());
             let origin = pose.translation + offset;
             self.legs.iter().zip(&self.states).any(|(leg, state)| {
                 let reach = leg.upper + leg.lower;
@@ -322,7 +322,7 @@ impl Controller {
             }
         }
         self.reaction.offset = reaction.offset * low;
-        self.reaction.rotation = Quat::IDENTITY.slerp(reaction.rotation, low).normalize();
+        self.reaction.rotation = Quat::IDENTITY.slerp(reaction.rotation, low).unit();
     }
 
     /// Each swinging foot moved out across the reacted body (level, along its left axis) to at
@@ -335,9 +335,9 @@ impl Controller {
     /// Returns whether any foot moved.
     pub(super) fn keep_swings_on_their_sides(&mut self, pose: &Pose) -> bool {
         // The reacted body's rotation, as `keep_within_reach` left it when it kept the reaction.
-        let rotation = self.reacted_rotation.unwrap_or_else(|| {
-            Mat3A::from_quat((pose.rotation * self.reaction.rotation).normalize())
-        });
+        let rotation = self
+            .reacted_rotation
+            .unwrap_or_else(|| Mat3A::from_quat((pose.rotation * self.reaction.rotation).unit()));
         let origin = pose.translation + self.reaction.offset;
         let left = Vec3::from(rotation.x_axis);
         let level = Vec3::new(left.x, 0.0, left.z);

@@ -4,6 +4,7 @@
 use super::{BodyReaction, Controller, LegState, Look};
 use crate::error::GaitError;
 use crate::leg::{Leg, LimbKind, Pose};
+use crate::math::Roots;
 use crate::metrics::GaitMetrics;
 use crate::options::GaitOptions;
 
@@ -82,7 +83,7 @@ impl Controller {
     pub fn reacted_pose(&self) -> Pose {
         Pose::new(
             self.pose.translation + self.reaction.offset,
-            (self.pose.rotation * self.reaction.rotation).normalize(),
+            (self.pose.rotation * self.reaction.rotation).unit(),
         )
     }
 

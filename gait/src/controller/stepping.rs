@@ -6,7 +6,7 @@ use glam::{Mat3A, Vec3};
 use super::{Controller, LegState, MAX_COORDINATE, horizontal};
 use crate::ground::Ground;
 use crate::leg::{Leg, LimbKind, Pose};
-use crate::math::{abs, sin_turns, sqrt};
+use crate::math::{Roots, abs, sin_turns, sqrt};
 use crate::options::GaitOptions;
 
 const WANT: u8 = 1;
@@ -24,7 +24,7 @@ impl Controller {
     ) {
         let o = &self.options;
         let forward = horizontal(pose.rotation * Vec3::Z)
-            .try_normalize()
+            .try_unit()
             .unwrap_or(Vec3::Z);
         let body = pose.translation;
         let rotation = *rotation;
@@ -64,7 +64,7 @@ impl Controller {
             let anchor_normal =
                 || cast_down(ground, rest_world, leg.size, o).map_or(Vec3::Y, |(_, n)| n);
             let motion = horizontal(velocity + angular_velocity.cross(rest_world - body));
-            if still && motion.length() > still_limit {
+            if still && motion.norm() > still_limit {
                 still = false;
             }
             self.rest_world[i] = rest_world;
@@ -106,7 +106,7 @@ impl Controller {
                     state.normal = target_normal;
                 }
                 let target = state.step_target;
-                let moved = horizontal(anchor - state.prev_anchor).length();
+                let moved = horizontal(anchor - state.prev_anchor).norm();
                 let by_motion = moved / state.swing_length.max(1e-6);
                 state.progress = (state.progress
                     + by_motion
@@ -156,7 +156,7 @@ impl Controller {
                 continue; // forced above
             }
             let stray = horizontal(state.foot - state.anchor);
-            let distance = stray.length();
+            let distance = stray.norm();
             let d = if distance > 1e-9 {
                 stray.dot(forward) / distance
             } else {
@@ -334,10 +334,8 @@ impl Controller {
             state.step_target = target;
             state.normal = target_normal;
             state.lift = o.step_height * leg.size * speed_factor;
-            state.swing_length = horizontal(target - state.foot)
-                .length()
-                .max(0.05 * leg.size)
-                * self.swing_fraction;
+            state.swing_length =
+                horizontal(target - state.foot).norm().max(0.05 * leg.size) * self.swing_fraction;
             state.steps = state.steps.saturating_add(1);
             if sequenced {
                 steps_started += 1;
@@ -390,7 +388,7 @@ fn cast_down<G: Ground + ?Sized>(
     let normal = if abs(n2 - 1.0) <= 1e-6 {
         n
     } else if n.is_finite() && n2 > 1e-12 {
-        n.normalize_or(Vec3::Y)
+        n.unit_or(Vec3::Y)
     } else {
         return None;
     };
@@ -444,7 +442,7 @@ fn step_target<G: Ground + ?Sized>(
 ) -> (Vec3, Vec3) {
     let (leg, index, legs, states) = leg;
     let (forward, body, rotation) = frame;
-    let speed = motion.length();
+    let speed = motion.norm();
     let mut target = anchor;
     if speed > 1e-6 {
         let dir = motion / speed;

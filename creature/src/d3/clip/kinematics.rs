@@ -9,6 +9,7 @@ use glam::{Affine3A, Mat3, Mat3A, Quat, Vec3};
 use super::Clip;
 use crate::Error;
 use crate::d3::Creature;
+use crate::math::Roots;
 
 /// [`Creature::pose`]: the joints' model-space transforms at frame `frame` of `clip` (clamped
 /// to its last frame), the clip's tracks (any clip a caller passes: a track's missing frame or
@@ -110,7 +111,7 @@ pub(super) fn forward_kinematics(joints: &[crate::d3::Joint], local: &[Affine3A]
 /// small angles too (`Quat::angle_between` takes an arc cosine of a dot product near 1, which
 /// rounds angles below about 1e-3 to 0): for unit quaternions `|p − q| = 2 sin(θ / 4)`.
 pub(super) fn angle_between(p: Quat, q: Quat) -> f32 {
-    let d = (p - q).length().min((p + q).length());
+    let d = (p - q).norm().min((p + q).norm());
     4.0 * crate::math::asin((0.5 * d).min(1.0))
 }
 
@@ -146,7 +147,7 @@ impl Hinge {
     /// The hip's and knee's rotations turning the limb's segments to `now`.
     pub(super) fn rotations(&self, now: (Vec3, Vec3)) -> (Quat, Quat) {
         let hip =
-            Quat::from_mat3a(&(Mat3A::from(bend_frame(now, self.pole)) * self.unframe)).normalize();
+            Quat::from_mat3a(&(Mat3A::from(bend_frame(now, self.pole)) * self.unframe)).unit();
         let knee = rotation_arc(self.rest_lower, hip.inverse() * now.1);
         (hip, knee)
     }
@@ -164,7 +165,7 @@ fn bend_frame((upper, lower): (Vec3, Vec3), pole: Vec3) -> Mat3 {
     };
     let normal = normal.reject_from_normalized(upper);
     let normal = normal
-        .try_normalize()
+        .try_unit()
         .unwrap_or_else(|| upper.any_orthonormal_vector());
     Mat3::from_cols(upper, normal, upper.cross(normal))
 }
@@ -172,7 +173,7 @@ fn bend_frame((upper, lower): (Vec3, Vec3), pole: Vec3) -> Mat3 {
 /// The angle (radians) between unit vectors `a` and `b`, accurate for small angles too:
 /// `|a − b| = 2 sin(θ / 2)`.
 pub(super) fn angle_between_vectors(a: Vec3, b: Vec3) -> f32 {
-    2.0 * crate::math::asin((0.5 * (a - b).length()).min(1.0))
+    2.0 * crate::math::asin((0.5 * (a - b).norm()).min(1.0))
 }
 
 /// The shortest rotation from unit vector `from` to unit vector `to`. Unlike
@@ -185,7 +186,7 @@ pub(super) fn rotation_arc(from: Vec3, to: Vec3) -> Quat {
         return Quat::from_rotation_arc(from, to);
     }
     let axis = from.cross(to);
-    Quat::from_xyzw(axis.x, axis.y, axis.z, 1.0 + dot).normalize()
+    Quat::from_xyzw(axis.x, axis.y, axis.z, 1.0 + dot).unit()
 }
 
 #[cfg(test)]

@@ -7,7 +7,7 @@ use alloc::vec::Vec;
 
 use glam::{Affine3A, Mat4, Quat, Vec2, Vec3, Vec3A};
 
-use creature_gait::{Controller, Ground, LimbKind, Pose, solve_two_bone};
+use creature_gait::{Controller, Ground, LegState, LimbKind, Pose, solve_two_bone};
 use creature_limbs::CreatureKind;
 
 use super::floor::knee_above;
@@ -16,6 +16,7 @@ use super::walk::{MAX_ARM_TURN_RATE, soft_reach, turn_bend_total};
 use super::{CLIP_FPS, Clip, Track};
 use crate::Error;
 use crate::d3::{Creature, GaitSetup};
+use crate::math::Roots;
 
 mod fly_swim;
 
@@ -65,6 +66,11 @@ pub const ARRIVAL_RADIUS: f32 = 0.25;
 /// its parent's frame, the root in the world), [`world_transforms`](Self::world_transforms)
 /// and [`skinning_matrices`](Self::skinning_matrices) (joint world × inverse bind, for a GPU
 /// skinning shader). An update allocates nothing.
+///
+/// A planted foot stays as it landed: its sole keeps the yaw it landed with (it does not spin
+/// on the ground as the body turns over it; its next step turns it to the body's heading) and
+/// is fitted to the ground once where it stands. A ground that changes under a planted foot
+/// is followed from that foot's next step, as the gait controller follows it.
 ///
 /// Fliers and swimmers are steered by the same intents (at most a quarter turn a second) and
 /// held above the ground under them:
@@ -188,6 +194,133 @@ struct LiveLeg {
     sole_points: Vec<Vec3A>,
     /// The farthest any of `sole_points` reaches from the foot joint horizontally.
     sole_reach: f32,
+    /// The sole's yaw (world, about +Y): see [`turn_sole`](Self::turn_sole).
+    yaw: Quat,
+    /// The yaw the foot lifted off with, which a step turns from.
+    lifted: Quat,
+    /// The sole's fit where the foot last stood planted: the foot joint's place and the yaw
+    /// it was made for, the sole's normal and its lift there.
+    fitted: Option<(Vec3, Quat, Vec3, f32)>,
+    /// The last landing fit of a step: its target, the heading it was made for and the lift
+    /// of the sole resting there.
+    landing: Option<(Vec3, Quat, f32)>,
+}
+
+impl LiveLeg {
+    /// The sole's yaw this frame, the body turned to `heading`: a planted foot keeps the yaw
+    /// it landed with (it does not spin on the ground as the body turns over it); a stepping
+    /// one turns from the yaw it lifted off with to the heading over its step (eased), landing
+    /// turned with the body; a foot off the ground and not stepping turns toward the heading
+    /// by at most `most` (radians). An arm's hand turns with the heading.
+    fn turn_sole(&mut self, kind: LimbKind, state: &LegState, heading: Quat, most: f32) -> Quat {
+        if most == f32::INFINITY {
+            // Afresh: the foot put down under the body.
+            self.fitted = None;
+            self.landing = None;
+        }
+        if kind != LimbKind::Leg || most == f32::INFINITY {
+            self.lifted = heading;
+            self.yaw = heading;
+        } else if state.planted {
+            self.lifted = self.yaw;
+        } else if state.stepping {
+            let t = state.progress.clamp(0.0, 1.0);
+            self.yaw = self.lifted.slerp(heading, t * t * (3.0 - 2.0 * t)).unit();
+        } else {
+            let angle = self.yaw.angle_between(heading);
+            self.yaw = if angle > most {
+                self.yaw.slerp(heading, most / angle).unit()
+            } else {
+                heading
+            };
+            self.lifted = self.yaw;
+        }
+        self.yaw
+    }
+
+    /// [`fit`](Self::fit), made once where a foot stands planted (the ground under a planted
+    /// foot is taken not to change, as the gait controller takes it).
+    fn fitted_sole<G: Ground + ?Sized>(
+        &mut self,
+        ground: &G,
+        leg: &creature_gait::Leg,
+        state: &LegState,
+        (heading, yaw): (Quat, Quat),
+    ) -> Option<(Vec3, f32)> {
+        let end = state.joints.end;
+        if !state.planted {
+            return self.fit(ground, leg, state, (heading, yaw));
+        }
+        if let Some((at, turned, normal, lift)) = self.fitted
+            && at == end
+            && turned == yaw
+        {
+            return Some((normal, lift));
+        }
+        let fitted = self.fit(ground, leg, state, (heading, yaw));
+        self.fitted = fitted.map(|(normal, lift)| (end, yaw, normal, lift));
+        fitted
+    }
+
+    /// The sole of leg `leg` in state `state` fitted to `ground` with the body at `heading`
+    /// and the sole at `yaw`: its normal and how far it rises off the ground; `None` where a
+    /// ray misses.
+    fn fit<G: Ground + ?Sized>(
+        &mut self,
+        ground: &G,
+        leg: &creature_gait::Leg,
+        state: &LegState,
+        (heading, yaw): (Quat, Quat),
+    ) -> Option<(Vec3, f32)> {
+        let solved = &state.joints;
+        let fit = fit_sole(ground, solved.end, yaw, &self.sole, leg.size)?;
+        // A swinging foot levels off as it rises from the ground.
+        let level = if state.planted {
+            1.0
+        } else {
+            (1.0 - fit.height / (2.0 * self.foot_radius)).clamp(0.0, 1.0)
+        };
+        let normal = Vec3::Y.lerp(fit.normal, level).unit_or(Vec3::Y);
+        // Every sole vertex tested (on the ground's plane where the ground under the rim is
+        // flat, else where it is), unless the rim stands clear of the ground by more than the
+        // sole's radius (a foot high in a step).
+        let flat = FLAT_SOLE * self.foot_radius;
+        let sole = rotation_arc(Vec3::Y, normal) * yaw;
+        let mut lift = if fit.clearance > self.foot_radius {
+            0.0
+        } else if fit.off_plane <= flat {
+            fit.plane_lift(sole, &self.sole_points, self.sole_reach)
+        } else {
+            sole_lift(ground, solved.end, sole, &self.sole_points, leg.size)
+        };
+        // A stepping foot comes down onto where its sole will rest at the step's target (on a
+        // step's crest under a toe, not the ground under its joint), turned with the body as
+        // it will land: raised by that sole's lift over the step's second half, it does not
+        // skid over the crest as it lands.
+        let landing = 2.0 * state.progress - 1.0;
+        if leg.kind == LimbKind::Leg && state.stepping && !state.planted && landing > 0.0 {
+            let target = state.step_target;
+            let rest = match self.landing {
+                // The same target and heading as the last frame's (the target stays put over
+                // the step's end; the heading, walking straight).
+                Some((at, turned, rest)) if at == target && turned == heading => Some(rest),
+                _ => fit_sole(ground, target, heading, &self.sole, leg.size).map(|fit| {
+                    let sole = rotation_arc(Vec3::Y, fit.normal) * heading;
+                    let rest = if fit.off_plane <= flat {
+                        fit.plane_lift(sole, &self.sole_points, self.sole_reach)
+                    } else {
+                        sole_lift(ground, target, sole, &self.sole_points, leg.size)
+                    };
+                    self.landing = Some((target, heading, rest));
+                    rest
+                }),
+            };
+            if let Some(rest) = rest {
+                lift = lift.max(rest * landing.min(1.0));
+            }
+        }
+        Some((normal, lift))
+    }
 }
 
 impl Animator {
@@ -301,8 +434,8 @@ impl Animator {
             .iter()
             .zip(&setup.hip_joints)
             .map(|(leg, &hip)| {
-                let rest_upper = (rest(hip + 1) - rest(hip)).normalize_or(Vec3::NEG_Y);
-                let rest_lower = (rest(hip + 2) - rest(hip + 1)).normalize_or(Vec3::NEG_Y);
+                let rest_upper = (rest(hip + 1) - rest(hip)).unit_or(Vec3::NEG_Y);
+                let rest_lower = (rest(hip + 2) - rest(hip + 1)).unit_or(Vec3::NEG_Y);
                 let sole = sole_points(creature, hip + 2);
                 LiveLeg {
                     rest_upper,
@@ -313,9 +446,13 @@ impl Animator {
                     sole: sole_rim(&sole),
                     sole_reach: sole
                         .iter()
-                        .map(|p| Vec3A::new(p.x, 0.0, p.z).length())
+                        .map(|p| Vec3A::new(p.x, 0.0, p.z).norm())
                         .fold(0.0, f32::max),
                     sole_points: sole,
+                    yaw: Quat::IDENTITY,
+                    lifted: Quat::IDENTITY,
+                    fitted: None,
+                    landing: None,
                 }
             })
             .collect();
@@ -396,8 +533,7 @@ impl Animator {
             position.y += (height - position.y) * k;
         }
         let lean = self.lean + (slope - self.lean) * k;
-        let rotation =
-            (yaw * Quat::from_rotation_x(lean.x) * Quat::from_rotation_z(lean.y)).normalize();
+        let rotation = (yaw * Quat::from_rotation_x(lean.x) * Quat::from_rotation_z(lean.y)).unit();
         let pose = Pose::new(position, rotation);
         if self.fresh {
             self.controller.reset(pose, ground)?;
@@ -408,8 +544,7 @@ impl Animator {
             // Until it is within a body length: a target beside or behind the head as the
             // body arrives would wrench it round.
             Intent::GoTo(target)
-                if Vec2::new(target.x - position.x, target.z - position.z).length()
-                    > self.length =>
+                if Vec2::new(target.x - position.x, target.z - position.z).norm() > self.length =>
             {
                 Some(Vec3::new(
                     target.x,
@@ -484,7 +619,7 @@ impl Animator {
                     });
                 }
                 let to = Vec2::new(target.x - self.position.x, target.z - self.position.z);
-                let distance = to.length();
+                let distance = to.norm();
                 if distance <= ARRIVAL_RADIUS * self.length {
                     return Ok((Vec3::ZERO, 0.0));
                 }
@@ -574,13 +709,13 @@ impl Animator {
         for &(joint, divisor, limit) in &self.bends {
             let bend = Quat::from_rotation_y(total / divisor);
             let turn = if divisor > 0.0 {
-                (bend * look_share).normalize()
+                (bend * look_share).unit()
             } else {
                 bend
             };
             let angle = turn.angle_between(Quat::IDENTITY);
             let turn = if angle > limit {
-                Quat::IDENTITY.slerp(turn, limit / angle).normalize()
+                Quat::IDENTITY.slerp(turn, limit / angle).unit()
             } else {
                 turn
             };
@@ -598,7 +733,8 @@ impl Animator {
             let parent = self.parents[j].map(|p| self.world[p]);
             if let Some(i) = self.leg_at[j] {
                 // A leg's hip: its chain solved from the hip to the foot in body space.
-                let (leg, live, state) = (&setup[i], &self.legs[i], &states[i]);
+                let (leg, state) = (&setup[i], &states[i]);
+                let yaw = self.legs[i].turn_sole(leg.kind, state, heading, arm_turn);
                 // The controller's two-bone solution (world, the knee toward the pole), in
                 // body space.
                 let solved = &state.joints;
@@ -606,55 +742,22 @@ impl Animator {
                 let (root, mut end) = (to_body(solved.root), to_body(solved.end));
                 let mut middle = to_body(solved.middle);
                 // The sole fitted to the ground across its width, and raised off it where an
-                // edge would be in it (a step's edge under a foot).
+                // edge would be in it (a step's edge under a foot): a planted foot's fit is
+                // made once where it stands (the ground under a planted foot is taken not to
+                // change, as the controller takes it).
                 let mut normal = state.normal;
-                if let Some(g) = ground
-                    && let Some(fit) = fit_sole(g, solved.end, heading, &live.sole, leg.size)
-                {
-                    // A swinging foot levels off as it rises from the ground.
-                    let level = if state.planted {
-                        1.0
-                    } else {
-                        (1.0 - fit.height / (2.0 * live.foot_radius)).clamp(0.0, 1.0)
-                    };
-                    normal = Vec3::Y.lerp(fit.normal, level).normalize_or(Vec3::Y);
-                    // Every sole vertex tested (on the ground's plane where the ground under
-                    // the rim is flat, else where it is), unless the rim stands clear of the
-                    // ground by more than the sole's radius (a foot high in a step).
-                    let flat = FLAT_SOLE * live.foot_radius;
-                    let sole = rotation_arc(Vec3::Y, normal) * heading;
-                    let mut lift = if fit.clearance > live.foot_radius {
-                        0.0
-                    } else if fit.off_plane <= flat {
-                        fit.plane_lift(sole, &live.sole_points, live.sole_reach)
-                    } else {
-                        sole_lift(g, solved.end, sole, &live.sole_points, leg.size)
-                    };
-                    // A stepping foot comes down onto where its sole will rest at the step's
-                    // target (on a step's crest under a toe, not the ground under its joint):
-                    // raised by that sole's lift over the step's second half, it does not skid
-                    // over the crest as it lands.
-                    let landing = 2.0 * state.progress - 1.0;
-                    if leg.kind == LimbKind::Leg
-                        && state.stepping
-                        && !state.planted
-                        && landing > 0.0
-                        && let Some(fit) =
-                            fit_sole(g, state.step_target, heading, &live.sole, leg.size)
-                    {
-                        let sole = rotation_arc(Vec3::Y, fit.normal) * heading;
-                        let rest = if fit.off_plane <= flat {
-                            fit.plane_lift(sole, &live.sole_points, live.sole_reach)
-                        } else {
-                            sole_lift(g, state.step_target, sole, &live.sole_points, leg.size)
-                        };
-                        lift = lift.max(rest * landing.min(1.0));
-                    }
-                    if lift > 0.0 {
-                        end = to_body(solved.end + Vec3::Y * lift);
-                        middle = solve_two_bone(root, end, leg.upper, leg.lower, leg.pole).middle;
+                if let Some(g) = ground {
+                    let fitted = self.legs[i].fitted_sole(g, leg, state, (heading, yaw));
+                    if let Some((fit, lift)) = fitted {
+                        normal = fit;
+                        if lift > 0.0 {
+                            end = to_body(solved.end + Vec3::Y * lift);
+                            middle =
+                                solve_two_bone(root, end, leg.upper, leg.lower, leg.pole).middle;
+                        }
                     }
                 }
+                let live = &self.legs[i];
                 // A foot in the air short of a straight leg, as the baked clips hold it.
                 if !state.planted {
                     let soft = soft_reach(root, end, leg.upper + leg.lower, up);
@@ -672,8 +775,8 @@ impl Animator {
                         })
                 });
                 let middle = knee_above(root, middle, end, up, floor);
-                let upper = (middle - root).normalize_or(live.rest_upper);
-                let lower = (end - middle).normalize_or(live.rest_lower);
+                let upper = (middle - root).unit_or(live.rest_upper);
+                let lower = (end - middle).unit_or(live.rest_lower);
                 let (hip, knee) = live.hinge.rotations((upper, lower));
                 let hip_world =
                     Affine3A::from_rotation_translation(body.rotation * hip, solved.root);
@@ -683,20 +786,17 @@ impl Animator {
                     if !arm || arm_turn == f32::INFINITY {
                         return new;
                     }
-                    let old = Quat::from_mat3a(&old.matrix3).normalize();
+                    let old = Quat::from_mat3a(&old.matrix3).unit();
                     let angle = old.angle_between(new);
                     if angle > arm_turn {
-                        old.slerp(new, arm_turn / angle).normalize()
+                        old.slerp(new, arm_turn / angle).unit()
                     } else {
                         new
                     }
                 };
                 let hip_local = parent.map_or(hip_world, |p| p.inverse() * hip_world);
                 self.local[j] = Affine3A::from_rotation_translation(
-                    damped(
-                        &self.local[j],
-                        Quat::from_mat3a(&hip_local.matrix3).normalize(),
-                    ),
+                    damped(&self.local[j], Quat::from_mat3a(&hip_local.matrix3).unit()),
                     hip_local.translation.into(),
                 );
                 let (knee_joint, foot_joint) = (j + 1, j + 2);
@@ -704,10 +804,10 @@ impl Animator {
                     damped(&self.local[knee_joint], knee),
                     self.rest_local[knee_joint],
                 );
-                // The sole flat on the ground: level, turned with the heading, tilted to the
-                // ground's normal.
-                let sole = rotation_arc(Vec3::Y, normal) * heading;
-                let foot_rotation = ((body.rotation * hip * knee).inverse() * sole).normalize();
+                // The sole flat on the ground: level, turned to its yaw, tilted to the ground's
+                // normal.
+                let sole = rotation_arc(Vec3::Y, normal) * yaw;
+                let foot_rotation = ((body.rotation * hip * knee).inverse() * sole).unit();
                 self.local[foot_joint] = Affine3A::from_rotation_translation(
                     damped(&self.local[foot_joint], foot_rotation),
                     self.rest_local[foot_joint],
@@ -719,7 +819,7 @@ impl Animator {
                 let look = body.rotation * self.controller.look().rotation;
                 let turn = parent.map_or(look, |p| Quat::from_mat3a(&p.matrix3).inverse() * look);
                 self.local[j] =
-                    Affine3A::from_rotation_translation(turn.normalize(), self.rest_local[j]);
+                    Affine3A::from_rotation_translation(turn.unit(), self.rest_local[j]);
             }
             let local = &self.local[j];
             self.world[j] = match parent {
@@ -953,7 +1053,7 @@ impl SoleFit {
         // Where `down` points down in the sole's frame, no point higher than one whose
         // bound falls short of the lift so far can raise it: the scan stops there (the
         // bound's margin covers rounding).
-        let across = Vec3A::new(down.x, 0.0, down.z).length() * reach;
+        let across = Vec3A::new(down.x, 0.0, down.z).norm() * reach;
         let margin = 1e-5 * (a.abs() + across + 1.0);
         let mut lift = 0.0f32;
         for &point in points {
@@ -1018,8 +1118,8 @@ fn fit_sole<G: Ground + ?Sized>(
             Vec3::ZERO
         }
     };
-    let normal = (Vec3::Y - slope(samples[0], samples[1]) - slope(samples[2], samples[3]))
-        .normalize_or(Vec3::Y);
+    let normal =
+        (Vec3::Y - slope(samples[0], samples[1]) - slope(samples[2], samples[3])).unit_or(Vec3::Y);
     // At most the steepest tilt: the normal's horizontal part scaled down.
     let (sin, cos) = (
         crate::math::sin(MAX_SOLE_TILT),
@@ -1028,7 +1128,7 @@ fn fit_sole<G: Ground + ?Sized>(
     let normal = if normal.y >= cos {
         normal
     } else {
-        let flat = Vec3::new(normal.x, 0.0, normal.z).normalize_or(Vec3::X);
+        let flat = Vec3::new(normal.x, 0.0, normal.z).unit_or(Vec3::X);
         flat * sin + Vec3::Y * cos
     };
     let mean = samples.iter().map(|s| s.1).sum::<f32>() / RIM_SAMPLES as f32;
@@ -1231,12 +1331,12 @@ impl Creature {
             let root = animator.local[animator.root];
             clip.root_translation.push(Vec3::from(root.translation));
             clip.root_rotation
-                .push(Quat::from_mat3a(&root.matrix3).normalize());
+                .push(Quat::from_mat3a(&root.matrix3).unit());
             for track in &mut clip.tracks {
                 let local = animator.local[track.joint];
                 track
                     .rotations
-                    .push(Quat::from_mat3a(&local.matrix3).normalize());
+                    .push(Quat::from_mat3a(&local.matrix3).unit());
                 if let Some(t) = track.translations.as_mut() {
                     t.push(Vec3::from(local.translation));
                 }
@@ -1253,7 +1353,7 @@ impl Creature {
             }
             clip.frames += 1;
             let at = animator.position;
-            if Vec2::new(target.x - at.x, target.z - at.z).length() <= arrived {
+            if Vec2::new(target.x - at.x, target.z - at.z).norm() <= arrived {
                 // Arrived (a go-to's intent now, as a stand's): it stands, a flier lands.
                 intent = Intent::Stand;
                 if animator.settled() {

@@ -18,6 +18,7 @@ use super::super::walk::turn_bend_total;
 use super::{Animator, Drive};
 use crate::Error;
 use crate::d3::Creature;
+use crate::math::Roots;
 
 /// A flier's model origin (its rest pose's ground level) is held this many body lengths above
 /// the highest ground under and ahead of it.
@@ -274,7 +275,7 @@ fn skin_radius(c: &Creature) -> f32 {
     c.mesh
         .positions
         .iter()
-        .map(|p| glam::Vec2::new(p.x, p.z).length())
+        .map(|p| glam::Vec2::new(p.x, p.z).norm())
         .fold(0.0, f32::max)
 }
 
@@ -445,9 +446,9 @@ impl Animator {
     ) -> Steer {
         let (rise, share) = self.smoothing(dt);
         let speed = if self.fresh {
-            velocity.length()
+            velocity.norm()
         } else {
-            hold.speed + (velocity.length() - hold.speed) * share
+            hold.speed + (velocity.norm() - hold.speed) * share
         };
         let mut position = self.position + velocity * dt;
         let top = self.ground_top(hold, position, velocity, ground);
@@ -677,7 +678,7 @@ impl Animator {
         let yaw = Quat::from_rotation_y(heading);
         let rotation =
             (yaw * Quat::from_rotation_x(pitch + lean.x) * Quat::from_rotation_z(bank + lean.y))
-                .normalize();
+                .unit();
         self.local[self.root] = Affine3A::from_rotation_translation(
             rotation,
             position + yaw * self.rest_root + Vec3::Y * bob,
@@ -700,7 +701,7 @@ impl Animator {
                 rotation = rotation.slerp(Quat::IDENTITY, down);
             }
             self.local[joint] =
-                Affine3A::from_rotation_translation(rotation.normalize(), self.rest_local[joint]);
+                Affine3A::from_rotation_translation(rotation.unit(), self.rest_local[joint]);
         }
         self.forward_kinematics();
         let hold = &flight.hold;
@@ -760,7 +761,7 @@ impl Animator {
         let yaw = Quat::from_rotation_y(heading);
         let mut previous = yaw_at(swimming.along.first().copied().unwrap_or(1.0));
         self.local[self.root] = Affine3A::from_rotation_translation(
-            (yaw * Quat::from_rotation_y(previous)).normalize(),
+            (yaw * Quat::from_rotation_y(previous)).unit(),
             position + yaw * self.rest_root,
         );
         // Each spine bone's yaw relative to its parent's, with its share of the turn's bend,

@@ -1,6 +1,6 @@
 //! Analytic two-bone inverse kinematics with a pole hint.
 
-use glam::{Mat3, Mat3A, Mat4, Quat, Vec3, Vec4};
+use glam::{Mat3A, Mat4, Quat, Vec3, Vec4};
 
 /// Whether glam runs its SSE2 code: on x86 with SSE2, unless any crate in the build turns on
 /// glam's `scalar-math` (this crate's `libm` feature does; it drops `Quat`'s 16-byte
@@ -23,7 +23,7 @@ macro_rules! select_lanes {
     }};
 }
 
-use crate::math::{Roots, sqrt, sqrt4};
+use crate::math::{Roots, quat_from_axes, sqrt, sqrt4};
 
 /// A solved two-bone chain: root (hip or shoulder), middle joint (knee or elbow) and end
 /// (foot or hand), in the same space as the inputs.
@@ -541,7 +541,7 @@ impl Q4 {
     }
 }
 
-/// `Quat::from_mat3(&Mat3::from_cols(x, y, z))`, lane by lane (glam's four branches, each
+/// `Quat::from_mat3(&glam::Mat3::from_cols(x, y, z))`, lane by lane (glam's four branches, each
 /// lane taking its own).
 #[inline(always)]
 fn from_axes4(x: V3, y: V3, z: V3) -> Q4 {
@@ -674,7 +674,7 @@ fn bone_rotation4(frame: Q4, along: Vec4, across: Vec4) -> Q4 {
 /// The rotation taking +Y onto `dir` and +Z onto `bend` (orthonormal).
 #[inline]
 fn chain_frame(dir: Vec3, bend: Vec3) -> Quat {
-    Quat::from_mat3(&Mat3::from_cols(dir.cross(bend), dir, bend)).unit()
+    quat_from_axes(dir.cross(bend), dir, bend).unit()
 }
 
 /// The rotation of a bone whose direction is `along · dir + across · bend` in the chain's

@@ -421,6 +421,71 @@ pub(crate) fn sqrt4(v: Vec4) -> Vec4 {
     return v.sqrt();
 }
 
+/// glam's `Quat::from_rotation_axes` (its `from_mat3` and `from_mat3a`) with the square root
+/// taken by [`sqrt`], as [`Roots`] takes it: the same bits as glam's under `libm`; glam's own
+/// without it.
+#[inline]
+pub(crate) fn quat_from_axes(
+    x_axis: glam::Vec3,
+    y_axis: glam::Vec3,
+    z_axis: glam::Vec3,
+) -> glam::Quat {
+    #[cfg(not(feature = "libm"))]
+    return glam::Quat::from_rotation_axes(x_axis, y_axis, z_axis);
+    #[cfg(feature = "libm")]
+    {
+        use glam::Quat;
+        let (m00, m01, m02) = x_axis.into();
+        let (m10, m11, m12) = y_axis.into();
+        let (m20, m21, m22) = z_axis.into();
+        if m22 <= 0.0 {
+            let dif10 = m11 - m00;
+            let omm22 = 1.0 - m22;
+            if dif10 <= 0.0 {
+                let four_xsq = omm22 - dif10;
+                let inv4x = 0.5 / sqrt(four_xsq);
+                Quat::from_xyzw(
+                    four_xsq * inv4x,
+                    (m01 + m10) * inv4x,
+                    (m02 + m20) * inv4x,
+                    (m12 - m21) * inv4x,
+                )
+            } else {
+                let four_ysq = omm22 + dif10;
+                let inv4y = 0.5 / sqrt(four_ysq);
+                Quat::from_xyzw(
+                    (m01 + m10) * inv4y,
+                    four_ysq * inv4y,
+                    (m12 + m21) * inv4y,
+                    (m20 - m02) * inv4y,
+                )
+            }
+        } else {
+            let sum10 = m11 + m00;
+            let opm22 = 1.0 + m22;
+            if sum10 <= 0.0 {
+                let four_zsq = opm22 - sum10;
+                let inv4z = 0.5 / sqrt(four_zsq);
+                Quat::from_xyzw(
+                    (m02 + m20) * inv4z,
+                    (m12 + m21) * inv4z,
+                    four_zsq * inv4z,
+                    (m01 - m10) * inv4z,
+                )
+            } else {
+                let four_wsq = opm22 + sum10;
+                let inv4w = 0.5 / sqrt(four_wsq);
+                Quat::from_xyzw(
+                    (m12 - m21) * inv4w,
+                    (m20 - m02) * inv4w,
+                    (m01 - m10) * inv4w,
+                    four_wsq * inv4w,
+                )
+            }
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -147,7 +147,8 @@ impl Hinge {
     /// The hip's and knee's rotations turning the limb's segments to `now`.
     pub(super) fn rotations(&self, now: (Vec3, Vec3)) -> (Quat, Quat) {
         let hip =
-            Quat::from_mat3a(&(Mat3A::from(bend_frame(now, self.pole)) * self.unframe)).unit();
+            crate::math::quat_from_mat3a(&(Mat3A::from(bend_frame(now, self.pole)) * self.unframe))
+                .unit();
         let knee = rotation_arc(self.rest_lower, hip.inverse() * now.1);
         (hip, knee)
     }

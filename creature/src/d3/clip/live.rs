@@ -16,7 +16,7 @@ use super::walk::{MAX_ARM_TURN_RATE, soft_reach, turn_bend_total};
 use super::{CLIP_FPS, Clip, Track};
 use crate::Error;
 use crate::d3::{Creature, GaitSetup};
-use crate::math::Roots;
+use crate::math::{Roots, max_f};
 
 mod fly_swim;
 
@@ -786,7 +786,7 @@ impl Animator {
                     if !arm || arm_turn == f32::INFINITY {
                         return new;
                     }
-                    let old = Quat::from_mat3a(&old.matrix3).unit();
+                    let old = crate::math::quat_from_mat3a(&old.matrix3).unit();
                     let angle = old.angle_between(new);
                     if angle > arm_turn {
                         old.slerp(new, arm_turn / angle).unit()
@@ -796,7 +796,10 @@ impl Animator {
                 };
                 let hip_local = parent.map_or(hip_world, |p| p.inverse() * hip_world);
                 self.local[j] = Affine3A::from_rotation_translation(
-                    damped(&self.local[j], Quat::from_mat3a(&hip_local.matrix3).unit()),
+                    damped(
+                        &self.local[j],
+                        crate::math::quat_from_mat3a(&hip_local.matrix3).unit(),
+                    ),
                     hip_local.translation.into(),
                 );
                 let (knee_joint, foot_joint) = (j + 1, j + 2);
@@ -817,7 +820,9 @@ impl Animator {
                 // No neck to share it: the look, a rotation in body space, as the head's world
                 // rotation.
                 let look = body.rotation * self.controller.look().rotation;
-                let turn = parent.map_or(look, |p| Quat::from_mat3a(&p.matrix3).inverse() * look);
+                let turn = parent.map_or(look, |p| {
+                    crate::math::quat_from_mat3a(&p.matrix3).inverse() * look
+                });
                 self.local[j] =
                     Affine3A::from_rotation_translation(turn.unit(), self.rest_local[j]);
             }
@@ -1060,7 +1065,7 @@ impl SoleFit {
             if down.y < 0.0 && a + down.y * point.y + across + margin < lift {
                 break;
             }
-            lift = lift.max(a + down.dot(point));
+            lift = max_f(lift, a + down.dot(point));
         }
         lift
     }
@@ -1083,7 +1088,7 @@ fn sole_lift<G: Ground + ?Sized>(
         let at = foot + turn * p;
         ground
             .cast_down_point(Vec3::new(at.x, at.y + reach, at.z), 2.0 * reach)
-            .map_or(lift, |hit| lift.max(hit.y - at.y))
+            .map_or(lift, |hit| max_f(lift, hit.y - at.y))
     })
 }
 
@@ -1096,8 +1101,10 @@ fn fit_sole<G: Ground + ?Sized>(
     rim: &[Vec3; RIM_SAMPLES],
     reach: f32,
 ) -> Option<SoleFit> {
+    // A matrix turns the 16 offsets in half the arithmetic of the quaternion.
+    let turn = glam::Mat3A::from_quat(heading);
     let at = |d: Vec3| {
-        let d = heading * d;
+        let d = Vec3::from(turn * Vec3A::from(d));
         let above = Vec3::new(foot.x + d.x, foot.y + reach, foot.z + d.z);
         // The ground's height there over the sole's vertex, in the sole's level frame.
         ground
@@ -1132,10 +1139,7 @@ fn fit_sole<G: Ground + ?Sized>(
         flat * sin + Vec3::Y * cos
     };
     let mean = samples.iter().map(|s| s.1).sum::<f32>() / RIM_SAMPLES as f32;
-    let highest = samples
-        .iter()
-        .map(|s| s.1)
-        .fold(f32::NEG_INFINITY, f32::max);
+    let highest = samples.iter().map(|s| s.1).fold(f32::NEG_INFINITY, max_f);
     // The plane through the ground under the rim (least squares; heights over the joint).
     let ground = samples
         .iter()
@@ -1145,7 +1149,7 @@ fn fit_sole<G: Ground + ?Sized>(
     let off_plane = plane.map_or(f32::INFINITY, |(a, p, q)| {
         ground
             .map(|(x, z, h)| (h - a - p * x - q * z).abs())
-            .fold(0.0, f32::max)
+            .fold(0.0, max_f)
     });
     Some(SoleFit {
         normal,
@@ -1331,12 +1335,12 @@ impl Creature {
             let root = animator.local[animator.root];
             clip.root_translation.push(Vec3::from(root.translation));
             clip.root_rotation
-                .push(Quat::from_mat3a(&root.matrix3).unit());
+                .push(crate::math::quat_from_mat3a(&root.matrix3).unit());
             for track in &mut clip.tracks {
                 let local = animator.local[track.joint];
                 track
                     .rotations
-                    .push(Quat::from_mat3a(&local.matrix3).unit());
+                    .push(crate::math::quat_from_mat3a(&local.matrix3).unit());
                 if let Some(t) = track.translations.as_mut() {
                     t.push(Vec3::from(local.translation));
                 }

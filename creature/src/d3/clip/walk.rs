@@ -16,6 +16,7 @@ use super::swing::even_swings;
 use super::{CLIP_FPS, Clip, Track, loop_error};
 use crate::Error;
 use crate::d3::Creature;
+use crate::math::Roots;
 
 /// Seconds the controller runs before a clip's first frame, so the gait is in its steady
 /// rhythm.
@@ -35,7 +36,7 @@ fn limit_turn_rate(rotations: &mut [Quat], max: f32) {
         let (before, now) = (rotations[f - 1], rotations[f]);
         let angle = before.angle_between(now);
         if angle > max {
-            rotations[f] = before.slerp(now, max / angle).normalize();
+            rotations[f] = before.slerp(now, max / angle).unit();
         }
     }
 }
@@ -64,7 +65,7 @@ fn limit_free_turn_rate(rotations: &mut [Quat], free: &[bool], max: f32) {
     let toward = |from: Quat, to: Quat| {
         let angle = from.angle_between(to);
         if angle > max {
-            Some(from.slerp(to, max / angle).normalize())
+            Some(from.slerp(to, max / angle).unit())
         } else {
             None
         }
@@ -95,7 +96,7 @@ fn limit_free_turn_rate(rotations: &mut [Quat], free: &[bool], max: f32) {
 pub(super) fn soft_reach(hip: Vec3, to: Vec3, length: f32, up: Vec3) -> Vec3 {
     let (start, span) = (SOFT_REACH * length, SOFT_SPAN * length);
     let v = to - hip;
-    let d = v.length();
+    let d = v.norm();
     if !(d > start && span > 0.0) {
         return to;
     }
@@ -205,7 +206,7 @@ fn turn_at(c: &Creature, rate: f32, at_rest: &mut AtRest) -> Result<(Clip, f32),
     let radius = setup
         .legs
         .iter()
-        .map(|l| glam::Vec2::new(l.hip.x, l.hip.z).length())
+        .map(|l| glam::Vec2::new(l.hip.x, l.hip.z).norm())
         .fold(0.0, f32::max);
     // Cut at the frame near 4 s with the first frame's feet planted; then try again at
     // the rate that completes the turn exactly at that frame (the steps shift with the
@@ -422,7 +423,7 @@ impl Creature {
             let body = controller.reacted_pose();
             run.bodies.push(Pose {
                 translation: relative(body.translation),
-                rotation: (unstart * body.rotation).normalize(),
+                rotation: (unstart * body.rotation).unit(),
             });
             let states = controller.leg_states();
             // One state per leg (the controller's order): the run's frames hold `legs` each.
@@ -503,14 +504,14 @@ impl Creature {
                     .and_then(|j| j.parent)
                     .and_then(|p| body_global.get(p).copied())
                     .unwrap_or(Affine3A::IDENTITY);
-                let rest_upper = (rest(hip + 1) - rest(hip)).normalize_or(Vec3::NEG_Y);
-                let rest_lower = (rest(hip + 2) - rest(hip + 1)).normalize_or(Vec3::NEG_Y);
+                let rest_upper = (rest(hip + 1) - rest(hip)).unit_or(Vec3::NEG_Y);
+                let rest_lower = (rest(hip + 2) - rest(hip + 1)).unit_or(Vec3::NEG_Y);
                 LegTracks {
                     leg,
                     hip,
                     parent,
                     unparent: parent.inverse(),
-                    parent_rotation: Quat::from_mat3a(&parent.matrix3).normalize(),
+                    parent_rotation: crate::math::quat_from_mat3a(&parent.matrix3).unit(),
                     rest_upper,
                     rest_lower,
                     hinge: Hinge::new((rest_upper, rest_lower), leg.pole),
@@ -556,19 +557,18 @@ impl Creature {
                     solve_two_bone_joints(leg.hip, foot, leg.upper, leg.lower, leg.pole);
                 let floor = tracks.knee_radius - body.translation.y;
                 let middle = knee_above(root, middle, end, up, floor);
-                let upper = (middle - root).normalize_or(rest_upper);
-                let lower = (end - middle).normalize_or(rest_lower);
+                let upper = (middle - root).unit_or(rest_upper);
+                let lower = (end - middle).unit_or(rest_lower);
                 let (hip_rotation, knee_rotation) = tracks.hinge.rotations((upper, lower));
                 let parent_rotation = tracks.parent_rotation;
                 tracks.translations.push(unparent.transform_point3(root));
                 let [hip, knee, foot] = &mut tracks.rotations;
-                hip.push((parent_rotation.inverse() * hip_rotation).normalize());
-                knee.push(knee_rotation.normalize());
+                hip.push((parent_rotation.inverse() * hip_rotation).unit());
+                knee.push(knee_rotation.unit());
                 // The foot stays level (its sole flat on the ground), turned with the body's
                 // heading only: its world rotation is the heading's yaw.
                 foot.push(
-                    ((body.rotation * hip_rotation * knee_rotation).inverse() * heading)
-                        .normalize(),
+                    ((body.rotation * hip_rotation * knee_rotation).inverse() * heading).unit(),
                 );
             }
         }
@@ -598,7 +598,7 @@ impl Creature {
                     let body = &bodies[f];
                     foot[f] = ((body.rotation * parent * hip[f] * knee[f]).inverse()
                         * heading(body.rotation))
-                    .normalize();
+                    .unit();
                 }
                 limit_free_turn_rate(&mut foot, &free, MAX_LEG_TURN_PER_FRAME);
                 // Unless that lowers the foot (its sole, tilted or not) to within `ground` of the
@@ -620,7 +620,7 @@ impl Creature {
                         let kept_side = side == 0.0
                             || at.x * side.signum() >= (unlimited.x * side.signum()).min(0.0);
                         let up = (body.rotation * parent * h * k * o) * Vec3::Y;
-                        let tilt = up.cross(Vec3::Y).length();
+                        let tilt = up.cross(Vec3::Y).norm();
                         let sole = body.transform_point(at).y - foot_radius * tilt;
                         // Clear of the ground (a foot near it counts as on it, and would be
                         // seen to slide to where it lands).
@@ -629,9 +629,9 @@ impl Creature {
                     let limited_pose = (hip[f], knee[f], foot[f]);
                     let toward = |t: f32| {
                         (
-                            limited_pose.0.slerp(hip_0[f], t).normalize(),
-                            limited_pose.1.slerp(knee_0[f], t).normalize(),
-                            limited_pose.2.slerp(foot_0[f], t).normalize(),
+                            limited_pose.0.slerp(hip_0[f], t).unit(),
+                            limited_pose.1.slerp(knee_0[f], t).unit(),
+                            limited_pose.2.slerp(foot_0[f], t).unit(),
                         )
                     };
                     if safe(limited_pose.0, limited_pose.1, limited_pose.2) {
@@ -794,7 +794,7 @@ impl Creature {
         let farthest = legs
             .iter()
             .filter(|l| l.kind == LimbKind::Leg)
-            .map(|l| glam::Vec2::new(l.rest.x, l.rest.z).length())
+            .map(|l| glam::Vec2::new(l.rest.x, l.rest.z).norm())
             .fold(0.0, f32::max);
         let mut rate = core::f32::consts::FRAC_PI_2;
         if farthest * rate > self.speed {

@@ -660,4 +660,30 @@ mod tests {
             assert_eq!(v.unit_or(Vec3::Y), v.normalize_or(Vec3::Y));
         }
     }
+
+    #[test]
+    fn quat_from_axes_and_lane_roots_are_glams_bit_for_bit() {
+        use glam::{Mat3, Quat, Vec2};
+        let mut x = 0x1234_5677u32;
+        let mut next = || {
+            x ^= x << 13;
+            x ^= x >> 17;
+            x ^= x << 5;
+            (x >> 8) as f32 / (1u32 << 24) as f32 * 2.0 - 1.0
+        };
+        for _ in 0..4000 {
+            let q = Quat::from_xyzw(next(), next(), next(), next()).normalize();
+            let m = Mat3::from_quat(q);
+            assert_eq!(
+                quat_from_axes(m.x_axis, m.y_axis, m.z_axis),
+                Quat::from_mat3(&m)
+            );
+            let v = Vec4::new(next(), next(), next(), next());
+            assert_eq!(sqrt4(v.abs()), v.abs().sqrt());
+            assert_eq!(v.unit(), v.normalize());
+            let w = Vec2::new(v.x, v.y);
+            assert_eq!(w.unit(), w.normalize());
+            assert_eq!(w.norm().to_bits(), w.length().to_bits());
+        }
+    }
 }

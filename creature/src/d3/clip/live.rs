@@ -204,26 +204,36 @@ struct LiveLeg {
     /// The last landing fit of a step: its target, the heading it was made for and the lift
     /// of the sole resting there.
     landing: Option<(Vec3, Quat, f32)>,
+    /// Whether the foot was in a step at the last update.
+    stepped: bool,
 }
 
 impl LiveLeg {
     /// The sole's yaw this frame, the body turned to `heading`: a planted foot keeps the yaw
     /// it landed with (it does not spin on the ground as the body turns over it); a stepping
-    /// one turns from the yaw it lifted off with to the heading over its step (eased), landing
-    /// turned with the body; a foot off the ground and not stepping turns toward the heading
-    /// by at most `most` (radians). An arm's hand turns with the heading.
+    /// one turns from the yaw it lifted off with to the heading over its step (eased), and
+    /// lands turned with the body (the controller plants it in the update its step ends: the
+    /// last hundredth or so of the turn is taken then); a foot off the ground and not stepping
+    /// turns toward the heading by at most `most` (radians). An arm's hand turns with the
+    /// heading.
     fn turn_sole(&mut self, kind: LimbKind, state: &LegState, heading: Quat, most: f32) -> Quat {
         if most == f32::INFINITY {
             // Afresh: the foot put down under the body.
             self.fitted = None;
             self.landing = None;
         }
+        let stepped = core::mem::replace(&mut self.stepped, false);
         if kind != LimbKind::Leg || most == f32::INFINITY {
             self.lifted = heading;
             self.yaw = heading;
         } else if state.planted {
+            if stepped {
+                // Just landed.
+                self.yaw = heading;
+            }
             self.lifted = self.yaw;
         } else if state.stepping {
+            self.stepped = true;
             let t = state.progress.clamp(0.0, 1.0);
             self.yaw = self.lifted.slerp(heading, t * t * (3.0 - 2.0 * t)).unit();
         } else {
@@ -453,6 +463,7 @@ impl Animator {
                     lifted: Quat::IDENTITY,
                     fitted: None,
                     landing: None,
+                    stepped: false,
                 }
             })
             .collect();

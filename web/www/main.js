@@ -50,6 +50,16 @@ controls.enableDamping = true;
 
 const skinMaterial = new THREE.MeshStandardMaterial({ vertexColors: true, roughness: 0.75 });
 const groundMaterial = new THREE.MeshStandardMaterial({ vertexColors: true, roughness: 0.95 });
+// Swimmers swim in water (`waterVolume`), drawn after the rest.
+const skyColour = new THREE.Color(0x9fc4e0);
+const waterColour = new THREE.Color(0x3f7fa8);
+const waterMaterial = new THREE.MeshStandardMaterial({
+  color: 0x2f7fb8,
+  roughness: 0.2,
+  transparent: true,
+  opacity: 0.35,
+  depthWrite: false,
+});
 const marker = new THREE.Mesh(
   new THREE.RingGeometry(0.7, 1, 32).rotateX(-Math.PI / 2),
   new THREE.MeshBasicMaterial({ color: 0xffe066, side: THREE.DoubleSide }),
@@ -59,6 +69,7 @@ scene.add(marker);
 
 let world = null;
 let terrainMesh = null;
+let water = null;
 let meshes = [];
 let skinBuffer = new Float32Array(0);
 
@@ -104,6 +115,42 @@ function terrainGeometry() {
   return g;
 }
 
+/** Where there are swimmers, the water over the whole terrain: a box from its lowest ground to
+ * above its highest by the longest swimmer's length and a fifth (a swimmer keeps just above the
+ * ground under and ahead of it, so none breaks the surface); `null` without swimmers. */
+function waterVolume() {
+  let longest = 0;
+  for (let i = 0; i < world.len(); i++) {
+    if (world.kind(i) === 'swimmer') longest = Math.max(longest, world.length(i));
+  }
+  if (longest === 0) return null;
+  terrainMesh.geometry.computeBoundingBox();
+  const box = terrainMesh.geometry.boundingBox;
+  const top = box.max.y + 1.2 * longest;
+  const size = box.getSize(new THREE.Vector3());
+  const centre = box.getCenter(new THREE.Vector3());
+  const volume = new THREE.Mesh(new THREE.BoxGeometry(size.x, top - box.min.y, size.z), waterMaterial);
+  volume.position.set(centre.x, (top + box.min.y) / 2, centre.z);
+  volume.renderOrder = 1;
+  volume.userData.box = new THREE.Box3(
+    new THREE.Vector3(box.min.x, box.min.y, box.min.z),
+    new THREE.Vector3(box.max.x, top, box.max.z),
+  );
+  return volume;
+}
+
+/** Seen from outside, the water tints what is behind its faces; from inside, the world fades
+ * to its colour with distance instead (the fog and background turn to water). */
+function underwater() {
+  const inside = water !== null && water.userData.box.containsPoint(camera.position);
+  if (water) water.visible = !inside;
+  const colour = inside ? waterColour : skyColour;
+  if (!scene.background.equals(colour)) {
+    scene.background.copy(colour);
+    scene.fog.color.copy(colour);
+  }
+}
+
 /** Creature `i` of the world as a skinned mesh whose skinning matrices the animator writes. */
 function creatureMesh(i) {
   const g = new THREE.BufferGeometry();
@@ -137,6 +184,11 @@ function clearWorld() {
     terrainMesh.geometry.dispose();
     terrainMesh = null;
   }
+  if (water) {
+    scene.remove(water);
+    water.geometry.dispose();
+    water = null;
+  }
   if (world) world.free();
   world = null;
   marker.visible = false;
@@ -145,6 +197,8 @@ function clearWorld() {
 function showWorld() {
   terrainMesh = new THREE.Mesh(terrainGeometry(), groundMaterial);
   scene.add(terrainMesh);
+  water = waterVolume();
+  if (water) scene.add(water);
   meshes = Array.from({ length: world.len() }, (_, i) => creatureMesh(i));
   for (const m of meshes) scene.add(m);
   let floats = 0;
@@ -457,6 +511,7 @@ function frame(now) {
         if (!world.target(0)) marker.visible = false;
       }
       controls.update();
+      underwater();
       renderer.render(scene, camera);
       if (playground.frames % 30 === 0) {
         document.title = `creature playground — ${fps.toFixed(0)} fps, animator ${playground.updateMs.toFixed(2)} ms`;

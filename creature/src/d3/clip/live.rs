@@ -204,8 +204,8 @@ struct LiveLeg {
     /// The last landing fit of a step: its target, the heading it was made for and the lift
     /// of the sole resting there.
     landing: Option<(Vec3, Quat, f32)>,
-    /// Whether the foot was in a step at the last update.
-    stepped: bool,
+    /// The progress of the step the foot was in at the last update (none if it was in none).
+    stepped: Option<f32>,
 }
 
 impl LiveLeg {
@@ -213,7 +213,8 @@ impl LiveLeg {
     /// it landed with (it does not spin on the ground as the body turns over it); a stepping
     /// one turns from the yaw it lifted off with to the heading over its step (eased), and
     /// lands turned with the body (the controller plants it in the update its step ends: the
-    /// last hundredth or so of the turn is taken then); a foot off the ground and not stepping
+    /// last hundredth or so of the turn is taken then; a step that ends and starts again in one
+    /// update turns on from there); a foot off the ground and not stepping
     /// turns toward the heading by at most `most` (radians). An arm's hand turns with the
     /// heading.
     fn turn_sole(&mut self, kind: LimbKind, state: &LegState, heading: Quat, most: f32) -> Quat {
@@ -222,18 +223,22 @@ impl LiveLeg {
             self.fitted = None;
             self.landing = None;
         }
-        let stepped = core::mem::replace(&mut self.stepped, false);
+        let stepped = self.stepped.take();
         if kind != LimbKind::Leg || most == f32::INFINITY {
             self.lifted = heading;
             self.yaw = heading;
         } else if state.planted {
-            if stepped {
+            if stepped.is_some() {
                 // Just landed.
                 self.yaw = heading;
             }
             self.lifted = self.yaw;
         } else if state.stepping {
-            self.stepped = true;
+            if stepped.is_some_and(|p| state.progress < p) {
+                // The last step ended (turned with the body) and this one began in one update.
+                self.lifted = heading;
+            }
+            self.stepped = Some(state.progress);
             let t = state.progress.clamp(0.0, 1.0);
             self.yaw = self.lifted.slerp(heading, t * t * (3.0 - 2.0 * t)).unit();
         } else {
@@ -463,7 +468,7 @@ impl Animator {
                     lifted: Quat::IDENTITY,
                     fitted: None,
                     landing: None,
-                    stepped: false,
+                    stepped: None,
                 }
             })
             .collect();

@@ -824,3 +824,67 @@ fn regression_planted_soles_do_not_spin_as_the_body_turns_over_them() {
         );
     }
 }
+
+/// The live animator driven on flat ground as the baker drives it: from standing, forward
+/// (+Z) at `speed` and turning at `turn_rate`, for a second's warm-up and then `frames`
+/// frames, each frame's mesh skinned by the skinning matrices as a GPU would, relative to
+/// where the creature stood and faced at the first of them.
+fn live_frames(c: &d3::Creature, speed: f32, turn_rate: f32, frames: usize) -> Vec<Vec<Vec3>> {
+    use creature::glam::Quat;
+    let mut animator = Animator::new(c).unwrap();
+    let warm_up = 30;
+    let mut start = None;
+    let mut out = Vec::with_capacity(frames);
+    for frame in 0..warm_up + frames {
+        let dt = if frame == 0 { 0.0 } else { 1.0 / 30.0 };
+        let heading = animator.heading() + turn_rate * dt;
+        let velocity = Vec3::new(heading.sin(), 0.0, heading.cos()) * speed;
+        let intent = Intent::Move {
+            velocity,
+            turn_rate,
+        };
+        animator.update(dt, intent, &Plane::GROUND).unwrap();
+        if frame < warm_up {
+            continue;
+        }
+        let (at, facing) = *start.get_or_insert((
+            animator.position(),
+            Quat::from_rotation_y(animator.heading()),
+        ));
+        let back = facing.inverse();
+        out.push(
+            skinned(c, &animator)
+                .into_iter()
+                .map(|p| back * (p - at))
+                .collect(),
+        );
+    }
+    out
+}
+
+/// The farthest any vertex of `clip`'s frames (skinned as a viewer plays it) is from its
+/// place in `live`'s, × the body's length.
+fn farthest_from_live(c: &d3::Creature, clip: &d3::Clip, live: &[Vec<Vec3>]) -> f32 {
+    let mut far = 0.0f32;
+    for (frame, live) in live.iter().enumerate().take(clip.frames) {
+        let baked = c.posed_positions(clip, frame).unwrap();
+        for (b, l) in baked.iter().zip(live) {
+            far = far.max(b.distance(*l));
+        }
+    }
+    far / c.length
+}
+
+/// One code path for a plain walk: `bake_walk` drives the animator as a game would (an
+/// `Intent::Move` forward on flat ground after a second's warm-up): skinned as a viewer plays
+/// it, its mesh agrees with the live one frame for frame.
+#[test]
+fn a_baked_walk_is_the_live_animators_frames_on_flat_ground() {
+    for seed in [3, 11, 32, 58, 123] {
+        let c = walker(seed);
+        let walk = c.bake_walk(2.0).unwrap();
+        let live = live_frames(&c, c.speed, 0.0, walk.frames);
+        let far = farthest_from_live(&c, &walk, &live);
+        assert!(far < 1e-5, "seed {seed}: walk {far}");
+    }
+}

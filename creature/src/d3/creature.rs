@@ -203,11 +203,13 @@ pub struct Creature {
 
 impl Creature {
     /// Bakes a `walk` clip of `seconds` (at least one frame interval, at most 60 s): the
-    /// walker moves forward (+Z) at its [`speed`](Creature::speed) over flat ground at
-    /// `y = 0`, its legs stepping by the gait controller; each frame records the root's
-    /// motion (with the body's bob and sway), each leg's hip translation, its hip and knee
-    /// rotations (from the controller's two-bone IK) and a foot rotation that keeps the sole
-    /// level (turned with the body's heading only), and the feet's contacts.
+    /// walker's [`Animator`](crate::d3::Animator) driven over flat ground at `y = 0`, forward
+    /// (+Z) at its [`speed`](Creature::speed), for a second's warm-up and then the clip's
+    /// frames, each the animator's pose: the root's motion (with the body's bob and sway),
+    /// each leg's hip translation and its hip, knee and foot rotations (the sole flat on the
+    /// ground, keeping the yaw it landed with), the neck, tail and head, and the feet's
+    /// contacts. It is what a game driving the animator with an
+    /// [`Intent::Move`](crate::d3::Intent::Move) shows, frame for frame.
     ///
     /// ```
     /// use creature::d3::{generate, Kind, Params};
@@ -225,14 +227,7 @@ impl Creature {
     /// [`Error::OutOfRange`] for `seconds` outside `[1/30, 60]` or NaN, and the controller's
     /// errors as [`Error::Gait`].
     pub fn bake_walk(&self, seconds: f32) -> Result<Clip, Error> {
-        clip::gait(
-            self,
-            "walk",
-            seconds,
-            self.speed,
-            0.0,
-            &mut clip::AtRest::default(),
-        )
+        clip::live_walk(self, seconds)
     }
 
     /// Bakes a looping `walk`: 4 s are simulated as by [`bake_walk`](Self::bake_walk), then

@@ -1,7 +1,8 @@
 //! The live animator: a walker driven every frame by the gait controller on any ground, its
-//! joints posed as the baked clips pose them (two-bone legs turning about their knee hinges,
-//! feet flat on the ground, neck and tail bent toward the turn), ready for a GPU; fliers and
-//! swimmers steered the same way, held above the ground (submodule `fly_swim`).
+//! joints posed (two-bone legs turning about their knee hinges, feet flat on the ground, neck
+//! and tail bent toward the turn), ready for a GPU; fliers and swimmers steered the same way,
+//! held above the ground (submodule `fly_swim`). A walker's `walk` and `idle` clips are its
+//! frames on flat ground (submodule `bake`).
 
 use alloc::vec::Vec;
 
@@ -13,11 +14,12 @@ use creature_limbs::CreatureKind;
 use super::floor::knee_above;
 use super::kinematics::{Hinge, rotation_arc};
 use super::walk::{MAX_ARM_TURN_RATE, soft_reach, turn_bend_total};
-use super::{CLIP_FPS, Clip, Track};
+use super::{CLIP_FPS, Clip};
 use crate::Error;
 use crate::d3::{Creature, GaitSetup};
 use crate::math::{Roots, max_f};
 
+pub(super) mod bake;
 mod fly_swim;
 
 /// What a live creature is asked to do in one update of an [`Animator`].
@@ -1321,57 +1323,14 @@ impl Creature {
             }
             Drive::Swim(_) => "swim_to",
         };
-        let animated: Vec<usize> = (0..animator.turns.len())
-            .filter(|&j| animator.turns[j] && j != animator.root)
-            .collect();
         let most = (max_seconds * CLIP_FPS) as usize + 1;
-        let walker = matches!(animator.drive, Drive::Walk);
-        let mut clip = Clip {
-            name,
-            fps: CLIP_FPS,
-            frames: 0,
-            root_translation: Vec::new(),
-            root_rotation: Vec::new(),
-            tracks: animated
-                .iter()
-                .map(|&joint| Track {
-                    joint,
-                    translations: animator.leg_at[joint].map(|_| Vec::new()),
-                    rotations: Vec::new(),
-                })
-                .collect(),
-            contacts: Vec::new(),
-            loop_error: 0.0,
-        };
+        let mut clip = animator.empty_clip(name);
         let arrived = ARRIVAL_RADIUS * self.length;
         let mut intent = Intent::GoTo(target);
         for frame in 0..most {
             let dt = if frame == 0 { 0.0 } else { 1.0 / CLIP_FPS };
             animator.update(dt, intent, ground)?;
-            let root = animator.local[animator.root];
-            clip.root_translation.push(Vec3::from(root.translation));
-            clip.root_rotation
-                .push(crate::math::quat_from_mat3a(&root.matrix3).unit());
-            for track in &mut clip.tracks {
-                let local = animator.local[track.joint];
-                track
-                    .rotations
-                    .push(crate::math::quat_from_mat3a(&local.matrix3).unit());
-                if let Some(t) = track.translations.as_mut() {
-                    t.push(Vec3::from(local.translation));
-                }
-            }
-            if walker {
-                clip.contacts.push(
-                    animator
-                        .controller
-                        .leg_states()
-                        .iter()
-                        .map(|s| s.planted)
-                        .collect(),
-                );
-            }
-            clip.frames += 1;
+            animator.push_frame(&mut clip, &Pose::IDENTITY);
             let at = animator.position;
             if Vec2::new(target.x - at.x, target.z - at.z).norm() <= arrived {
                 // Arrived (a go-to's intent now, as a stand's): it stands, a flier lands.

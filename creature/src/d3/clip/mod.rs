@@ -31,6 +31,7 @@ pub(crate) use walk::MAX_LEG_TURN_RATE;
 
 pub(crate) use flight::flight;
 pub(crate) use kinematics::{pose, skinned};
+pub(crate) use live::bake::live_walk;
 pub(crate) use swim::swim;
 pub(crate) use walk::{AtRest, gait, turn, walk_loop};
 

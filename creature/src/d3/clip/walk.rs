@@ -20,7 +20,7 @@ use crate::math::Roots;
 
 /// Seconds the controller runs before a clip's first frame, so the gait is in its steady
 /// rhythm.
-const WARM_UP: f32 = 1.0;
+pub(super) const WARM_UP: f32 = 1.0;
 
 /// The most an arm's joint turns from one frame to the next, in radians (12 rad/s at
 /// [`CLIP_FPS`]).
@@ -271,6 +271,24 @@ pub(crate) fn gait(
     c.clip_from_run(name, &run, yaw_rate, at_rest, None)
 }
 
+/// `seconds` if a walker's clip may last that long: at least one frame interval, at most 60 s.
+///
+/// # Errors
+/// [`Error::OutOfRange`] otherwise (or for NaN).
+pub(super) fn clip_seconds(seconds: f32) -> Result<f32, Error> {
+    let (min, max) = (1.0 / CLIP_FPS, 60.0);
+    if (min..=max).contains(&seconds) {
+        Ok(seconds)
+    } else {
+        Err(Error::OutOfRange {
+            what: "seconds",
+            value: seconds,
+            min,
+            max,
+        })
+    }
+}
+
 /// What baking a walker's clips measures of the creature at rest, the same for every clip:
 /// measured by the first clip that needs it and kept for the others baked with it
 /// ([`Creature::bake_clips`]).
@@ -374,16 +392,7 @@ impl Creature {
     /// warm-up, moving forward at `speed` and turning at `yaw_rate`; records the reacted body
     /// pose and the feet per frame, relative to the clip's starting place and heading.
     fn simulate_gait(&self, seconds: f32, speed: f32, yaw_rate: f32) -> Result<GaitRun, Error> {
-        let max = 60.0;
-        let min = 1.0 / CLIP_FPS;
-        if !(min..=max).contains(&seconds) {
-            return Err(Error::OutOfRange {
-                what: "seconds",
-                value: seconds,
-                min,
-                max,
-            });
-        }
+        clip_seconds(seconds)?;
         let setup = self.gait.as_ref().ok_or(Error::NoGait)?;
         let mut controller = setup.controller()?;
         let ground = Plane::horizontal(0.0);

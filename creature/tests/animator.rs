@@ -888,3 +888,21 @@ fn a_baked_walk_is_the_live_animators_frames_on_flat_ground() {
         assert!(far < 1e-5, "seed {seed}: walk {far}");
     }
 }
+
+#[test]
+fn regression_a_gait_set_up_with_more_hips_than_legs_is_an_error_not_a_panic() {
+    // An edited set-up with a hip joint more than it has legs made `Animator::new` (and
+    // `bake_walk`, which runs it) index past its legs.
+    let mut c = walker(7);
+    let setup = c.gait.as_mut().unwrap();
+    let extra = setup.hip_joints[0];
+    setup.hip_joints.push(extra);
+    assert!(matches!(
+        Animator::new(&c),
+        Err(creature::Error::Degenerate { .. })
+    ));
+    assert!(matches!(
+        c.bake_walk(1.0),
+        Err(creature::Error::Degenerate { .. })
+    ));
+}

@@ -209,7 +209,9 @@ impl Creature {
     /// each leg's hip translation and its hip, knee and foot rotations (the sole flat on the
     /// ground, keeping the yaw it landed with), the neck, tail and head, and the feet's
     /// contacts. It is what a game driving the animator with an
-    /// [`Intent::Move`](crate::d3::Intent::Move) shows, frame for frame.
+    /// [`Intent::Move`](crate::d3::Intent::Move) shows, frame for frame: a fresh animator at
+    /// the origin, updated first with a time step of 0 and then every 1/30 s, the clip's
+    /// frames from the 31st update on, relative to where the creature then stands and faces.
     ///
     /// ```
     /// use creature::d3::{generate, Kind, Params};
@@ -224,13 +226,16 @@ impl Creature {
     ///
     /// # Errors
     /// [`Error::NoGait`] for a creature without a gait set-up (fliers and swimmers),
-    /// [`Error::OutOfRange`] for `seconds` outside `[1/30, 60]` or NaN, and the controller's
-    /// errors as [`Error::Gait`].
+    /// [`Error::OutOfRange`] for `seconds` outside `[1/30, 60]` or NaN, the controller's
+    /// errors as [`Error::Gait`], and for an edited creature the animator's
+    /// ([`Animator::new`](crate::d3::Animator::new)).
     pub fn bake_walk(&self, seconds: f32) -> Result<Clip, Error> {
         clip::live_walk(self, seconds)
     }
 
-    /// Bakes a looping `walk`: 4 s are simulated as by [`bake_walk`](Self::bake_walk), then
+    /// Bakes a looping `walk`: 4 s are simulated by the gait controller on flat ground
+    /// (forward at the creature's speed, after a second's warm-up; not yet through the
+    /// animator, as [`bake_walk`](Self::bake_walk) is), then
     /// cut at the frame from 1 s on that comes closest to the first (the same feet planted,
     /// the feet nearest their first places relative to the body), so the clip lasts whole
     /// strides; the loop is then closed exactly (see [`Clip::loop_error`]): the small mismatch
@@ -251,7 +256,8 @@ impl Creature {
     /// ```
     ///
     /// # Errors
-    /// As [`bake_walk`](Self::bake_walk).
+    /// [`Error::NoGait`] for a creature without a gait set-up (fliers and swimmers), and the
+    /// controller's errors as [`Error::Gait`].
     pub fn bake_walk_loop(&self) -> Result<Clip, Error> {
         clip::walk_loop(self, &mut clip::AtRest::default())
     }
@@ -260,7 +266,8 @@ impl Creature {
     /// breathing rate), arms bobbing; it loops.
     ///
     /// # Errors
-    /// As [`bake_walk`](Self::bake_walk).
+    /// [`Error::NoGait`] for a creature without a gait set-up (fliers and swimmers), and the
+    /// controller's errors as [`Error::Gait`].
     pub fn bake_idle(&self) -> Result<Clip, Error> {
         self.bake_idle_with(&mut clip::AtRest::default())
     }
@@ -300,7 +307,8 @@ impl Creature {
     /// ```
     ///
     /// # Errors
-    /// As [`bake_walk`](Self::bake_walk).
+    /// [`Error::NoGait`] for a creature without a gait set-up (fliers and swimmers), and the
+    /// controller's errors as [`Error::Gait`].
     pub fn bake_turn(&self) -> Result<Clip, Error> {
         clip::turn(self, &mut clip::AtRest::default())
     }

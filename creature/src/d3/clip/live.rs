@@ -1,8 +1,8 @@
 //! The live animator: a walker driven every frame by the gait controller on any ground, its
 //! joints posed (two-bone legs turning about their knee hinges, feet flat on the ground, neck
 //! and tail bent toward the turn), ready for a GPU; fliers and swimmers steered the same way,
-//! held above the ground (submodule `fly_swim`). A walker's `walk` and `idle` clips are its
-//! frames on flat ground (submodule `bake`).
+//! held above the ground (submodule `fly_swim`). A walker's plain `walk`
+//! ([`Creature::bake_walk`]) is its frames on flat ground (submodule `bake`).
 
 use alloc::vec::Vec;
 
@@ -348,7 +348,9 @@ impl Animator {
     /// # Errors
     /// [`Error::NoGait`] for a walker without a gait set-up (or a kind this version does not
     /// animate); [`Error::Gait`] if the gait controller rejects its set-up (an edited
-    /// creature); [`Error::BadParent`] for a skeleton whose parents form a cycle.
+    /// creature); [`Error::BadParent`] for a skeleton whose parents form a cycle or a leg whose
+    /// hip, knee and foot joints are not a chain; [`Error::Degenerate`] for a gait set-up
+    /// whose `hip_joints` and `legs` differ in length.
     pub fn new(creature: &Creature) -> Result<Self, Error> {
         match (&creature.gait, creature.kind) {
             (Some(setup), _) => Self::walker(creature, setup),
@@ -422,6 +424,11 @@ impl Animator {
         let n = joints.len();
         let parents = &animator.parents;
         let rest = |j: usize| joints.get(j).map_or(Vec3::ZERO, |j| j.position);
+        if setup.hip_joints.len() != setup.legs.len() {
+            return Err(Error::Degenerate {
+                what: "gait set-up (its hip_joints and legs differ in length)",
+            });
+        }
         for (i, &hip) in setup.hip_joints.iter().enumerate() {
             // A leg's chain is its hip, knee and foot, one after the other.
             let chain =

@@ -1,7 +1,8 @@
-//! Walkers' clips from the gait controller: `walk` (plain or cut and closed into a loop),
+//! Walkers' clips from the gait controller: the looping `walk` (cut and closed into a loop),
 //! `turn` (a full turn in place, its rate retried to complete at the cut) and `idle`; the
 //! controller run at [`CLIP_FPS`] on flat ground, and the clip from a run (the root's motion,
-//! the legs by two-bone IK, the neck and tail bent toward a turn).
+//! the legs by two-bone IK, the neck and tail bent toward a turn). The plain `walk` is the
+//! live animator's (`live/bake.rs`).
 
 use alloc::vec::Vec;
 
@@ -257,8 +258,8 @@ fn turn_at(c: &Creature, rate: f32, at_rest: &mut AtRest) -> Result<(Clip, f32),
     Ok((clip, overlap))
 }
 
-/// A clip of `seconds` moving forward at `speed` and turning at `yaw_rate` (see
-/// [`Creature::bake_walk`]).
+/// A clip of `seconds` moving forward at `speed` and turning at `yaw_rate` from a run of the
+/// gait controller (see [`Creature::bake_idle`]).
 pub(crate) fn gait(
     c: &Creature,
     name: &'static str,

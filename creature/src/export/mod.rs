@@ -2,7 +2,8 @@
 //! (images) and files (glTF 2.0 binaries, SVG, PNG).
 //!
 //! [`preview_3d`] works everywhere (it is the crate's own rasteriser, `no_std`); the rest needs
-//! the `export` feature (`std`, with `gltf-json`, `png` and `tiny-skia`). Every function
+//! the `export` feature (`std`, with `gltf-json` and `png`; the 2D preview is drawn by the
+//! crate's own anti-aliased rasteriser). Every function
 //! returns the file's bytes, text or pixels; writing them is the caller's business.
 //!
 //! | | 2D ([`d2::Creature`](crate::d2::Creature)) | 3D ([`d3::Creature`](crate::d3::Creature)) |
@@ -46,6 +47,8 @@ mod gltf;
 #[cfg(feature = "export")]
 mod preview2d;
 mod preview3d;
+#[cfg(feature = "export")]
+mod raster;
 #[cfg(feature = "export")]
 mod svg;
 

@@ -1,14 +1,11 @@
-//! The 2D preview: the creature at rest drawn with tiny-skia.
+//! The 2D preview: the creature at rest, drawn by the crate's own rasteriser ([`raster`](super::raster)).
 
 use alloc::vec::Vec;
 
 use glam::{Vec2, Vec3};
-use tiny_skia::{
-    Color, FillRule, FilterQuality, IntSize, Paint, PathBuilder, Pattern, Pixmap, SpreadMode,
-    Stroke, Transform,
-};
 
-use super::{export_error, image_png};
+use super::image_png;
+use super::raster::{Canvas, Paint, Rule, Shape};
 use crate::Error;
 use crate::image::Image;
 
@@ -137,23 +134,12 @@ impl View {
         )
     }
 
-    fn point(&self, p: Vec2) -> (f32, f32) {
-        (
+    fn point(&self, p: Vec2) -> Vec2 {
+        Vec2::new(
             self.margin + (p.x - self.min.x) * self.scale,
             self.margin + (self.max.y - p.y) * self.scale,
         )
     }
-}
-
-fn premultiplied(image: &Image) -> Option<Pixmap> {
-    let mut data = image.rgba.clone();
-    for px in data.chunks_exact_mut(4) {
-        let a = u16::from(px[3]);
-        for c in &mut px[..3] {
-            *c = ((u16::from(*c) * a + 127) / 255) as u8;
-        }
-    }
-    Pixmap::from_vec(data, IntSize::from_wh(image.width, image.height)?)
 }
 
 /// Renders a preview of the creature at rest: its texture (or flat colours) inside the
@@ -166,17 +152,7 @@ pub fn preview_2d_png(
     creature: &crate::d2::Creature,
     options: &PreviewOptions,
 ) -> Result<Vec<u8>, Error> {
-    let pixmap = preview(creature, options)?;
-    let mut rgba = Vec::with_capacity(pixmap.data().len());
-    for px in pixmap.pixels() {
-        let c = px.demultiply();
-        rgba.extend_from_slice(&[c.red(), c.green(), c.blue(), c.alpha()]);
-    }
-    image_png(&Image {
-        width: pixmap.width(),
-        height: pixmap.height(),
-        rgba,
-    })
+    image_png(&preview(creature, options)?)
 }
 
 /// [`preview_2d_png`]'s picture as a straight-alpha RGBA [`Image`], for composing galleries.
@@ -187,20 +163,10 @@ pub fn preview_2d(
     creature: &crate::d2::Creature,
     options: &PreviewOptions,
 ) -> Result<Image, Error> {
-    let pixmap = preview(creature, options)?;
-    let mut rgba = Vec::with_capacity(pixmap.data().len());
-    for px in pixmap.pixels() {
-        let c = px.demultiply();
-        rgba.extend_from_slice(&[c.red(), c.green(), c.blue(), c.alpha()]);
-    }
-    Ok(Image {
-        width: pixmap.width(),
-        height: pixmap.height(),
-        rgba,
-    })
+    preview(creature, options)
 }
 
-fn preview(c: &crate::d2::Creature, options: &PreviewOptions) -> Result<Pixmap, Error> {
+fn preview(c: &crate::d2::Creature, options: &PreviewOptions) -> Result<Image, Error> {
     if !(16..=8192).contains(&options.size) {
         return Err(Error::OutOfRange {
             what: "preview size",
@@ -210,140 +176,99 @@ fn preview(c: &crate::d2::Creature, options: &PreviewOptions) -> Result<Pixmap, 
         });
     }
     let (view, w, h) = View::new(c, options.size);
-    let mut pixmap = Pixmap::new(w, h).ok_or_else(|| export_error("png", "empty image"))?;
-    let [r, g, b, a] = options.background;
-    pixmap.fill(Color::from_rgba8(r, g, b, a));
+    let mut canvas = Canvas::new(w, h, options.background);
+    let rings: Vec<Vec<Vec2>> = c
+        .outline
+        .iter()
+        .map(|ring| ring.iter().map(|&p| view.point(p)).collect())
+        .collect();
 
-    let mut outline = PathBuilder::new();
-    for ring in &c.outline {
-        for (i, &p) in ring.iter().enumerate() {
-            let (x, y) = view.point(p);
-            if i == 0 {
-                outline.move_to(x, y);
-            } else {
-                outline.line_to(x, y);
-            }
+    if options.textured {
+        let mut body = Shape::new();
+        for ring in &rings {
+            body.polygon(ring);
         }
-        outline.close();
-    }
-    let outline = outline.finish();
-
-    if options.textured
-        && let Some(path) = &outline
-    {
-        {
-            let texture = c.texture.as_ref().and_then(premultiplied);
-            let mut paint = Paint {
-                anti_alias: true,
-                ..Paint::default()
-            };
-            match &texture {
-                Some(t) => {
-                    let (min, max) = c.bounds;
-                    let sx = (max.x - min.x) / t.width() as f32 * view.scale;
-                    let sy = (max.y - min.y) / t.height() as f32 * view.scale;
-                    paint.shader = Pattern::new(
-                        t.as_ref(),
-                        SpreadMode::Pad,
-                        FilterQuality::Bilinear,
-                        1.0,
-                        Transform::from_row(sx, 0.0, 0.0, sy, view.margin, view.margin),
-                    );
-                }
-                None => {
-                    let n = c.balls.len().max(1) as f32;
-                    let mean = c.balls.iter().map(|b| b.colour).sum::<Vec3>() / n;
-                    let [r, g, b] = mean.to_array().map(|v| (v.clamp(0.0, 1.0) * 255.0) as u8);
-                    paint.set_color_rgba8(r, g, b, 255);
+        let paint = match &c.texture {
+            Some(t) if t.width > 0 && t.height > 0 => {
+                let (min, max) = c.bounds;
+                Paint::Texture {
+                    image: t,
+                    origin: Vec2::splat(view.margin),
+                    scale: Vec2::new(
+                        (max.x - min.x) / t.width as f32 * view.scale,
+                        (max.y - min.y) / t.height as f32 * view.scale,
+                    ),
                 }
             }
-            pixmap.fill_path(path, &paint, FillRule::EvenOdd, Transform::identity(), None);
-        }
+            _ => {
+                let n = c.balls.len().max(1) as f32;
+                let mean = c.balls.iter().map(|b| b.colour).sum::<Vec3>() / n;
+                let [r, g, b] = mean.to_array().map(|v| (v.clamp(0.0, 1.0) * 255.0) as u8);
+                Paint::Solid([r, g, b, 255])
+            }
+        };
+        canvas.fill(&mut body, Rule::EvenOdd, &paint);
     }
 
-    let line = |pixmap: &mut Pixmap, path: &tiny_skia::Path, rgba: [u8; 4], width: f32| {
-        let mut paint = Paint {
-            anti_alias: true,
-            ..Paint::default()
-        };
-        paint.set_color_rgba8(rgba[0], rgba[1], rgba[2], rgba[3]);
-        let stroke = Stroke {
-            width,
-            ..Stroke::default()
-        };
-        pixmap.stroke_path(path, &paint, &stroke, Transform::identity(), None);
-    };
     let width = (options.size as f32 / 512.0).max(0.5);
-
     if options.mesh {
-        let mut pb = PathBuilder::new();
+        let mut edges = Shape::new();
         for t in &c.mesh.indices {
-            let pts: Vec<(f32, f32)> = t
+            let pts: Vec<Vec2> = t
                 .iter()
                 .filter_map(|&i| c.mesh.positions.get(i as usize))
                 .map(|p| view.point(p.truncate()))
                 .collect();
             if let [a, b, d] = pts[..] {
-                pb.move_to(a.0, a.1);
-                pb.line_to(b.0, b.1);
-                pb.line_to(d.0, d.1);
-                pb.close();
+                for (from, to) in [(a, b), (b, d), (d, a)] {
+                    edges.segment(from, to, width * 0.6);
+                }
             }
         }
-        if let Some(path) = pb.finish() {
-            line(&mut pixmap, &path, [20, 20, 20, 90], width * 0.6);
-        }
+        canvas.fill(&mut edges, Rule::NonZero, &Paint::Solid([20, 20, 20, 90]));
     }
-    if options.outline
-        && let Some(path) = &outline
-    {
-        line(&mut pixmap, path, [25, 25, 25, 255], width * 1.5);
+    if options.outline {
+        let mut outline = Shape::new();
+        for ring in &rings {
+            outline.polyline(ring, true, width * 1.5);
+        }
+        canvas.fill(
+            &mut outline,
+            Rule::NonZero,
+            &Paint::Solid([25, 25, 25, 255]),
+        );
     }
     if options.bones {
-        let mut pb = PathBuilder::new();
+        let red = Paint::Solid([200, 30, 30, 255]);
+        let mut sticks = Shape::new();
         for bone in &c.bones {
             if let Some(parent) = bone.parent.and_then(|p| c.bones.get(p)) {
-                let (x0, y0) = view.point(parent.position);
-                let (x1, y1) = view.point(bone.position);
-                pb.move_to(x0, y0);
-                pb.line_to(x1, y1);
+                let (a, b) = (view.point(parent.position), view.point(bone.position));
+                sticks.segment(a, b, width * 1.5);
             }
         }
-        if let Some(path) = pb.finish() {
-            line(&mut pixmap, &path, [200, 30, 30, 255], width * 1.5);
-        }
+        canvas.fill(&mut sticks, Rule::NonZero, &red);
+        let mut dots = Shape::new();
         for bone in &c.bones {
-            let (x, y) = view.point(bone.position);
-            if let Some(dot) = PathBuilder::from_circle(x, y, width * 2.5) {
-                let mut paint = Paint::default();
-                paint.set_color_rgba8(200, 30, 30, 255);
-                paint.anti_alias = true;
-                pixmap.fill_path(&dot, &paint, FillRule::Winding, Transform::identity(), None);
-            }
+            dots.disc(view.point(bone.position), width * 2.5);
         }
+        canvas.fill(&mut dots, Rule::NonZero, &red);
     }
     if options.eyes {
         for eye in &c.eyes {
-            let (x, y) = view.point(eye.position);
-            let r = eye.radius * view.scale;
+            let centre = view.point(eye.position);
+            let r = (eye.radius * view.scale).max(0.5);
             for (radius, rgba) in [(r, [250, 250, 250, 255]), (r * 0.5, [15, 15, 15, 255])] {
-                if let Some(disc) = PathBuilder::from_circle(x, y, radius.max(0.5)) {
-                    let mut paint = Paint::default();
-                    paint.set_color_rgba8(rgba[0], rgba[1], rgba[2], rgba[3]);
-                    paint.anti_alias = true;
-                    pixmap.fill_path(
-                        &disc,
-                        &paint,
-                        FillRule::Winding,
-                        Transform::identity(),
-                        None,
-                    );
-                }
+                let mut disc = Shape::new();
+                disc.disc(centre, radius.max(0.5));
+                canvas.fill(&mut disc, Rule::NonZero, &Paint::Solid(rgba));
             }
-            if let Some(disc) = PathBuilder::from_circle(x, y, r.max(0.5)) {
-                line(&mut pixmap, &disc, [15, 15, 15, 255], width);
-            }
+            // The eye's rim: a ring `width` wide on its edge.
+            let mut rim = Shape::new();
+            rim.disc(centre, r + 0.5 * width);
+            rim.disc(centre, (r - 0.5 * width).max(0.0));
+            canvas.fill(&mut rim, Rule::EvenOdd, &Paint::Solid([15, 15, 15, 255]));
         }
     }
-    Ok(pixmap)
+    Ok(canvas.into_image())
 }

@@ -248,6 +248,28 @@ impl Ground for Plane {
         let distance = -(self.point - origin).dot(self.normal);
         self.hit_at(origin, Vec3::NEG_Y, distance, max_distance)
     }
+
+    /// [`cast_down`](Self::cast_down)'s point, checked as the default checks it but knowing
+    /// what it does of a horizontal plane's hit: its normal (+Y) is valid and its height the
+    /// plane's, so the hit is valid exactly when its point's x and z and its distance are
+    /// finite. (A median walker's animator casts about 48 of these an update on flat ground.)
+    #[inline]
+    fn cast_down_point(&self, origin: Vec3, max_distance: f32) -> Option<Vec3> {
+        if self.normal != Vec3::Y {
+            return self
+                .cast_ray(origin, Vec3::NEG_Y, max_distance)
+                .filter(RayHit::is_valid)
+                .map(|hit| hit.point);
+        }
+        let distance = -(self.point - origin).dot(self.normal);
+        if !(distance >= 0.0 && distance <= max_distance) {
+            return None;
+        }
+        // `hit_at`'s point: `origin − Y × distance` with its height set to the plane's.
+        let point = origin + Vec3::NEG_Y * distance;
+        let point = Vec3::new(point.x, self.point.y, point.z);
+        (point.is_finite() && distance.is_finite()).then_some(point)
+    }
 }
 
 #[cfg(test)]

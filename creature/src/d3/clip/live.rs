@@ -491,7 +491,8 @@ impl Animator {
     }
 
     /// Places the creature at `position` (its height is taken from the ground at the next
-    /// update) facing `heading` (radians about +Y from +Z), its feet under it.
+    /// update, the ground under it wherever it is: under the surface or high above it) facing
+    /// `heading` (radians about +Y from +Z), its feet under it.
     #[must_use]
     pub fn with_pose(mut self, position: Vec3, heading: f32) -> Self {
         self.position = position;
@@ -548,7 +549,12 @@ impl Animator {
         // The body follows the ground under its rest feet: height, pitch and roll; afresh, it
         // is put straight onto the ground where it stands.
         let yaw = Quat::from_rotation_y(heading);
-        let (height, slope) = self.ground_under(position, yaw, ground);
+        let (mut height, mut slope) = self.ground_under(position, yaw, ground, self.length);
+        if self.fresh && height.is_none() {
+            // Put down where the rays from just above the body find no ground (under the
+            // ground, or high above it): onto the ground under it, found from far above.
+            (height, slope) = self.ground_under(position, yaw, ground, FRESH_ABOVE);
+        }
         let k = if self.fresh {
             1.0
         } else {
@@ -667,18 +673,19 @@ impl Animator {
     /// The mean height of the ground under the legs' rest positions with the body at `origin`
     /// turned by `yaw` (none if no ray hits), and
     /// the slopes of those heights along the body's forward and left axes, as a pitch and a
-    /// roll (radians, each within [`MAX_LEAN`]).
+    /// roll (radians, each within [`MAX_LEAN`]); the rays are cast from `reach` above the body
+    /// (its length, or [`FRESH_ABOVE`] to put it down afresh) to as far below it.
     fn ground_under<G: Ground + ?Sized>(
         &self,
         origin: Vec3,
         yaw: Quat,
         ground: &G,
+        reach: f32,
     ) -> (Option<f32>, Vec2) {
         // Least-squares slopes of the heights along x and z: sums of e, x, z, x², z², ex, ez.
         let mut count = 0.0f32;
         let (mut e, mut x, mut z) = (0.0f32, 0.0f32, 0.0f32);
         let (mut xx, mut zz, mut ex, mut ez) = (0.0f32, 0.0f32, 0.0f32, 0.0f32);
-        let reach = self.length;
         for leg in self.controller.legs() {
             if leg.kind != LimbKind::Leg {
                 continue;
@@ -943,6 +950,11 @@ impl Animator {
 
 /// The longest time step an update takes: a longer one (a frame hitch) is taken as this.
 pub const MAX_STEP: f32 = 0.1;
+
+/// How far above a creature put down afresh ([`Animator::new`], [`Animator::with_pose`]) its
+/// ground is looked for when rays from just above it find none (it was put under the ground
+/// or high above it): as far as a position may be from the origin.
+const FRESH_ABOVE: f32 = creature_gait::MAX_COORDINATE;
 
 /// How fast the body follows the terrain's height and slope (seconds, the time constant).
 const TERRAIN_TIME: f32 = 0.15;

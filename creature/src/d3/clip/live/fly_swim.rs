@@ -489,8 +489,25 @@ impl Animator {
         velocity: Vec3,
         ground: &G,
     ) -> Option<f32> {
-        use core::f32::consts::FRAC_1_SQRT_2 as D;
         let above = RAY_ABOVE * self.length;
+        let top = self.ground_top_from(hold, (position, velocity), above, ground);
+        if top.is_none() && self.fresh {
+            // Put down where the rays from above the body find no ground (under the ground, or
+            // high above it): over the ground under it, found from far above.
+            return self.ground_top_from(hold, (position, velocity), super::FRESH_ABOVE, ground);
+        }
+        top
+    }
+
+    /// [`ground_top`](Self::ground_top) with its rays cast from `above` over the body.
+    fn ground_top_from<G: Ground + ?Sized>(
+        &self,
+        hold: &Hold,
+        (position, velocity): (Vec3, Vec3),
+        above: f32,
+        ground: &G,
+    ) -> Option<f32> {
+        use core::f32::consts::FRAC_1_SQRT_2 as D;
         let range = above + RAY_BELOW * self.length;
         let r = hold.radius;
         let ring = [

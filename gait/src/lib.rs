@@ -22,6 +22,7 @@ mod math;
 mod metrics;
 mod motion;
 mod options;
+mod sort;
 #[cfg(feature = "proptest")]
 #[cfg_attr(docsrs, doc(cfg(feature = "proptest")))]
 pub mod strategies;

@@ -6,6 +6,7 @@ use alloc::vec::Vec;
 use glam::Vec2;
 
 use crate::math::sqrt;
+use crate::sort::sort_unstable_by;
 
 /// Figures of the last [`Controller::update`](crate::Controller::update), for tests and for
 /// users tuning a creature, measured by [`Controller::metrics`](crate::Controller::metrics)
@@ -54,7 +55,9 @@ pub fn support_margin(points: &mut Vec<Vec2>, scratch: &mut Vec<Vec2>, point: Ve
 /// Sorts and deduplicates `points`, then writes their convex hull into `hull`.
 fn support_hull(points: &mut Vec<Vec2>, hull: &mut Vec<Vec2>) {
     // Lexicographic order (a few points: insertion sort, no allocation).
-    points.sort_unstable_by(|a, b| a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)));
+    sort_unstable_by(points, &mut |a, b| {
+        a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y))
+    });
     points.dedup();
     convex_hull(points, hull);
 }

@@ -18,6 +18,7 @@ mod options;
 mod plan;
 mod planner;
 mod random;
+mod sort;
 // The tests' generator, shared with the integration tests, bench and example.
 #[cfg(test)]
 #[path = "../tests/support/split_mix.rs"]

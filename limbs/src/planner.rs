@@ -7,6 +7,7 @@ use glam::{Vec2, Vec3};
 use rand_core::Rng;
 
 use crate::random::{below, between, coin, count, unit};
+use crate::sort::sort_by;
 use crate::support::{convex_hull, support_margin};
 use crate::{
     Body, CreatureKind, Knee, Limb, LimbKind, LimbsError, Plan, PlanOptions, Repair, Side, Socket,
@@ -416,7 +417,9 @@ impl Ctx<'_> {
         rng: &mut R,
     ) {
         let body = self.body;
-        pairs.sort_by_key(|&p| body.head_rank(p));
+        sort_by(&mut pairs, &mut |&a, &b| {
+            body.head_rank(a).cmp(&body.head_rank(b))
+        });
         for &p in &pairs {
             let b = &body.bones[p];
             let (l, r) = self.walking_legs(p, lift);
@@ -481,12 +484,12 @@ impl Ctx<'_> {
             // the reverse direction, latest start), which places the most pairs.
             let mut order: Vec<usize> = (0..n).filter(|&i| eligible[i]).collect();
             if reverse_fill {
-                order.sort_by(|&a, &b| {
+                sort_by(&mut order, &mut |&a, &b| {
                     let (sa, sb) = (self.pair_span(a, lift), self.pair_span(b, lift));
                     sb.start.total_cmp(&sa.start).then(b.cmp(&a))
                 });
             } else {
-                order.sort_by(|&a, &b| {
+                sort_by(&mut order, &mut |&a, &b| {
                     let (sa, sb) = (self.pair_span(a, lift), self.pair_span(b, lift));
                     sa.end.total_cmp(&sb.end).then(a.cmp(&b))
                 });
@@ -565,7 +568,7 @@ impl Ctx<'_> {
         let required = self.options.min_margin * body.length;
         let mut best = f32::NEG_INFINITY;
         let mut firsts: Vec<usize> = (0..n).filter(|&i| eligible[i]).collect();
-        firsts.sort_by(|&a, &b| {
+        sort_by(&mut firsts, &mut |&a, &b| {
             body.bones[b]
                 .width
                 .total_cmp(&body.bones[a].width)
@@ -587,7 +590,9 @@ impl Ctx<'_> {
                 }
             }
         }
-        bases.sort_by(|a, b| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1)).then(a.2.cmp(&b.2)));
+        sort_by(&mut bases, &mut |a, b| {
+            b.0.total_cmp(&a.0).then(a.1.cmp(&b.1)).then(a.2.cmp(&b.2))
+        });
         for &(_, i, j) in bases.iter().take(RELOCATION_TRIES) {
             let base = if i == j {
                 alloc::vec![i]
@@ -642,7 +647,7 @@ impl Ctx<'_> {
                 }
             }
         }
-        strides.sort_by(|a, b| b.total_cmp(a));
+        sort_by(&mut strides, &mut |a, b| b.total_cmp(a));
         strides.dedup();
         // Binary search for the longest stride that works (the first success in descending
         // order); every probe is checked, so the answer stands whatever the search assumes.
@@ -876,7 +881,9 @@ impl Ctx<'_> {
                 placed: bones.len(),
             });
         }
-        bones.sort_by_key(|&b| body.head_rank(b));
+        sort_by(&mut bones, &mut |&a, &b| {
+            body.head_rank(a).cmp(&body.head_rank(b))
+        });
         for &bone in &bones {
             let b = &body.bones[bone];
             let span = self.centered_span(bone, sweep * leg);

@@ -4,13 +4,17 @@ use alloc::vec::Vec;
 
 use glam::Vec2;
 
+use crate::sort::sort_by;
+
 /// The convex hull of `points`, counter-clockwise (in a right-handed x–y frame), without
 /// repeated or collinear points. Fewer than three distinct points give the distinct ones
 /// (at most two: a point or a segment's end points). Non-finite points are skipped.
 #[must_use]
 pub fn convex_hull(points: &[Vec2]) -> Vec<Vec2> {
     let mut pts: Vec<Vec2> = points.iter().copied().filter(|p| p.is_finite()).collect();
-    pts.sort_by(|a, b| a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)));
+    sort_by(&mut pts, &mut |a, b| {
+        a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y))
+    });
     pts.dedup();
     if pts.len() < 3 {
         return pts;

@@ -23,6 +23,7 @@ mod math;
 mod mesh;
 mod options;
 mod ring;
+mod sort;
 #[cfg(feature = "proptest")]
 #[cfg_attr(docsrs, doc(cfg(feature = "proptest")))]
 pub mod strategies;

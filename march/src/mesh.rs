@@ -6,6 +6,7 @@ use alloc::vec::Vec;
 use glam::Vec2;
 
 use crate::cdt::{Cdt, CdtError, FIRST_VERTEX, NONE};
+use crate::sort::sort_unstable_by;
 use crate::{MarchError, Ring};
 
 /// The most interior points [`triangulate`] puts on its lattice (about 4 million, 32 MiB of
@@ -476,7 +477,9 @@ fn interior_points(
             }
         }
     }
-    crossings.sort_unstable_by(|p, q| p.0.cmp(&q.0).then(p.1.total_cmp(&q.1)));
+    sort_unstable_by(&mut crossings, &mut |p, q| {
+        p.0.cmp(&q.0).then(p.1.total_cmp(&q.1))
+    });
     for span in crossings.chunk_by(|p, q| p.0 == q.0) {
         let k = span[0].0 as usize;
         let y = row_y(k);

@@ -5,6 +5,7 @@ use alloc::vec::Vec;
 use glam::Vec2;
 
 use crate::MarchError;
+use crate::sort::sort_unstable_by;
 
 /// A closed outline: the points of a polygon, the last point not repeated.
 ///
@@ -175,7 +176,9 @@ pub fn contains_each(rings: &[Ring], points: &[Vec2]) -> Vec<bool> {
         .filter(|(_, p)| p.is_finite())
         .map(|(k, p)| (p.y, k as u32))
         .collect();
-    order.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+    sort_unstable_by(&mut order, &mut |a, b| {
+        a.0.total_cmp(&b.0).then(a.1.cmp(&b.1))
+    });
     let (Some(&(bottom, _)), Some(&(top, _))) = (order.first(), order.last()) else {
         return inside;
     };

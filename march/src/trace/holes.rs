@@ -6,6 +6,7 @@ use super::Tracer;
 use super::nodes::{TILE_MASK, TILE_SHIFT};
 use super::rings::encloses;
 use crate::MarchError;
+use crate::sort::sort_unstable_by;
 use crate::tile::TileField;
 
 impl<F: TileField + ?Sized> Tracer<'_, F> {
@@ -126,7 +127,7 @@ impl<F: TileField + ?Sized> Tracer<'_, F> {
                 }
             }
             // `scan_column`'s order: by column, then row.
-            starts.sort_unstable();
+            sort_unstable_by(&mut starts, &mut Ord::cmp);
             for &(x, up, inside) in &starts {
                 self.trace_nested(x, up, inside)?;
             }

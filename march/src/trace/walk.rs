@@ -9,6 +9,7 @@ use super::Tracer;
 use super::nodes::{Nodes, TILE_MASK};
 use super::rings::Traced;
 use crate::cell;
+use crate::sort::sort_unstable_by;
 use crate::tile::TileField;
 use crate::{MarchError, Saddle};
 
@@ -254,7 +255,9 @@ pub(super) fn unpinch_across(rings: &mut [Traced]) {
     if on_nodes.len() < 2 {
         return;
     }
-    on_nodes.sort_unstable_by_key(|&(node, r, i, _)| (node, r, i));
+    sort_unstable_by(&mut on_nodes, &mut |&(n, r, i, _), &(m, s, j, _)| {
+        (n, r, i).cmp(&(m, s, j))
+    });
     let mut moved = Vec::new();
     for group in on_nodes.chunk_by(|a, b| a.0 == b.0) {
         if group[0].1 != group[group.len() - 1].1 {
@@ -388,7 +391,8 @@ impl Path {
         let key = |p: Vec2| (p.x.to_bits(), p.y.to_bits());
         // Grouped by node (same position, bit for bit), in ring order within a group.
         let mut order: Vec<usize> = (0..self.on_node.len()).collect();
-        order.sort_unstable_by_key(|&e| (key(self.points[self.on_node[e].0]), self.on_node[e].0));
+        let at = |e: usize| (key(self.points[self.on_node[e].0]), self.on_node[e].0);
+        sort_unstable_by(&mut order, &mut |&a, &b| at(a).cmp(&at(b)));
         let mut start = 0;
         while start < order.len() {
             let node = key(self.points[self.on_node[order[start]].0]);

@@ -911,7 +911,7 @@ fn regression_a_gait_set_up_with_more_hips_than_legs_is_an_error_not_a_panic() {
 /// their first update: a walker's soles on the ground and planted, a flier and a swimmer above
 /// it. Their rays, cast from just above the body, had found no ground: they stayed where they
 /// were put, buried (a quarter of the playground's herd of 1,000 walkers on its 80 m terrain,
-/// put down at height 0).
+/// put down at height 0). Put between a floor and a roof, they come down to the floor.
 #[test]
 fn regression_a_creature_put_down_under_or_over_the_terrain_is_put_onto_it() {
     let ground = terrain(3, &TerrainParams::DEFAULT.with_extent(80.0, 193)).unwrap();
@@ -932,30 +932,65 @@ fn regression_a_creature_put_down_under_or_over_the_terrain_is_put_onto_it() {
         ("flier 7", flier(7)),
         ("swimmer 7", swimmer(7)),
     ] {
+        // Deeper under the ground, and higher over it, than their rays reach from the body
+        // (a flier's and a swimmer's start 4 lengths above it and reach 100 below).
+        let walks = c.gait.is_some();
+        let deep = if walks { 2.0 } else { 5.0 };
         assert!(
-            top > 2.0 * c.length,
+            top > deep * c.length,
             "{label}: the ground at {place} is not above it"
         );
-        for y in [0.0, top + 30.0 * c.length] {
+        for y in [0.0, top + 200.0 * c.length] {
             let label = format!("{label} put down at height {y} over ground at {top}");
             let mut animator = Animator::new(&c)
                 .unwrap()
                 .with_pose(Vec3::new(place.x, y, place.z), 0.0);
             animator.update(1.0 / 60.0, Intent::Stand, &ground).unwrap();
-            if c.gait.is_some() {
-                let posed = skinned(&c, &animator);
-                let soles = soles(&posed, &foot_vertices(&c), &ground);
-                for (sole, planted) in soles.into_iter().zip(planted(&c, &animator)) {
-                    assert!(planted, "{label}: a foot not planted");
-                    foot_on(sole, planted, c.length, &label);
-                }
-            } else {
-                let gap = lowest_gap(&c, &animator, &ground);
-                assert!(
-                    gap > 0.0 && gap < 5.0 * c.length,
-                    "{label}: its lowest vertex {gap} over the ground"
-                );
-            }
+            stands_on(&c, &animator, &ground, &label);
         }
+        // A floor at 0 under a roof 10 lengths up: put down between them, on the floor.
+        let roof = 10.0 * c.length;
+        let storeys = creature::gait::FnGround(|origin: Vec3, direction: Vec3, max: f32| {
+            let h = if origin.y >= roof {
+                roof
+            } else if origin.y >= 0.0 {
+                0.0
+            } else {
+                return None;
+            };
+            let distance = (origin.y - h) / -direction.y;
+            (direction.y < 0.0 && distance <= max).then(|| creature::gait::RayHit {
+                point: origin + direction * distance,
+                normal: Vec3::Y,
+                distance,
+            })
+        });
+        let mut animator = Animator::new(&c)
+            .unwrap()
+            .with_pose(Vec3::new(0.0, 5.0 * c.length, 0.0), 0.0);
+        animator
+            .update(1.0 / 60.0, Intent::Stand, &storeys)
+            .unwrap();
+        let label = format!("{label} put down between a floor and a roof");
+        stands_on(&c, &animator, &Plane::GROUND, &label);
+    }
+}
+
+/// `c` as `animator` poses it stands on `ground`: a walker's soles on it and planted, a
+/// flier's or swimmer's lowest vertex above it by less than 5 lengths.
+fn stands_on<G: Ground>(c: &d3::Creature, animator: &Animator, ground: &G, label: &str) {
+    if c.gait.is_some() {
+        let posed = skinned(c, animator);
+        let soles = soles(&posed, &foot_vertices(c), ground);
+        for (sole, planted) in soles.into_iter().zip(planted(c, animator)) {
+            assert!(planted, "{label}: a foot not planted");
+            foot_on(sole, planted, c.length, label);
+        }
+    } else {
+        let gap = lowest_gap(c, animator, ground);
+        assert!(
+            gap > 0.0 && gap < 5.0 * c.length,
+            "{label}: its lowest vertex {gap} over the ground"
+        );
     }
 }

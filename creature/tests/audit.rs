@@ -1,8 +1,8 @@
 //! The audit of delivered creatures: each 3D kind's creatures exported to `.glb`, read back and
 //! played as a viewer does (`creature-audit`). Runs `CREATURE_AUDIT_SEEDS` seeds per kind
 //! (default 12 in a debug build; `cargo xtask sweep` runs 10,000 in release), from seed
-//! `CREATURE_AUDIT_FIRST_SEED` (default 0), and prints, per check, how many creatures fail it. Every check is enforced for every kind: each must hold
-//! on every seed.
+//! `CREATURE_AUDIT_FIRST_SEED` (default 0), and prints, per check, how many creatures fail it.
+//! Every check is enforced for every kind: each must hold on every seed.
 
 #![allow(clippy::unwrap_used, clippy::std_instead_of_alloc)]
 
@@ -1096,8 +1096,8 @@ fn live_walks(seed: u64) -> d3::Creature {
     c
 }
 
-/// Live walks (see [`live_walks`]) hold every check of the audit, as the baked clips do: the
-/// a tenth as many seeds as the audit's (`CREATURE_AUDIT_SEEDS`, at least 12), from its first.
+/// Live walks (see [`live_walks`]) hold every check of the audit, as the baked clips do: a
+/// tenth as many seeds as the audit's (`CREATURE_AUDIT_SEEDS`, at least 12), from its first.
 #[test]
 fn audit_live_walks() {
     let mut tally = Tally::default();

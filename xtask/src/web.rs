@@ -167,8 +167,9 @@ fn build(w: &Workspace) -> Result<PathBuf, String> {
     // What the lockfile says, every time (a few seconds: npm keeps its cache).
     let mut c = Command::new("npm");
     c.current_dir(&web).args(["ci", "--no-audit", "--no-fund"]);
-    run(c)
-        .map_err(|e| format!("{e}: the playground needs npm (Node.js 20 or later) for three.js"))?;
+    run(c).map_err(|e| {
+        format!("{e}: the playground needs npm (Node.js 20 or later) for three.js and binaryen")
+    })?;
     // binaryen's `wasm-opt` (from npm, as three.js) optimises the module for size: 517 → 509
     // KB gzipped, no slower. The features are the build's own (the stripped module no longer
     // lists them for it to read).

@@ -146,8 +146,7 @@ impl View {
 /// outline, and optionally the mesh, outline, bones and eyes, as PNG bytes.
 ///
 /// # Errors
-/// [`Error::OutOfRange`] for a size outside 16–8192; [`Error::Export`] if drawing or encoding
-/// fails.
+/// [`Error::OutOfRange`] for a size outside 16–8192; [`Error::Export`] if encoding fails.
 pub fn preview_2d_png(
     creature: &crate::d2::Creature,
     options: &PreviewOptions,

@@ -70,8 +70,8 @@ impl Shape {
             return;
         }
         let (top, bottom, winding) = if a.y < b.y { (a, b, 1) } else { (b, a, -1) };
-        // An edge too short in y for its slope (a subnormal rise) spans no sample row: taken
-        // as vertical, it still keeps the windings right.
+        // An edge whose slope overflows (a subnormal rise, or a run past `f32::MAX`) is taken
+        // as vertical: it keeps the windings right, and a rise that short spans no sample row.
         let slope = (bottom.x - top.x) / (bottom.y - top.y);
         let slope = if slope.is_finite() { slope } else { 0.0 };
         self.edges.push((top.y, bottom.y, top.x, slope, winding));
@@ -132,11 +132,12 @@ fn circle(centre: Vec2, radius: f32) -> impl Iterator<Item = Vec2> {
     })
 }
 
-/// A canvas of premultiplied RGBA in `[0, 1]`.
+/// A canvas of premultiplied RGBA bytes (blended in `f32`, stored as tiny-skia stores them:
+/// 4 bytes a pixel).
 pub(super) struct Canvas {
     width: usize,
     height: usize,
-    pixels: Vec<Vec4>,
+    pixels: Vec<[u8; 4]>,
     /// Each pixel's coverage in the row being filled, and the sample rows' crossings.
     coverage: Vec<f32>,
     crossings: Vec<(f32, i32)>,
@@ -149,7 +150,7 @@ impl Canvas {
         Self {
             width,
             height,
-            pixels: vec![premultiply(background); width * height],
+            pixels: vec![bytes(premultiply(background)); width * height],
             coverage: vec![0.0; width + 1],
             crossings: Vec::new(),
         }
@@ -236,7 +237,8 @@ impl Canvas {
                 };
                 let pixel = &mut self.pixels[row * self.width + x];
                 let s = source * c;
-                *pixel = s + *pixel * (1.0 - s.w);
+                let d = Vec4::from(pixel.map(f32::from)) / 255.0;
+                *pixel = bytes(s + d * (1.0 - s.w));
             }
         }
     }
@@ -244,16 +246,16 @@ impl Canvas {
     /// The picture as straight-alpha RGBA bytes.
     pub(super) fn into_image(self) -> Image {
         let mut rgba = Vec::with_capacity(self.pixels.len() * 4);
-        for p in &self.pixels {
-            let a = p.w.clamp(0.0, 1.0);
-            let straight = if a > 0.0 { *p / a } else { Vec4::ZERO };
-            let byte = |v: f32| crate::math::round_non_negative(v.clamp(0.0, 1.0) * 255.0) as u8;
-            rgba.extend_from_slice(&[
-                byte(straight.x),
-                byte(straight.y),
-                byte(straight.z),
-                byte(a),
-            ]);
+        for &[r, g, b, a] in &self.pixels {
+            let straight = |c: u8| {
+                if a == 0 {
+                    0
+                } else {
+                    // Rounded; at most 255 for `c ≤ a` (premultiplied), clamped all the same.
+                    ((u16::from(c) * 255 + u16::from(a) / 2) / u16::from(a)).min(255) as u8
+                }
+            };
+            rgba.extend_from_slice(&[straight(r), straight(g), straight(b), a]);
         }
         Image {
             width: self.width as u32,
@@ -283,6 +285,13 @@ fn span(coverage: &mut [f32], from: f32, to: f32, share: f32) -> Option<(usize, 
         coverage[b] += (to - b as f32) * share;
     }
     Some((a, b + 1))
+}
+
+/// Premultiplied `[0, 1]` as bytes (rounded).
+fn bytes(v: Vec4) -> [u8; 4] {
+    // Clamped to [0, 255] first (a NaN to 0): the rounded value fits a byte.
+    let byte = |v: f32| crate::math::round_non_negative(v.clamp(0.0, 1.0) * 255.0) as u8;
+    [byte(v.x), byte(v.y), byte(v.z), byte(v.w)]
 }
 
 /// Straight-alpha RGBA bytes as premultiplied `[0, 1]`.
@@ -325,7 +334,7 @@ mod tests {
     use super::*;
 
     fn alpha_sum(canvas: Canvas) -> f32 {
-        canvas.pixels.iter().map(|p| p.w).sum()
+        canvas.pixels.iter().map(|p| f32::from(p[3]) / 255.0).sum()
     }
 
     #[test]
@@ -381,8 +390,8 @@ mod tests {
         shape.segment(Vec2::new(5.0, 15.0), Vec2::new(25.0, 15.0), 2.0);
         shape.segment(Vec2::new(15.0, 25.0), Vec2::new(15.0, 5.0), 2.0);
         canvas.fill(&mut shape, Rule::NonZero, &Paint::Solid([0, 0, 0, 128]));
-        let max = canvas.pixels.iter().map(|p| p.w).fold(0.0, f32::max);
-        assert!((max - 128.0 / 255.0).abs() < 1e-6, "{max}");
+        let max = canvas.pixels.iter().map(|p| p[3]).max();
+        assert_eq!(max, Some(128));
     }
 
     #[test]

@@ -491,8 +491,8 @@ impl Animator {
     }
 
     /// Places the creature at `position` (its height is taken from the ground at the next
-    /// update, the ground under it wherever it is: under the surface or high above it) facing
-    /// `heading` (radians about +Y from +Z), its feet under it.
+    /// update: the nearest ground below it, however far; put under the ground, the ground
+    /// over it) facing `heading` (radians about +Y from +Z), its feet under it.
     #[must_use]
     pub fn with_pose(mut self, position: Vec3, heading: f32) -> Self {
         self.position = position;
@@ -549,11 +549,22 @@ impl Animator {
         // The body follows the ground under its rest feet: height, pitch and roll; afresh, it
         // is put straight onto the ground where it stands.
         let yaw = Quat::from_rotation_y(heading);
-        let (mut height, mut slope) = self.ground_under(position, yaw, ground, self.length);
+        let reach = self.length;
+        let (mut height, mut slope) = self.ground_under(position, yaw, ground, (reach, reach));
         if self.fresh && height.is_none() {
-            // Put down where the rays from just above the body find no ground (under the
-            // ground, or high above it): onto the ground under it, found from far above.
-            (height, slope) = self.ground_under(position, yaw, ground, FRESH_ABOVE);
+            // Put down where the rays from just above the body find no ground: high above it
+            // (the nearest ground below, however far), or under it (the ground found from
+            // far above, then again from just above it: the first cast's rays, a million
+            // metres long, may round a ground's hit point).
+            (height, slope) = self.ground_under(position, yaw, ground, (reach, FRESH_RANGE));
+            if height.is_none() {
+                let far = self.ground_under(position, yaw, ground, (FRESH_RANGE, reach));
+                if let (Some(top), _) = far {
+                    let on = Vec3::new(position.x, top, position.z);
+                    let near = self.ground_under(on, yaw, ground, (reach, reach));
+                    (height, slope) = if near.0.is_some() { near } else { far };
+                }
+            }
         }
         let k = if self.fresh {
             1.0
@@ -673,14 +684,15 @@ impl Animator {
     /// The mean height of the ground under the legs' rest positions with the body at `origin`
     /// turned by `yaw` (none if no ray hits), and
     /// the slopes of those heights along the body's forward and left axes, as a pitch and a
-    /// roll (radians, each within [`MAX_LEAN`]); the rays are cast from `reach` above the body
-    /// (its length, or [`FRESH_ABOVE`] to put it down afresh) to as far below it.
+    /// roll (radians, each within [`MAX_LEAN`]); the rays are cast from `above` the body to
+    /// `below` it (and a leg's size further): its length each, or [`FRESH_RANGE`] to put it
+    /// down afresh.
     fn ground_under<G: Ground + ?Sized>(
         &self,
         origin: Vec3,
         yaw: Quat,
         ground: &G,
-        reach: f32,
+        (above, below): (f32, f32),
     ) -> (Option<f32>, Vec2) {
         // Least-squares slopes of the heights along x and z: sums of e, x, z, x², z², ex, ez.
         let mut count = 0.0f32;
@@ -691,8 +703,8 @@ impl Animator {
                 continue;
             }
             let rest = Vec3::new(leg.rest.x, 0.0, leg.rest.z);
-            let above = origin + yaw * rest + Vec3::Y * reach;
-            if let Some(hit) = ground.cast_down_point(above, 2.0 * reach + leg.size) {
+            let from = origin + yaw * rest + Vec3::Y * above;
+            if let Some(hit) = ground.cast_down_point(from, above + below + leg.size) {
                 let h = hit.y - origin.y;
                 count += 1.0;
                 (e, x, z) = (e + h, x + rest.x, z + rest.z);
@@ -951,10 +963,11 @@ impl Animator {
 /// The longest time step an update takes: a longer one (a frame hitch) is taken as this.
 pub const MAX_STEP: f32 = 0.1;
 
-/// How far above a creature put down afresh ([`Animator::new`], [`Animator::with_pose`]) its
-/// ground is looked for when rays from just above it find none (it was put under the ground
-/// or high above it): as far as a position may be from the origin.
-const FRESH_ABOVE: f32 = creature_gait::MAX_COORDINATE;
+/// How far below a creature put down afresh ([`Animator::new`], [`Animator::with_pose`]) its
+/// ground is looked for when rays from just above it find none (it was put high above it),
+/// and then how far above (it was put under the ground): as far as a position may be from the
+/// origin.
+const FRESH_RANGE: f32 = creature_gait::MAX_COORDINATE;
 
 /// How fast the body follows the terrain's height and slope (seconds, the time constant).
 const TERRAIN_TIME: f32 = 0.15;

@@ -489,26 +489,37 @@ impl Animator {
         velocity: Vec3,
         ground: &G,
     ) -> Option<f32> {
-        let above = RAY_ABOVE * self.length;
-        let top = self.ground_top_from(hold, (position, velocity), above, ground);
-        if top.is_none() && self.fresh {
-            // Put down where the rays from above the body find no ground (under the ground, or
-            // high above it): over the ground under it, found from far above.
-            return self.ground_top_from(hold, (position, velocity), super::FRESH_ABOVE, ground);
+        let (above, below) = (RAY_ABOVE * self.length, RAY_BELOW * self.length);
+        let at = (position, velocity);
+        let top = self.ground_top_from(hold, at, (above, below), ground);
+        if top.is_some() || !self.fresh {
+            return top;
         }
-        top
+        // Put down where the rays from above the body find no ground: high above it (the
+        // nearest ground below, however far), or under it (the ground found from far above,
+        // then again from above it: the first cast's rays, a million metres long, may round a
+        // ground's hit point).
+        let far = super::FRESH_RANGE;
+        self.ground_top_from(hold, at, (above, far), ground)
+            .or_else(|| {
+                let top = self.ground_top_from(hold, at, (far, below), ground)?;
+                let on = Vec3::new(position.x, top, position.z);
+                self.ground_top_from(hold, (on, velocity), (above, below), ground)
+                    .or(Some(top))
+            })
     }
 
-    /// [`ground_top`](Self::ground_top) with its rays cast from `above` over the body.
+    /// [`ground_top`](Self::ground_top) with its rays cast from `above` the body to `below`
+    /// it.
     fn ground_top_from<G: Ground + ?Sized>(
         &self,
         hold: &Hold,
         (position, velocity): (Vec3, Vec3),
-        above: f32,
+        (above, below): (f32, f32),
         ground: &G,
     ) -> Option<f32> {
         use core::f32::consts::FRAC_1_SQRT_2 as D;
-        let range = above + RAY_BELOW * self.length;
+        let range = above + below;
         let r = hold.radius;
         let ring = [
             (0.0, 0.0),

@@ -552,18 +552,12 @@ impl Animator {
         let reach = self.length;
         let (mut height, mut slope) = self.ground_under(position, yaw, ground, (reach, reach));
         if self.fresh && height.is_none() {
-            // Put down where the rays from just above the body find no ground: high above it
-            // (the nearest ground below, however far), or under it (the ground found from
-            // far above, then again from just above it: the first cast's rays, a million
-            // metres long, may round a ground's hit point).
-            (height, slope) = self.ground_under(position, yaw, ground, (reach, FRESH_RANGE));
-            if height.is_none() {
-                let far = self.ground_under(position, yaw, ground, (FRESH_RANGE, reach));
-                if let (Some(top), _) = far {
-                    let on = Vec3::new(position.x, top, position.z);
-                    let near = self.ground_under(on, yaw, ground, (reach, reach));
-                    (height, slope) = if near.0.is_some() { near } else { far };
-                }
+            let cast = |origin, range| match self.ground_under(origin, yaw, ground, range) {
+                (Some(height), slope) => Some((height, slope)),
+                (None, _) => None,
+            };
+            if let Some((top, lean)) = put_down(position, (reach, reach), |&(top, _)| top, cast) {
+                (height, slope) = (Some(top), lean);
             }
         }
         let k = if self.fresh {
@@ -968,6 +962,25 @@ pub const MAX_STEP: f32 = 0.1;
 /// and then how far above (it was put under the ground): as far as a position may be from the
 /// origin.
 const FRESH_RANGE: f32 = creature_gait::MAX_COORDINATE;
+
+/// The ground under a creature put down afresh where its rays, cast from `above` the body to
+/// `below` it, find none: it was put high above the ground (the nearest ground below, however
+/// far, is taken) or under it (the ground found from [`FRESH_RANGE`] above, then again from
+/// `above` it: the first cast's rays, a million metres long, may round a ground's hit point).
+/// `cast(origin, (above, below))` casts the creature's rays with the body at `origin`;
+/// `height` is a hit's height.
+pub(super) fn put_down<T>(
+    position: Vec3,
+    (above, below): (f32, f32),
+    height: impl Fn(&T) -> f32,
+    mut cast: impl FnMut(Vec3, (f32, f32)) -> Option<T>,
+) -> Option<T> {
+    cast(position, (above, FRESH_RANGE)).or_else(|| {
+        let far = cast(position, (FRESH_RANGE, below))?;
+        let on = Vec3::new(position.x, height(&far), position.z);
+        cast(on, (above, below)).or(Some(far))
+    })
+}
 
 /// How fast the body follows the terrain's height and slope (seconds, the time constant).
 const TERRAIN_TIME: f32 = 0.15;

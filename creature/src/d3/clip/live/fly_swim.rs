@@ -490,23 +490,16 @@ impl Animator {
         ground: &G,
     ) -> Option<f32> {
         let (above, below) = (RAY_ABOVE * self.length, RAY_BELOW * self.length);
-        let at = (position, velocity);
-        let top = self.ground_top_from(hold, at, (above, below), ground);
+        let top = self.ground_top_from(hold, (position, velocity), (above, below), ground);
         if top.is_some() || !self.fresh {
             return top;
         }
-        // Put down where the rays from above the body find no ground: high above it (the
-        // nearest ground below, however far), or under it (the ground found from far above,
-        // then again from above it: the first cast's rays, a million metres long, may round a
-        // ground's hit point).
-        let far = super::FRESH_RANGE;
-        self.ground_top_from(hold, at, (above, far), ground)
-            .or_else(|| {
-                let top = self.ground_top_from(hold, at, (far, below), ground)?;
-                let on = Vec3::new(position.x, top, position.z);
-                self.ground_top_from(hold, (on, velocity), (above, below), ground)
-                    .or(Some(top))
-            })
+        super::put_down(
+            position,
+            (above, below),
+            |&top| top,
+            |origin, range| self.ground_top_from(hold, (origin, velocity), range, ground),
+        )
     }
 
     /// [`ground_top`](Self::ground_top) with its rays cast from `above` the body to `below`

@@ -3,6 +3,9 @@
 //! bilinear lookup) against a plain reference ground (a fixed-step ray march of the same height
 //! field, as one would first write it, through `FnGround`), in the same run.
 //!
+//! Then 1,000 hexapods at 0.5 to 5.3 m/s (Froude numbers 0.03 to 2.9: walks, trots and runs)
+//! with gaits by speed against the same herd in one gait.
+//!
 //! Run: `cargo bench -p creature-gait --bench update -- --warm-up-time 1 --measurement-time 3`
 
 // Setup outside the timed code may fail loudly: a broken input is a broken bench.
@@ -13,7 +16,7 @@ use core::hint::black_box;
 mod herd;
 
 use creature_gait::glam::Vec3;
-use creature_gait::{FnGround, Ground, HeightField, RayHit};
+use creature_gait::{FnGround, GaitOptions, GaitSpeeds, Ground, HeightField, RayHit};
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use herd::{CREATURES, Herd, terrain};
 
@@ -53,6 +56,22 @@ fn bench(c: &mut Criterion) {
     let mut slow = Herd::new(CREATURES, &reference, &field).expect("valid herd");
     group.bench_function("reference_ray_march", |b| {
         b.iter(|| step(&mut slow, &reference, &field));
+    });
+    group.finish();
+
+    let mut group = c.benchmark_group("1000_hexapods_walk_trot_run");
+    group.throughput(Throughput::Elements((CREATURES * 6) as u64));
+    group.sample_size(20);
+    let fast = |i: usize| 0.5 + (i % 7) as f32 * 0.8;
+    let by_speed = GaitOptions::DEFAULT.with_gaits(GaitSpeeds::DEFAULT);
+    let mut one =
+        Herd::with(CREATURES, &field, &field, &GaitOptions::DEFAULT, fast).expect("valid herd");
+    group.bench_function("one_gait", |b| {
+        b.iter(|| step(&mut one, &field, &field));
+    });
+    let mut changing = Herd::with(CREATURES, &field, &field, &by_speed, fast).expect("valid herd");
+    group.bench_function("gaits_by_speed", |b| {
+        b.iter(|| step(&mut changing, &field, &field));
     });
     group.finish();
 }

@@ -6,6 +6,7 @@ use alloc::vec::Vec;
 use glam::{Quat, Vec3};
 
 use crate::error::{GaitError, finite3, positive};
+use crate::gaits::{self, Gait, Sides};
 
 /// What a limb does with the ground.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
@@ -334,8 +335,12 @@ impl Default for Pose {
 /// opposite-leg references.
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) struct Layout {
+    /// Each leg's group in the current gait (a copy of `by_gait`'s).
     pub(crate) groups: Vec<u8>,
     pub(crate) group_count: u8,
+    /// Each gait's groups and group count, by `Gait as usize` (the caller's groups in each, if
+    /// the caller set them).
+    pub(crate) by_gait: [(Vec<u8>, u8); 3],
     /// The leg that must be planted before this one may step (3D seed rule).
     pub(crate) opposite: Vec<Option<usize>>,
     /// The other leg of this leg's left/right pair (hip roll).
@@ -345,15 +350,12 @@ pub(crate) struct Layout {
     pub(crate) hind: Vec<Option<usize>>,
 }
 
-/// How many pairs a side may have before the derived gait becomes a three-group travelling
-/// wave instead of two alternating groups.
-const ALTERNATING_PAIRS: usize = 3;
-
 /// Two consecutive pairs whose sizes are within this ratio step diagonally (3D seed).
 const DIAGONAL_SCALE_RATIO: f32 = 0.8;
 
-/// Derives the layout: groups from the caller or from the legs' positions.
-pub(crate) fn layout(legs: &[Leg]) -> Result<Layout, GaitError> {
+/// Derives the layout: groups from the caller or from the legs' positions, for each gait if
+/// `by_speed` (else every gait has the walk's original groups).
+pub(crate) fn layout(legs: &[Leg], by_speed: bool) -> Result<Layout, GaitError> {
     let n = legs.len();
     let mut left: Vec<usize> = Vec::new();
     let mut right: Vec<usize> = Vec::new();
@@ -410,32 +412,32 @@ pub(crate) fn layout(legs: &[Leg]) -> Result<Layout, GaitError> {
         let mut labels: Vec<u8> = groups.clone();
         labels.sort_unstable();
         labels.dedup();
-        let groups = groups
+        let groups: Vec<u8> = groups
             .iter()
             // `labels` is sorted and holds every group once: its index of `g`.
             .map(|g| labels.partition_point(|l| l < g) as u8)
             .collect();
+        let group_count = labels.len().max(1) as u8;
+        let by_gait = core::array::from_fn(|_| (groups.clone(), group_count));
         return Ok(Layout {
             groups,
-            group_count: labels.len().max(1) as u8,
+            group_count,
+            by_gait,
             opposite,
             partner,
             hind,
         });
     }
 
-    let pairs = left.len().max(right.len()).max(centre.len());
-    let group_count: usize = if pairs <= ALTERNATING_PAIRS { 2 } else { 3 };
-    let mut groups = alloc::vec![0u8; n];
-    for (k, &i) in left.iter().enumerate() {
-        groups[i] = (k % group_count) as u8;
-    }
-    for (k, &i) in right.iter().enumerate() {
-        groups[i] = ((k + 1) % group_count) as u8;
-    }
-    for (k, &i) in centre.iter().enumerate() {
-        groups[i] = (k % group_count) as u8;
-    }
+    let sides = Sides {
+        left,
+        right,
+        centre,
+    };
+    let by_gait =
+        [Gait::Walk, Gait::Trot, Gait::Run].map(|gait| gaits::groups(legs, &sides, gait, by_speed));
+    let (groups, group_count) = by_gait[Gait::Walk as usize].clone();
+    let Sides { left, right, .. } = sides;
     // The seed's opposite references: a foot steps only while its opposite is planted; the
     // left foot of a pair after the first watches the previous left foot when the two pairs
     // are of similar size, so diagonals move together.
@@ -453,7 +455,8 @@ pub(crate) fn layout(legs: &[Leg]) -> Result<Layout, GaitError> {
     }
     Ok(Layout {
         groups,
-        group_count: group_count as u8,
+        group_count,
+        by_gait,
         opposite,
         partner,
         hind,
@@ -463,6 +466,10 @@ pub(crate) fn layout(legs: &[Leg]) -> Result<Layout, GaitError> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    fn layout_(legs: &[Leg]) -> Result<Layout, GaitError> {
+        layout(legs, false)
+    }
 
     fn pairs(count: usize) -> Vec<Leg> {
         let mut legs = Vec::new();
@@ -482,7 +489,7 @@ mod tests {
 
     #[test]
     fn biped_alternates() {
-        let l = layout(&pairs(1)).unwrap();
+        let l = layout_(&pairs(1)).unwrap();
         assert_eq!(l.group_count, 2);
         assert_ne!(l.groups[0], l.groups[1]);
         assert_eq!(l.opposite[0], Some(1));
@@ -492,7 +499,7 @@ mod tests {
     #[test]
     fn quadruped_trots_with_diagonals_together() {
         let legs = pairs(2); // 0 FL, 1 FR, 2 BL, 3 BR
-        let l = layout(&legs).unwrap();
+        let l = layout_(&legs).unwrap();
         assert_eq!(l.groups[0], l.groups[3]);
         assert_eq!(l.groups[1], l.groups[2]);
         assert_ne!(l.groups[0], l.groups[1]);
@@ -503,7 +510,7 @@ mod tests {
 
     #[test]
     fn hexapod_uses_a_tripod() {
-        let l = layout(&pairs(3)).unwrap();
+        let l = layout_(&pairs(3)).unwrap();
         // Left front, right middle, left back together.
         assert_eq!(l.groups[0], l.groups[3]);
         assert_eq!(l.groups[0], l.groups[4]);
@@ -514,7 +521,7 @@ mod tests {
     #[test]
     fn many_legs_make_a_three_group_wave() {
         let legs = pairs(6);
-        let l = layout(&legs).unwrap();
+        let l = layout_(&legs).unwrap();
         assert_eq!(l.group_count, 3);
         for k in 0..6 {
             assert_ne!(l.groups[2 * k], l.groups[2 * k + 1], "pair {k}");
@@ -529,7 +536,7 @@ mod tests {
         let mut legs = pairs(2);
         legs[0].size = 0.3;
         legs[1].size = 0.3;
-        let l = layout(&legs).unwrap();
+        let l = layout_(&legs).unwrap();
         assert_eq!(l.opposite[0], Some(1));
     }
 
@@ -537,9 +544,9 @@ mod tests {
     fn mixed_groups_are_rejected_and_labels_renumbered() {
         let mut legs = pairs(1);
         legs[0].group = Some(7);
-        assert_eq!(layout(&legs), Err(GaitError::MixedGroups { leg: 1 }));
+        assert_eq!(layout_(&legs), Err(GaitError::MixedGroups { leg: 1 }));
         legs[1].group = Some(3);
-        let l = layout(&legs).unwrap();
+        let l = layout_(&legs).unwrap();
         assert_eq!(l.groups, alloc::vec![1, 0]);
         assert_eq!(l.group_count, 2);
     }

@@ -15,6 +15,7 @@ compile_error!(
 mod controller;
 mod curve;
 mod error;
+mod gaits;
 mod ground;
 mod ik;
 mod leg;
@@ -33,6 +34,7 @@ pub use controller::{
 };
 pub use curve::{HeightCurve, ReachCurve};
 pub use error::GaitError;
+pub use gaits::{Gait, GaitSpeeds};
 pub use ground::{FnGround, Ground, HeightField, Plane, RayHit};
 pub use ik::{TwoBone, solve_two_bone, solve_two_bone_joints};
 pub use leg::{Chain, Leg, LimbKind, MAX_CHAIN_SEGMENTS, Pose};

@@ -4,6 +4,7 @@ use glam::Vec3;
 
 use crate::curve::{HeightCurve, ReachCurve};
 use crate::error::{GaitError, finite3, in_range};
+use crate::gaits::GaitSpeeds;
 
 /// Tunables of a [`Controller`](crate::Controller). Lengths marked "× size" are fractions of
 /// each leg's [`size`](crate::Leg::size) (or, for body-wide values, of the mean leg size).
@@ -126,6 +127,9 @@ pub struct GaitOptions {
     /// place), a foot is in the air that long, so it visibly lifts and lands rather than jump
     /// along the ground in an update or two. Default 0.1.
     pub min_swing_time: f32,
+    /// Gaits by speed: `Some` to change between walk, trot and run at these speeds (see
+    /// [`Gait`](crate::Gait)); `None` (default) to walk in one pattern at every speed.
+    pub gaits: Option<GaitSpeeds>,
 }
 
 impl GaitOptions {
@@ -165,7 +169,15 @@ impl GaitOptions {
         midline_margin: 0.5,
         foot_spacing: 0.25,
         min_swing_time: 0.1,
+        gaits: None,
     };
+
+    /// Sets [`gaits`](Self::gaits): change gait by speed at `speeds`.
+    #[must_use]
+    pub const fn with_gaits(mut self, speeds: GaitSpeeds) -> Self {
+        self.gaits = Some(speeds);
+        self
+    }
 
     /// Sets [`reach`](Self::reach).
     #[must_use]
@@ -383,6 +395,9 @@ impl GaitOptions {
         in_range(self.arm_idle_amplitude, "arm idle amplitude", 0.0, 1.0)?;
         in_range(self.blend_time, "blend time", 0.0, 100.0)?;
         finite3(self.centre_of_mass, "centre of mass", 0)?;
+        if let Some(speeds) = &self.gaits {
+            speeds.validate()?;
+        }
         Ok(())
     }
 }

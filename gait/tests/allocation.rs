@@ -15,7 +15,9 @@ use core::sync::atomic::{AtomicUsize, Ordering};
 use std::alloc::System;
 
 use creature_gait::glam::{Quat, Vec3};
-use creature_gait::{Chain, Controller, GaitOptions, Ground, Leg, LimbKind, Plane, Pose};
+use creature_gait::{
+    Chain, Controller, Gait, GaitOptions, GaitSpeeds, Ground, Leg, LimbKind, Plane, Pose,
+};
 use support::{creature_legs, random_terrain};
 
 /// Counts the allocations (and reallocations) made by threads that switched counting on.
@@ -111,6 +113,12 @@ fn updates_allocate_nothing_after_the_controller_is_built() {
     );
     let options = GaitOptions::DEFAULT.with_blend_time(0.2);
     let mut c = Controller::new(&legs, &options).unwrap();
+    // Gaits by speed: 1.5 m/s on 1 m legs walks, 4 m/s trots.
+    let mut changing = Controller::new(
+        &creature_legs(2, 1.0),
+        &options.with_gaits(GaitSpeeds::DEFAULT),
+    )
+    .unwrap();
     c.add_chain(Chain::new(Vec3::new(0.0, 0.0, -0.6), Vec3::NEG_Z, 6, 0.15).with_gravity(4.0))
         .unwrap();
     let mut flier = Controller::chains_only(0.5, &options).unwrap();
@@ -132,9 +140,11 @@ fn updates_allocate_nothing_after_the_controller_is_built() {
             .unwrap();
         walk(&mut c, &field, on_field, 300);
         walk(&mut flier, &plane, |_, _| 2.0, 300);
+        walk(&mut changing, &plane, |_, _| 0.0, 480);
     });
     assert_eq!(count, 0, "updates allocated {count} times");
     assert!(steps > 50, "{steps} steps");
+    assert_ne!(changing.gait(), Gait::Walk, "never changed gait");
     // The counter works: a controller's construction allocates.
     assert!(allocations_in(|| drop(Controller::new(&legs, &options).unwrap())) > 0);
 }

@@ -3,7 +3,8 @@
 use creature_gait::glam::{Quat, Vec2, Vec3};
 use creature_gait::strategies::{self, MotionStep};
 use creature_gait::{
-    Controller, GaitOptions, Ground, HeightField, Leg, Plane, Pose, RayHit, Side, solve_two_bone,
+    Controller, Gait, GaitOptions, GaitSpeeds, Ground, HeightField, Leg, Plane, Pose, RayHit, Side,
+    solve_two_bone,
 };
 use proptest::prelude::*;
 use proptest::test_runner::FileFailurePersistence;
@@ -32,8 +33,18 @@ fn soak(
     height: impl Fn(f32, f32) -> Option<f32>,
     motion: &[MotionStep],
 ) -> Result<f32, TestCaseError> {
-    let mut c = Controller::new(legs, &GaitOptions::DEFAULT)
-        .map_err(|e| TestCaseError::fail(e.to_string()))?;
+    soak_with(legs, &GaitOptions::DEFAULT, ground, height, motion)
+}
+
+/// [`soak`] with `options`.
+fn soak_with(
+    legs: &[Leg],
+    options: &GaitOptions,
+    ground: &(impl Ground + ?Sized),
+    height: impl Fn(f32, f32) -> Option<f32>,
+    motion: &[MotionStep],
+) -> Result<f32, TestCaseError> {
+    let mut c = Controller::new(legs, options).map_err(|e| TestCaseError::fail(e.to_string()))?;
     c.add_chain(creature_gait::Chain::new(
         Vec3::new(0.0, 0.0, -1.0),
         Vec3::NEG_Z,
@@ -120,6 +131,62 @@ proptest! {
         motion in strategies::motion_sequence(40),
     ) {
         soak(&legs, &field, |x, z| field.height(x, z), &motion)?;
+    }
+
+    /// Gaits by speed: short legs (so the motion's speeds reach a run) change gait as they
+    /// go, with the same invariants.
+    #[test]
+    fn random_motion_with_gaits_by_speed_stays_finite_grounded_and_skate_free(
+        legs in strategies::leg_layout(),
+        field in strategies::height_field(0.2),
+        motion in strategies::motion_sequence(40),
+        scale in 0.2f32..1.0,
+    ) {
+        let legs: Vec<Leg> = legs
+            .iter()
+            .map(|l| {
+                let mut l = *l;
+                (l.hip, l.rest, l.upper, l.lower, l.size) =
+                    (l.hip * scale, l.rest * scale, l.upper * scale, l.lower * scale, l.size * scale);
+                l
+            })
+            .collect();
+        let options = GaitOptions::DEFAULT.with_gaits(GaitSpeeds::DEFAULT);
+        soak_with(&legs, &options, &field, |x, z| field.height(x, z), &motion)?;
+    }
+
+    /// The gait chosen for a speed is at least the one its thresholds reach and at most the
+    /// one their hysteresis keeps, coming from any gait.
+    #[test]
+    fn the_chosen_gait_lies_between_the_thresholds_and_their_hysteresis(
+        trot in 0.0f32..5.0,
+        above in 0.0f32..5.0,
+        hysteresis in 0.05f32..=1.0,
+        speed in 0.0f32..20.0,
+        leg in 0.01f32..5.0,
+        from in 0usize..3,
+    ) {
+        let speeds = GaitSpeeds::DEFAULT
+            .with_thresholds(trot, trot + above)
+            .with_hysteresis(hysteresis);
+        prop_assert!(speeds.validate().is_ok());
+        let froude = speeds.froude(speed, leg);
+        let at = |scale: f32| {
+            if froude >= speeds.run * scale {
+                Gait::Run
+            } else if froude >= speeds.trot * scale {
+                Gait::Trot
+            } else {
+                Gait::Walk
+            }
+        };
+        let from = [Gait::Walk, Gait::Trot, Gait::Run][from];
+        let chosen = speeds.choose(from, speed, leg);
+        prop_assert!(chosen >= at(1.0) && chosen <= at(hysteresis));
+        // Staying where it is whenever that is allowed.
+        if from >= at(1.0) && from <= at(hysteresis) {
+            prop_assert_eq!(chosen, from);
+        }
     }
 }
 

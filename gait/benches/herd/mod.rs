@@ -49,6 +49,19 @@ impl Herd {
         ground: &impl Ground,
         field: &HeightField,
     ) -> Result<Self, GaitError> {
+        Self::with(count, ground, field, &GaitOptions::DEFAULT, |i| {
+            0.5 + (i % 7) as f32 * 0.2
+        })
+    }
+
+    /// [`new`](Self::new) with `options`, creature `i` at `speed(i)` m/s.
+    pub(crate) fn with(
+        count: usize,
+        ground: &impl Ground,
+        field: &HeightField,
+        options: &GaitOptions,
+        speed: impl Fn(usize) -> f32,
+    ) -> Result<Self, GaitError> {
         let legs = hexapod();
         let mut herd = Self {
             controllers: Vec::new(),
@@ -61,8 +74,8 @@ impl Herd {
                 0.0,
                 (i / 40) as f32 * 6.0 - 80.0,
             );
-            let velocity = Vec3::new(0.0, 0.0, 0.5 + (i % 7) as f32 * 0.2);
-            let mut c = Controller::new(&legs, &GaitOptions::DEFAULT)?;
+            let velocity = Vec3::new(0.0, 0.0, speed(i));
+            let mut c = Controller::new(&legs, options)?;
             for _ in 0..60 {
                 p += velocity * DT;
                 let y = field.height(p.x, p.z).unwrap_or(0.0) + 0.8;

@@ -17,6 +17,7 @@ use alloc::vec::Vec;
 use glam::{Mat3A, Quat, Vec3, Vec3A, Vec4};
 
 use crate::error::{GaitError, finite, finite3, in_range};
+use crate::gaits::Gait;
 use crate::ground::Ground;
 use crate::ik::{TwoBone, V3, solve_two_bone};
 use crate::leg::{Chain, Layout, Leg, LimbKind, Pose};
@@ -201,6 +202,15 @@ pub struct Controller {
     /// distance ahead or behind the body's origin (infinite with no such feet).
     sway_side_limit: f32,
     swing_fraction: f32,
+    /// The gait the legs step in now (see `GaitOptions::gaits`), and the one the speed asks
+    /// for, taken when a group hands over to the next.
+    gait: Gait,
+    wanted_gait: Gait,
+    /// The walking legs' mean size (the Froude number's length), or 0 without walking legs.
+    walking_size: f32,
+    /// The progress past which a stepping group hands over to the next: 1 (when its steps
+    /// land) but in a run, whose groups' swings overlap.
+    handover: f32,
     pose: Pose,
     reaction: BodyReaction,
     look: Look,

@@ -3,6 +3,7 @@
 
 use super::{BodyReaction, Controller, LegState, Look};
 use crate::error::GaitError;
+use crate::gaits::Gait;
 use crate::leg::{Leg, LimbKind, Pose};
 use crate::math::Roots;
 use crate::metrics::GaitMetrics;
@@ -45,6 +46,13 @@ impl Controller {
     #[must_use]
     pub fn groups(&self) -> &[u8] {
         &self.layout.groups
+    }
+
+    /// The gait the legs step in now (always [`Gait::Walk`] without
+    /// [`GaitOptions::gaits`]).
+    #[must_use]
+    pub const fn gait(&self) -> Gait {
+        self.gait
     }
 
     /// How many groups take turns.

@@ -6,6 +6,7 @@ use glam::{Quat, Vec3, Vec3A};
 
 use super::{BodyReaction, Controller, HipPair, LegLanes, LegState, Look};
 use crate::error::{GaitError, finite, finite3, in_range};
+use crate::gaits::{Gait, RUN_SWING_FRACTION};
 use crate::leg::{Leg, LimbKind, Pose, layout};
 use crate::math::{abs, cos};
 use crate::metrics::GaitMetrics;
@@ -74,8 +75,11 @@ impl Controller {
 
     fn build(legs: &[Leg], mean_size: f32, options: &GaitOptions) -> Result<Self, GaitError> {
         options.validate()?;
-        let layout = layout(legs)?;
-        let swing_fraction = 1.0 / f32::from(layout.group_count.max(2));
+        let layout = layout(legs, options.gaits.is_some())?;
+        let (swing_fraction, handover) = Self::swing(Gait::Walk, layout.group_count);
+        let walking_legs = legs.iter().filter(|l| l.kind == LimbKind::Leg);
+        let (sum, count) = walking_legs.fold((0.0f32, 0u32), |(s, n), l| (s + l.size, n + 1));
+        let walking_size = if count > 0 { sum / count as f32 } else { 0.0 };
         // Each leg's hip-roll lever: the hips' X distance to its partner (or a floor).
         let hip_width: Vec<f32> = legs
             .iter()
@@ -121,6 +125,10 @@ impl Controller {
             mean_size,
             sway_side_limit,
             swing_fraction,
+            gait: Gait::Walk,
+            wanted_gait: Gait::Walk,
+            walking_size,
+            handover,
             pose: Pose::IDENTITY,
             reaction: BodyReaction::NEUTRAL,
             look: Look {
@@ -154,6 +162,46 @@ impl Controller {
             reacted_rotation: None,
             centre_of_mass: Vec3A::from(options.centre_of_mass),
         })
+    }
+
+    /// A gait's swing fraction (a swing's share of its step's length in the body's travel) and
+    /// handover progress (see `handover`), with `group_count` groups.
+    pub(super) fn swing(gait: Gait, group_count: u8) -> (f32, f32) {
+        let alternating = 1.0 / f32::from(group_count.max(2));
+        if gait == Gait::Run {
+            (RUN_SWING_FRACTION, alternating / RUN_SWING_FRACTION)
+        } else {
+            (alternating, 1.0)
+        }
+    }
+
+    /// Steps in `gait` from now on: its groups, swing and handover; the group whose turn it
+    /// is, the one of the leg that trails the farthest behind its anchor along its motion
+    /// (it would want to step first).
+    pub(super) fn change_gait(&mut self, gait: Gait) {
+        let (groups, count) = &self.layout.by_gait[gait as usize];
+        self.layout.groups.copy_from_slice(groups);
+        self.layout.group_count = *count;
+        (self.swing_fraction, self.handover) = Self::swing(gait, *count);
+        self.gait = gait;
+        let mut first = (f32::NEG_INFINITY, 0u8);
+        for (((leg, state), motion), group) in self
+            .legs
+            .iter()
+            .zip(&self.states)
+            .zip(&self.motion)
+            .zip(&self.layout.groups)
+        {
+            if leg.kind != LimbKind::Leg || state.stepping || !state.grounded {
+                continue;
+            }
+            let trail = -(state.foot - state.anchor).dot(motion.normalize_or_zero());
+            if trail > first.0 {
+                first = (trail, *group);
+            }
+        }
+        self.active_group = first.1;
+        self.turn_taken = false;
     }
 
     /// Sets the head's position in body space (the look-at's origin). Default zero.

@@ -4,6 +4,7 @@
 use glam::{Mat3A, Vec3};
 
 use super::{Controller, LegState, MAX_COORDINATE, horizontal};
+use crate::gaits::Gait;
 use crate::ground::Ground;
 use crate::leg::{Leg, LimbKind, Pose};
 use crate::math::{Roots, abs, sin_turns, sqrt};
@@ -22,6 +23,10 @@ impl Controller {
         angular_velocity: Vec3,
         ground: &G,
     ) {
+        if let Some(speeds) = &self.options.gaits {
+            let speed = horizontal(velocity).norm();
+            self.wanted_gait = speeds.choose(self.gait, speed, self.walking_size);
+        }
         let o = &self.options;
         let forward = horizontal(pose.rotation * Vec3::Z)
             .try_unit()
@@ -246,6 +251,7 @@ impl Controller {
         let count = self.layout.group_count.max(1);
         let active = self.active_group;
         let next = (active + 1) % count;
+        let handover = self.handover;
         let (mut group_stepping, mut group_wants, mut next_moves) = (false, false, false);
         for (((leg, state), want), group) in self
             .legs
@@ -256,15 +262,35 @@ impl Controller {
         {
             let sequenced = leg.kind == LimbKind::Leg;
             let wants = want & WANT != 0;
-            group_stepping |= sequenced & (*group == active) & state.stepping;
+            // A run's group hands over while its feet are still in the air (`handover` < 1).
+            group_stepping |=
+                sequenced & (*group == active) & state.stepping & (state.progress < handover);
             group_wants |= sequenced & (*group == active) & wants;
             next_moves |= sequenced & (*group == next) & (state.stepping | wants);
         }
         let advance = !group_stepping && (self.turn_taken || !group_wants);
         if advance {
-            self.active_group = next;
-            self.turn_taken = false;
+            if self.wanted_gait == self.gait {
+                self.active_group = next;
+                self.turn_taken = false;
+            } else {
+                // A new gait takes over here, between two groups' turns.
+                self.change_gait(self.wanted_gait);
+                let active = self.active_group;
+                next_moves = self
+                    .legs
+                    .iter()
+                    .zip(&self.states)
+                    .zip(&self.wants)
+                    .zip(&self.layout.groups)
+                    .any(|(((leg, state), want), group)| {
+                        leg.kind == LimbKind::Leg
+                            && *group == active
+                            && (state.stepping || want & WANT != 0)
+                    });
+            }
         }
+        let o = &self.options;
         let active = self.active_group;
 
         // 4. Start the steps that are allowed. Once the active group moves, its other legs that
@@ -308,7 +334,9 @@ impl Controller {
             }
             let leg = &self.legs[i];
             let sequenced = leg.kind == LimbKind::Leg;
-            let opposite_busy = self.layout.opposite[i].is_some_and(|j| self.states[j].stepping);
+            // A run's groups lift off while the others are in the air.
+            let opposite_busy = self.gait != Gait::Run
+                && self.layout.opposite[i].is_some_and(|j| self.states[j].stepping);
             let in_turn = !sequenced || (self.layout.groups[i] == active && !opposite_busy);
             let escape = sequenced && !in_turn && flags & ESCAPE != 0;
             if !(escape || (flags & WANT != 0 && in_turn)) {

@@ -1,0 +1,239 @@
+//! Gaits by speed through the public API: walk, trot and run chosen by the Froude number at
+//! the documented thresholds, for every leg count and size, changed without a joint jumping.
+
+#![allow(clippy::unwrap_used)]
+
+mod support;
+
+use creature_gait::glam::{Quat, Vec3};
+use creature_gait::{Controller, Gait, GaitOptions, GaitSpeeds, Plane, Pose};
+use support::creature_legs;
+
+const DT: f32 = 1.0 / 60.0;
+const G: f32 = 9.81;
+
+/// One frame of a drive: the speed, the gait, and which legs step in turn (not escaping).
+struct Sample {
+    speed: f32,
+    gait: Gait,
+    stepping: Vec<bool>,
+    all_up: bool,
+}
+
+/// What a drive saw, worst over its frames.
+#[derive(Default)]
+struct Drive {
+    samples: Vec<Sample>,
+    max_joint_turn: f32,
+    max_skate: f32,
+    max_overstretch: f32,
+    escapes: u32,
+    steps: u32,
+}
+
+impl Drive {
+    /// The gaits in the order they came, each with the speed it came at.
+    fn changes(&self) -> Vec<(f32, Gait)> {
+        let mut changes: Vec<(f32, Gait)> = Vec::new();
+        for s in &self.samples {
+            if changes.last().is_none_or(|&(_, g)| g != s.gait) {
+                changes.push((s.speed, s.gait));
+            }
+        }
+        changes
+    }
+
+    /// The samples while in `gait`, after its first second (a steady state).
+    fn steady(&self, gait: Gait) -> impl Iterator<Item = &Sample> {
+        self.samples
+            .iter()
+            .filter(move |s| s.gait == gait)
+            .skip((1.0 / DT) as usize)
+    }
+}
+
+fn angle(a: Quat, b: Quat) -> f32 {
+    2.0 * a.dot(b).abs().min(1.0).acos()
+}
+
+/// Drives `pairs` pairs of legs `length` long, with gaits by speed, along +Z at `speed(t)` for
+/// `seconds` on flat ground, at 60 frames a second for 1 m legs and as many per `√(l / g)`
+/// for others (a leg `l` long swings in a time proportional to that at the same Froude
+/// number: at 60 frames a second, a mouse's trot turns its joints further between frames
+/// than a horse's, whatever its gait).
+fn drive(pairs: usize, length: f32, seconds: f32, speed: impl Fn(f32) -> f32) -> Drive {
+    let dt = DT * length.sqrt();
+    let legs = creature_legs(pairs, length);
+    let options = GaitOptions::DEFAULT.with_gaits(GaitSpeeds::DEFAULT);
+    let mut c = Controller::new(&legs, &options).unwrap();
+    let mut d = Drive::default();
+    let mut z = 0.0f32;
+    let mut last: Option<Vec<(Quat, Quat)>> = None;
+    for k in 0..(seconds / dt) as usize {
+        let v = speed(k as f32 * dt);
+        z += v * dt;
+        let pose = Pose::from_yaw(Vec3::new(0.0, 0.8 * length, z), 0.0);
+        c.update(dt, pose, Vec3::Z * v, Vec3::ZERO, &Plane::GROUND)
+            .unwrap();
+        let m = c.metrics();
+        d.max_skate = d.max_skate.max(m.max_skate);
+        d.max_overstretch = d.max_overstretch.max(m.max_overstretch);
+        let states = c.leg_states();
+        d.samples.push(Sample {
+            speed: v,
+            gait: c.gait(),
+            stepping: states
+                .iter()
+                .map(|s| s.stepping && !s.is_escaping())
+                .collect(),
+            all_up: states.iter().all(|s| !s.planted),
+        });
+        let joints: Vec<(Quat, Quat)> = states
+            .iter()
+            .map(|s| (s.joints.upper_rotation, s.joints.lower_rotation))
+            .collect();
+        if let Some(last) = &last {
+            for (a, b) in last.iter().zip(&joints) {
+                let turn = angle(a.0, b.0).max(angle(a.1, b.1));
+                d.max_joint_turn = d.max_joint_turn.max(turn);
+            }
+        }
+        last = Some(joints);
+    }
+    d.escapes = c.leg_states().iter().map(|s| s.escapes).sum();
+    d.steps = c.leg_states().iter().map(|s| s.steps).sum();
+    d
+}
+
+/// The speed of a Froude number on legs `length` long.
+fn speed_at(froude: f32, length: f32) -> f32 {
+    (froude * G * length).sqrt()
+}
+
+#[test]
+fn speeding_up_and_slowing_down_walks_trots_runs_and_back_at_the_documented_froude_numbers() {
+    let s = GaitSpeeds::DEFAULT;
+    for length in [0.3f32, 1.0, 3.0] {
+        for pairs in [1, 2, 3, 4] {
+            // 0.1 to 3.5 and back, over 24 s.
+            let (low, top) = (speed_at(0.1, length), speed_at(3.5, length));
+            let d = drive(pairs, length, 24.0, |t| {
+                low + (top - low) * (1.0 - (t / 12.0 - 1.0).abs())
+            });
+            let label = format!("{pairs} pairs of {length} m legs");
+            let froude = |v: f32| v * v / (G * length);
+            let changes = d.changes();
+            let gaits: Vec<Gait> = changes.iter().map(|c| c.1).collect();
+            use Gait::{Run, Trot, Walk};
+            assert_eq!(gaits, [Walk, Trot, Run, Trot, Walk], "{label}");
+            // Each change at its threshold, or up to a stride later (it waits for a handover
+            // between groups): within 0.15 of a Froude number on this ramp.
+            let expected = [s.trot, s.run, s.run * s.hysteresis, s.trot * s.hysteresis];
+            for (k, (&(speed, gait), threshold)) in changes[1..].iter().zip(expected).enumerate() {
+                let f = froude(speed);
+                let late = if k < 2 { f - threshold } else { threshold - f };
+                assert!(
+                    (0.0..=0.15).contains(&late),
+                    "{label}: {gait:?} at Froude {f}, threshold {threshold}"
+                );
+            }
+            // No joint jumps: the steps under way finish as they began.
+            let turn = d.max_joint_turn.to_degrees();
+            assert!(turn <= 45.0, "{label}: a joint turned {turn}° in a frame");
+            assert!(
+                d.max_skate <= 1e-4 * length,
+                "{label}: skate {}",
+                d.max_skate
+            );
+            assert!(d.max_overstretch <= 1e-5 * length, "{label}: overstretch");
+            // Out-of-turn steps stay rare.
+            assert!(
+                d.escapes * 10 <= d.steps,
+                "{label}: {} of {} steps escaped",
+                d.escapes,
+                d.steps
+            );
+        }
+    }
+}
+
+#[test]
+fn a_run_has_a_flight_phase_and_walks_and_trots_have_none() {
+    for pairs in [1, 2] {
+        for (froude, gait) in [(0.3, Gait::Walk), (1.0, Gait::Trot), (3.0, Gait::Run)] {
+            let v = speed_at(froude, 1.0);
+            let d = drive(pairs, 1.0, 8.0, |_| v);
+            let steady: Vec<&Sample> = d.steady(gait).collect();
+            assert!(steady.len() > 300, "{pairs} pairs stayed in {gait:?}");
+            let flying = steady.iter().filter(|s| s.all_up).count();
+            if gait == Gait::Run {
+                // At least a twentieth of the time with every foot off the ground.
+                assert!(
+                    flying * 20 >= steady.len(),
+                    "{pairs} pairs: {flying} frames of flight"
+                );
+            } else {
+                assert_eq!(flying, 0, "{pairs} pairs flew in a {gait:?}");
+            }
+        }
+    }
+}
+
+#[test]
+fn four_legs_walk_one_foot_at_a_time_trot_in_diagonals_and_bound_in_pairs() {
+    // Legs: 0 hind left, 1 hind right, 2 fore left, 3 fore right.
+    let run = |froude: f32, gait: Gait| {
+        let v = speed_at(froude, 1.0);
+        let d = drive(2, 1.0, 8.0, |_| v);
+        let steady: Vec<Vec<bool>> = d.steady(gait).map(|s| s.stepping.clone()).collect();
+        assert!(steady.len() > 300, "stayed in {gait:?}");
+        steady
+    };
+    let together =
+        |frames: &[Vec<bool>], a: usize, b: usize| frames.iter().filter(|s| s[a] && s[b]).count();
+    let walk = run(0.3, Gait::Walk);
+    assert!(walk.iter().all(|s| s.iter().filter(|&&x| x).count() <= 1));
+    let trot = run(1.0, Gait::Trot);
+    for (a, b) in [(0, 1), (2, 3), (0, 2), (1, 3)] {
+        assert_eq!(
+            together(&trot, a, b),
+            0,
+            "legs {a} and {b} stepped together in a trot"
+        );
+    }
+    assert!(together(&trot, 0, 3) > 0 && together(&trot, 1, 2) > 0);
+    let bound = run(3.0, Gait::Run);
+    // The pairs land and lift together: most of a leg's swing, its partner swings too.
+    for (a, b) in [(0, 1), (2, 3)] {
+        let alone = bound.iter().filter(|s| s[a] != s[b]).count();
+        assert!(
+            alone * 4 <= together(&bound, a, b),
+            "legs {a} and {b} bound apart"
+        );
+    }
+}
+
+#[test]
+fn without_gaits_by_speed_the_controller_walks_in_one_pattern_at_every_speed() {
+    let legs = creature_legs(2, 1.0);
+    let mut c = Controller::new(&legs, &GaitOptions::DEFAULT).unwrap();
+    let groups = c.groups().to_vec();
+    let v = speed_at(3.0, 1.0);
+    for k in 0..240 {
+        let pose = Pose::from_yaw(Vec3::new(0.0, 0.8, v * DT * k as f32), 0.0);
+        c.update(DT, pose, Vec3::Z * v, Vec3::ZERO, &Plane::GROUND)
+            .unwrap();
+        assert_eq!(c.gait(), Gait::Walk);
+        assert_eq!(c.groups(), groups);
+    }
+}
+
+#[test]
+fn bad_gait_speeds_are_rejected_with_the_field_named() {
+    let legs = creature_legs(2, 1.0);
+    let bad = GaitOptions::DEFAULT.with_gaits(GaitSpeeds::DEFAULT.with_thresholds(1.0, 0.5));
+    let error = Controller::new(&legs, &bad).unwrap_err().to_string();
+    assert!(error.contains("run Froude number"), "{error}");
+    let bad = GaitOptions::DEFAULT.with_gaits(GaitSpeeds::DEFAULT.with_gravity(f32::NAN));
+    assert!(Controller::new(&legs, &bad).is_err());
+}

@@ -18,10 +18,12 @@ use crate::leg::{Leg, LimbKind};
 /// | --- | --- | --- | --- |
 /// | 2 | left, right | left, right | left, right, with a flight phase |
 /// | 4 | one at a time: left hind, left fore, right hind, right fore | diagonal pairs | bound: hind pair, fore pair, with a flight phase |
-/// | 6 and more | a wave from the back in three groups (two legs at a time on six) | two alternating groups (tripods on six) | two alternating groups, with a flight phase |
+/// | 6 and more | a wave from the back in three groups (two legs at a time on six) | two alternating groups (tripods on six) | two alternating groups, swings overlapping (a fast tripod on six; rarely all feet up) |
 ///
 /// Legs whose [`group`](crate::Leg::group) the caller set keep their groups in every gait;
-/// a run still has its flight phase.
+/// a run still lengthens and overlaps its swings (all feet up at once only with two groups).
+///
+/// Gaits are ordered by speed: `Walk < Trot < Run`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Default)]
 #[non_exhaustive]
 pub enum Gait {
@@ -35,7 +37,7 @@ pub enum Gait {
     /// as the other lands.
     Trot,
     /// At high speed: longer swings, and the next group lifts off before the one in the air
-    /// lands, so for a moment no foot is on the ground (a flight phase).
+    /// lands, so with two groups for a moment no foot is on the ground (a flight phase).
     Run,
 }
 
@@ -89,7 +91,8 @@ impl GaitSpeeds {
         gravity: 9.81,
     };
 
-    /// Sets the Froude numbers from which a walker trots and runs.
+    /// Sets the Froude numbers from which a walker trots and runs (both at once: `trot` may be
+    /// no more than `run`).
     #[must_use]
     pub const fn with_thresholds(mut self, trot: f32, run: f32) -> Self {
         self.trot = trot;
@@ -149,7 +152,7 @@ impl GaitSpeeds {
         in_range(self.trot, "trot Froude number", 0.0, 100.0)?;
         in_range(self.run, "run Froude number", self.trot, 100.0)?;
         in_range(self.hysteresis, "gait hysteresis", f32::MIN_POSITIVE, 1.0)?;
-        in_range(self.gravity, "gravity", f32::MIN_POSITIVE, 100.0)?;
+        in_range(self.gravity, "gait gravity", f32::MIN_POSITIVE, 100.0)?;
         Ok(())
     }
 }

@@ -133,8 +133,8 @@ proptest! {
         soak(&legs, &field, |x, z| field.height(x, z), &motion)?;
     }
 
-    /// Gaits by speed: short legs (so the motion's speeds reach a run) change gait as they
-    /// go, with the same invariants.
+    /// Gaits by speed: short legs (so the motion's speeds reach a trot and a run), with the
+    /// same invariants whatever gait they are in and when they change.
     #[test]
     fn random_motion_with_gaits_by_speed_stays_finite_grounded_and_skate_free(
         legs in strategies::leg_layout(),

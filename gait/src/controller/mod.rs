@@ -209,7 +209,8 @@ pub struct Controller {
     /// The walking legs' mean size (the Froude number's length), or 0 without walking legs.
     walking_size: f32,
     /// The progress past which a stepping group hands over to the next: 1 (when its steps
-    /// land) but in a run, whose groups' swings overlap.
+    /// land), but in a run, whose groups' swings overlap, `(1 / max(n, 2)) / 0.6` with `n`
+    /// groups (5/6 with two).
     handover: f32,
     pose: Pose,
     reaction: BodyReaction,
@@ -295,6 +296,11 @@ impl Controller {
             yaw: 0.0,
             pitch: 0.0,
         };
+        // A fresh start walks (the groups of a controller just built).
+        if self.gait != Gait::Walk {
+            self.change_gait(Gait::Walk);
+        }
+        self.wanted_gait = Gait::Walk;
         self.active_group = 0;
         self.turn_taken = false;
         self.initialized = true;

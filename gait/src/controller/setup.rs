@@ -8,7 +8,7 @@ use super::{BodyReaction, Controller, HipPair, LegLanes, LegState, Look};
 use crate::error::{GaitError, finite, finite3, in_range};
 use crate::gaits::{Gait, RUN_SWING_FRACTION};
 use crate::leg::{Leg, LimbKind, Pose, layout};
-use crate::math::{abs, cos};
+use crate::math::{Roots, abs, cos};
 use crate::metrics::GaitMetrics;
 use crate::options::GaitOptions;
 
@@ -195,7 +195,7 @@ impl Controller {
             if leg.kind != LimbKind::Leg || state.stepping || !state.grounded {
                 continue;
             }
-            let trail = -(state.foot - state.anchor).dot(motion.normalize_or_zero());
+            let trail = -(state.foot - state.anchor).dot(motion.try_unit().unwrap_or(Vec3::ZERO));
             if trail > first.0 {
                 first = (trail, *group);
             }

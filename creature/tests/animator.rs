@@ -994,3 +994,54 @@ fn stands_on<G: Ground>(c: &d3::Creature, animator: &Animator, ground: &G, label
         );
     }
 }
+
+#[test]
+fn a_walker_asked_to_go_faster_runs_and_slows_back_to_a_trot_its_feet_on_the_ground() {
+    use creature::gait::Gait;
+    for seed in [7, 11, 42] {
+        let c = walker(seed);
+        let run = c.gait.as_ref().unwrap().run_speed().unwrap();
+        let feet = foot_vertices(&c);
+        let ground = Plane::GROUND;
+        let mut animator = Animator::new(&c).unwrap();
+        let mut gaits = vec![animator.controller().gait()];
+        let mut flying = 0;
+        // To its run speed over 3 s, held 2 s, back to its walking speed over 3 s.
+        for frame in 0..240 {
+            let t = frame as f32 / 30.0;
+            let ramp = if t < 3.0 {
+                t / 3.0
+            } else if t < 5.0 {
+                1.0
+            } else {
+                (8.0 - t) / 3.0
+            };
+            let speed = c.speed + (run - c.speed) * ramp.max(0.0);
+            let intent = Intent::Move {
+                velocity: Vec3::Z * speed,
+                turn_rate: 0.0,
+            };
+            animator.update(1.0 / 30.0, intent, &ground).unwrap();
+            let gait = animator.controller().gait();
+            if gaits.last() != Some(&gait) {
+                gaits.push(gait);
+            }
+            let planted = planted(&c, &animator);
+            flying += usize::from(planted.iter().all(|&p| !p));
+            let posed = skinned(&c, &animator);
+            assert!(posed.iter().all(|p| p.is_finite()));
+            for (sole, planted) in soles(&posed, &feet, &ground).into_iter().zip(planted) {
+                foot_on(
+                    sole,
+                    planted,
+                    c.length,
+                    &format!("seed {seed} frame {frame}"),
+                );
+            }
+        }
+        assert_eq!(gaits, [Gait::Trot, Gait::Run, Gait::Trot], "seed {seed}");
+        if feet.len() <= 4 {
+            assert!(flying > 0, "seed {seed}: never every foot off the ground");
+        }
+    }
+}

@@ -128,7 +128,8 @@ pub struct GaitOptions {
     /// along the ground in an update or two. Default 0.1.
     pub min_swing_time: f32,
     /// Gaits by speed: `Some` to change between walk, trot and run at these speeds (see
-    /// [`Gait`](crate::Gait)); `None` (default) to walk in one pattern at every speed.
+    /// [`Gait`](crate::Gait)), starting (and [reset](crate::Controller::reset)) in the gait
+    /// they give standing still; `None` (default) to walk in one pattern at every speed.
     pub gaits: Option<GaitSpeeds>,
 }
 

@@ -165,13 +165,14 @@ fn speeding_up_and_slowing_down_walks_trots_runs_and_back_at_the_documented_frou
             // No joint jumps: the steps under way finish as they began. Within half a second
             // of a change, no joint turns much faster than anywhere else on the ramp (at
             // speeds up to a Froude number of 3.5): a foot carried across its step in a frame
-            // would be several times as fast. The worst measured is 1.24 times (six 3 m legs,
-            // the trot's first strides after a run).
+            // would be several times as fast. The worst measured is 1.38 times (four 0.3 m
+            // legs, the trot's first strides after a bound: a foot that had just landed waits
+            // for its diagonal group's next turn and then steps the further).
             let turn = d.max_joint_turn.to_degrees();
             assert!(turn <= 45.0, "{label}: a joint turned {turn}° in a frame");
             let (near, away) = d.turns_near_changes_and_elsewhere(30);
             assert!(
-                near <= 1.3 * away,
+                near <= 1.5 * away,
                 "{label}: {near} rad a frame near a change, {away} elsewhere"
             );
             assert!(
@@ -270,6 +271,37 @@ fn a_reset_walks_again_in_the_groups_of_a_controller_just_built() {
     assert_eq!(c.groups(), fresh.groups());
     assert_eq!(c.group_count(), fresh.group_count());
     assert_eq!(c.active_group(), 0);
+}
+
+#[test]
+fn trotting_from_standing_still_steps_as_one_gait_does_until_the_run() {
+    // Up to three pairs, the trot's groups are the ones a controller without gaits by speed
+    // walks in: trotting from a Froude number of 0, the feet are the same, bit for bit, until
+    // it runs.
+    for pairs in [1, 2, 3] {
+        let legs = creature_legs(pairs, 1.0);
+        let trotting = GaitSpeeds::DEFAULT.with_thresholds(0.0, 2.5);
+        let mut by_speed =
+            Controller::new(&legs, &GaitOptions::DEFAULT.with_gaits(trotting)).unwrap();
+        let mut one = Controller::new(&legs, &GaitOptions::DEFAULT).unwrap();
+        assert_eq!(by_speed.gait(), Gait::Trot);
+        let mut z = 0.0;
+        for k in 0..600 {
+            let v = speed_at(2.4, 1.0) * k as f32 / 600.0;
+            z += v * DT;
+            let pose = Pose::from_yaw(Vec3::new(0.0, 0.8, z), 0.0);
+            for c in [&mut by_speed, &mut one] {
+                c.update(DT, pose, Vec3::Z * v, Vec3::ZERO, &Plane::GROUND)
+                    .unwrap();
+            }
+            assert_eq!(
+                by_speed.leg_states(),
+                one.leg_states(),
+                "{pairs} pairs, frame {k}"
+            );
+            assert_eq!(by_speed.gait(), Gait::Trot);
+        }
+    }
 }
 
 #[test]

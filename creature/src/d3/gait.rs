@@ -2,7 +2,7 @@
 
 use alloc::vec::Vec;
 
-use creature_gait::{Controller, GaitOptions, Leg, LimbKind};
+use creature_gait::{Controller, GaitOptions, GaitSpeeds, Leg, LimbKind};
 use glam::Vec2;
 
 use crate::Error;
@@ -37,11 +37,30 @@ pub struct GaitSetup {
     /// For each of [`legs`](Self::legs), its hip joint in the skeleton; the knee and the foot
     /// are the next two joints.
     pub hip_joints: Vec<usize>,
-    /// Gait options: the defaults, with the creature's speed factor as the speed multiplier.
+    /// Gait options: the defaults, with the creature's speed factor as the speed multiplier
+    /// and gaits by speed (`creature_gait::GaitSpeeds::DEFAULT`: it walks, trots from a
+    /// Froude number of 0.5 and runs from 2.5).
     pub options: GaitOptions,
 }
 
 impl GaitSetup {
+    /// The speed its `run` clip runs at (m/s): a Froude number `v² / (g · leg)` of
+    /// [`RUN_FROUDE`] on the legs' mean size, or `None` without legs (arms only).
+    ///
+    /// ```
+    /// use creature::d3::{generate, Kind, Params};
+    ///
+    /// let walker = generate(7, &Params::DEFAULT.with_kind(Kind::Walker))?;
+    /// let setup = walker.gait.as_ref().expect("walkers have a gait set-up");
+    /// let run = setup.run_speed().expect("walkers have legs");
+    /// assert!(run > walker.speed);
+    /// # Ok::<(), creature::Error>(())
+    /// ```
+    #[must_use]
+    pub fn run_speed(&self) -> Option<f32> {
+        mean_leg_size(&self.legs).map(|leg| sqrt(RUN_FROUDE * GRAVITY * leg))
+    }
+
     /// A fresh controller for these legs.
     ///
     /// # Errors
@@ -72,6 +91,17 @@ pub(crate) fn mean_leg_size(legs: &[Leg]) -> Option<f32> {
 /// The largest Froude number (`v² / (g · leg length)`) a walker walks at: the inverted
 /// pendulum's limit.
 pub(crate) const MAX_WALK_FROUDE: f32 = 1.0;
+
+/// A walker's gaits by speed: `GaitSpeeds::DEFAULT`'s run (from a Froude number of 2.5, back
+/// to a trot below 2), and below it the trot's pattern (two alternating groups: diagonal
+/// pairs, tripods) at every walking speed, as walkers always walked. (`creature_gait`'s walk,
+/// one foot at a time on four legs, swings each foot in a quarter of a stride: at the
+/// walkers' speeds, faster than their joints may turn.)
+pub(crate) const WALKER_GAITS: GaitSpeeds = GaitSpeeds::DEFAULT.with_thresholds(0.0, 2.5);
+
+/// The Froude number a walker's `run` clip runs at: past `GaitSpeeds::DEFAULT`'s 2.5, where
+/// it runs, with room for its hysteresis.
+pub const RUN_FROUDE: f32 = 2.75;
 
 /// Standard gravity, m/s².
 const GRAVITY: f32 = 9.81;

@@ -19,7 +19,7 @@ use super::body::{BASE_RADIUS, base_body, centre_of_volume, pill_triangles, volu
 use super::clip::MAX_LEG_TURN_RATE;
 use super::colour::{Colouring, body_surface};
 use super::extremities::Proportions;
-use super::gait::{mean_leg_size, swing_time_for_joints, walk_speed_limit};
+use super::gait::{WALKER_GAITS, mean_leg_size, swing_time_for_joints, walk_speed_limit};
 use super::head::{self, Shape};
 use super::limbs::{
     Bind, LegChain, LimbNames, LimbStyle, MeshBuilder, Mount, WingSize, add_limb, leg_knees,
@@ -1042,7 +1042,9 @@ fn gait_setup(
     let speed_factor = mean_leg_size(&legs).map_or(speed_factor, |leg| {
         speed_factor.min(walk_speed_limit(leg) / body_scale)
     });
-    let mut options = GaitOptions::DEFAULT.with_speed_multiplier(speed_factor);
+    let mut options = GaitOptions::DEFAULT
+        .with_speed_multiplier(speed_factor)
+        .with_gaits(WALKER_GAITS);
     options.min_swing_time = swing_time_for_joints(&legs, &options, MAX_LEG_TURN_RATE);
     let setup = GaitSetup {
         legs,

@@ -88,6 +88,9 @@ pub struct LegState {
     swing_length: f32,
     lift: f32,
     escaping: bool,
+    /// How far the step progressed in the last update (a run hands over a frame early when the
+    /// next would carry it past the handover).
+    pace: f32,
 }
 
 impl LegState {
@@ -112,6 +115,7 @@ impl LegState {
             swing_length: 1.0,
             lift: 0.0,
             escaping: false,
+            pace: 0.0,
         }
     }
 
@@ -296,11 +300,12 @@ impl Controller {
             yaw: 0.0,
             pitch: 0.0,
         };
-        // A fresh start walks (the groups of a controller just built).
-        if self.gait != Gait::Walk {
-            self.change_gait(Gait::Walk);
+        // A fresh start takes the gait (and groups) of a controller just built.
+        let rest = self.rest_gait();
+        if self.gait != rest {
+            self.change_gait(rest);
         }
-        self.wanted_gait = Gait::Walk;
+        self.wanted_gait = rest;
         self.active_group = 0;
         self.turn_taken = false;
         self.initialized = true;

@@ -12,6 +12,15 @@ use crate::math::{Roots, abs, cos};
 use crate::metrics::GaitMetrics;
 use crate::options::GaitOptions;
 
+/// The gait a controller with `options` and walking legs of mean size `walking_size` takes
+/// standing still: the one its gait speeds give at speed 0 (a walk, unless they trot or run
+/// from 0), or a walk without gaits by speed.
+fn rest_gait(options: &GaitOptions, walking_size: f32) -> Gait {
+    options
+        .gaits
+        .map_or(Gait::Walk, |s| s.choose(Gait::Walk, 0.0, walking_size))
+}
+
 impl Controller {
     /// A controller for `legs` (any number ≥ 1, arms included) with `options`. The feet are
     /// placed on the ground at the first [`update`](Self::update) (or by
@@ -75,11 +84,13 @@ impl Controller {
 
     fn build(legs: &[Leg], mean_size: f32, options: &GaitOptions) -> Result<Self, GaitError> {
         options.validate()?;
-        let layout = layout(legs, options.gaits.is_some())?;
-        let (swing_fraction, handover) = Self::swing(Gait::Walk, layout.group_count);
+        let mut layout = layout(legs, options.gaits.is_some())?;
         let walking_legs = legs.iter().filter(|l| l.kind == LimbKind::Leg);
         let (sum, count) = walking_legs.fold((0.0f32, 0u32), |(s, n), l| (s + l.size, n + 1));
         let walking_size = if count > 0 { sum / count as f32 } else { 0.0 };
+        let gait = rest_gait(options, walking_size);
+        (layout.groups, layout.group_count) = layout.by_gait[gait as usize].clone();
+        let (swing_fraction, handover) = Self::swing(gait, layout.group_count);
         // Each leg's hip-roll lever: the hips' X distance to its partner (or a floor).
         let hip_width: Vec<f32> = legs
             .iter()
@@ -125,8 +136,8 @@ impl Controller {
             mean_size,
             sway_side_limit,
             swing_fraction,
-            gait: Gait::Walk,
-            wanted_gait: Gait::Walk,
+            gait,
+            wanted_gait: gait,
             walking_size,
             handover,
             pose: Pose::IDENTITY,
@@ -162,6 +173,11 @@ impl Controller {
             reacted_rotation: None,
             centre_of_mass: Vec3A::from(options.centre_of_mass),
         })
+    }
+
+    /// The gait it takes standing still (see [`rest_gait`]).
+    pub(super) fn rest_gait(&self) -> Gait {
+        rest_gait(&self.options, self.walking_size)
     }
 
     /// A gait's swing fraction (a swing's share of its step's length in the body's travel) and

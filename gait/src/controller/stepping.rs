@@ -113,11 +113,13 @@ impl Controller {
                 let target = state.step_target;
                 let moved = horizontal(anchor - state.prev_anchor).norm();
                 let by_motion = moved / state.swing_length.max(1e-6);
+                let before = state.progress;
                 state.progress = (state.progress
                     + by_motion
                         .max(o.settle_rate * dt)
                         .min(dt / (o.min_swing_time * sqrt(leg.size.min(1.0)))))
                 .min(1.0);
+                state.pace = state.progress - before;
                 if state.progress >= 1.0 {
                     state.foot = target;
                     state.stepping = false;
@@ -252,6 +254,9 @@ impl Controller {
         let active = self.active_group;
         let next = (active + 1) % count;
         let handover = self.handover;
+        // A run hands over when the next update would carry a step past the handover: at 30
+        // frames a second a quick swing lands in three, and would never be seen in between.
+        let early = self.gait == Gait::Run;
         let (mut group_stepping, mut group_wants, mut next_moves) = (false, false, false);
         for (((leg, state), want), group) in self
             .legs
@@ -263,8 +268,11 @@ impl Controller {
             let sequenced = leg.kind == LimbKind::Leg;
             let wants = want & WANT != 0;
             // A run's group hands over while its feet are still in the air (`handover` < 1).
-            group_stepping |=
-                sequenced & (*group == active) & state.stepping & (state.progress < handover);
+            let pace = if early { state.pace } else { 0.0 };
+            group_stepping |= sequenced
+                & (*group == active)
+                & state.stepping
+                & (state.progress + pace < handover);
             group_wants |= sequenced & (*group == active) & wants;
             next_moves |= sequenced & (*group == next) & (state.stepping | wants);
         }
@@ -297,8 +305,11 @@ impl Controller {
         //    trail behind their rest position by more than `group_join` of their reach join it,
         //    so a group steps together instead of leaving a leg to wait a whole cycle. Feet
         //    that are ahead (just landed) never join: they would step again at once.
+        //    In a run, the group whose turn comes lifts off at the handover, every trailing leg
+        //    of it: its swings overlap the last group's, for a moment no foot on the ground.
+        let lift_all = advance & (self.gait == Gait::Run);
         let group_moves = if advance {
-            next_moves
+            next_moves | lift_all
         } else {
             group_stepping | group_wants
         };
@@ -321,7 +332,7 @@ impl Controller {
                 let trailing = stray.dot(*motion) < 0.0;
                 // The stray's length and the reach in its direction, as step 2 found them
                 // (every idle leg went through it, and no foot has moved since).
-                let far = distance > o.group_join * reach_here * leg.size;
+                let far = lift_all | (distance > o.group_join * reach_here * leg.size);
                 if idle & trailing & far {
                     *want = WANT;
                 }
@@ -358,6 +369,7 @@ impl Controller {
             state.planted = false;
             state.escaping = escape;
             state.progress = 0.0;
+            state.pace = 0.0;
             state.step_start = state.foot;
             state.step_target = target;
             state.normal = target_normal;

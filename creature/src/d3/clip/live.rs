@@ -40,8 +40,11 @@ pub enum Intent {
     /// Move at `velocity` (m/s, world; its vertical part is ignored: a flier or swimmer keeps
     /// its own height over the ground) while turning at
     /// `turn_rate` (rad/s about +Y, positive toward +X from +Z). A speed above twice the
-    /// creature's [`speed`](Creature::speed) is lowered to that, a turn rate faster than the
-    /// animator's [`max_turn_rate`](Animator::max_turn_rate) to that.
+    /// creature's [`speed`](Creature::speed) (a walker's
+    /// [`run_speed`](crate::d3::GaitSetup::run_speed) if that is more) is lowered to that, a
+    /// turn rate faster than the animator's [`max_turn_rate`](Animator::max_turn_rate) to
+    /// that. A walker changes gait with its speed: it walks, trots and runs (see
+    /// [`GaitSetup::options`](crate::d3::GaitSetup::options)).
     Move {
         /// Velocity over the ground, m/s.
         velocity: Vec3,
@@ -134,6 +137,8 @@ pub struct Animator {
     /// The turn rate of the last update (the neck and tail bend toward it), smoothed.
     turn: f32,
     speed: f32,
+    /// The fastest an intent moves it: twice its speed, or a walker's run speed if more.
+    top_speed: f32,
     max_turn_rate: f32,
     length: f32,
     rest_root: Vec3,
@@ -386,6 +391,13 @@ impl Animator {
             lean: Vec2::ZERO,
             turn: 0.0,
             speed: creature.speed,
+            top_speed: (2.0 * creature.speed).max(
+                creature
+                    .gait
+                    .as_ref()
+                    .and_then(|g| g.run_speed())
+                    .unwrap_or(0.0),
+            ),
             max_turn_rate,
             length: creature.length,
             rest_root: creature.rest_root(),
@@ -627,7 +639,7 @@ impl Animator {
 
     /// The velocity (horizontal) and turn rate `intent` asks for, within the creature's limits.
     fn wanted(&self, intent: Intent) -> Result<(Vec3, f32), Error> {
-        let top = 2.0 * self.speed;
+        let top = self.top_speed;
         Ok(match intent {
             Intent::Stand => (Vec3::ZERO, 0.0),
             Intent::Move {
@@ -1511,13 +1523,15 @@ mod tests {
             animator.wanted(Intent::GoTo(near)).unwrap(),
             (Vec3::ZERO, 0.0)
         );
-        // A move faster than twice the creature's speed is slowed to that.
+        // A move faster than twice the creature's speed (or its run speed) is slowed to that.
         let fast = Intent::Move {
             velocity: Vec3::Z * 1e6,
             turn_rate: 1e6,
         };
         let (velocity, turn) = animator.wanted(fast).unwrap();
-        assert!((velocity.length() - 2.0 * walker.speed).abs() < 1e-3 * walker.speed);
+        let run = walker.gait.as_ref().unwrap().run_speed().unwrap();
+        let top = (2.0 * walker.speed).max(run);
+        assert!((velocity.length() - top).abs() < 1e-3 * walker.speed);
         assert_eq!(turn, animator.max_turn_rate());
     }
 }

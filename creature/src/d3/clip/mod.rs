@@ -33,7 +33,7 @@ pub(crate) use flight::flight;
 pub(crate) use kinematics::{pose, skinned};
 pub(crate) use live::bake::live_walk;
 pub(crate) use swim::swim;
-pub(crate) use walk::{AtRest, gait, turn, walk_loop};
+pub(crate) use walk::{AtRest, gait, run_loop, turn, walk_loop};
 
 /// How far a spine joint may bend, in radians per unit of its bone length over the body's
 /// half-thickness (see `Creature::bend_limits`): linear-blend skinning over whole-bone blends

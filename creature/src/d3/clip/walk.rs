@@ -159,13 +159,31 @@ impl Figures {
 
 /// A looping `walk` (see [`Creature::bake_walk_loop`]).
 pub(crate) fn walk_loop(c: &Creature, at_rest: &mut AtRest) -> Result<Clip, Error> {
+    forward_loop(c, "walk", c.speed, at_rest)
+}
+
+/// A looping `run` (see [`Creature::bake_run_loop`]).
+pub(crate) fn run_loop(c: &Creature, at_rest: &mut AtRest) -> Result<Clip, Error> {
     let setup = c.gait.as_ref().ok_or(Error::NoGait)?;
-    let run = c.simulate_gait(4.0, c.speed, 0.0)?;
+    let speed = setup.run_speed().ok_or(Error::NoGait)?;
+    forward_loop(c, "run", speed, at_rest)
+}
+
+/// A looping clip named `name` moving forward at `speed`: 4 s of the controller, cut at the
+/// frame from 1 s on closest to the first and closed where that keeps the feet plausible.
+fn forward_loop(
+    c: &Creature,
+    name: &'static str,
+    speed: f32,
+    at_rest: &mut AtRest,
+) -> Result<Clip, Error> {
+    let setup = c.gait.as_ref().ok_or(Error::NoGait)?;
+    let run = c.simulate_gait(4.0, speed, 0.0)?;
     let first = CLIP_FPS as usize;
     let end = best_cut(&run, first..run.frames(), |_| 0.0);
-    let travel = Pose::from_yaw(Vec3::Z * (c.speed * end as f32 / CLIP_FPS), 0.0);
+    let travel = Pose::from_yaw(Vec3::Z * (speed * end as f32 / CLIP_FPS), 0.0);
     let run = c.closed_or_cut(run, end, &travel, &setup.legs);
-    c.clip_from_run("walk", &run, 0.0, at_rest, None)
+    c.clip_from_run(name, &run, 0.0, at_rest, None)
 }
 
 /// A full `turn` in place (see [`Creature::bake_turn`]): at the creature's turn rate, or, if

@@ -1126,8 +1126,8 @@ fn regression_a_step_begun_as_the_last_one_ends_turns_the_sole_on_from_its_landi
 
 /// Walkers' `run` ([`d3::Creature::bake_run_loop`], not yet among the baked clips) holds every
 /// check of the audit but the joints' angular speed, which at most one in a thousand fails
-/// (2 of the first 10,000: small walkers' hips and feet landing at up to 21.5 rad/s, the
-/// method's documented limit), and at most one in a thousand two- and four-legged walkers
+/// (2 of the first 10,000: small walkers' hips and feet landing at up to 21.5 rad/s, past the
+/// audit's 20; the method documents it), and at most one in a thousand two- and four-legged walkers
 /// never has every foot off the ground (3 of 9,901): a tenth as many seeds as the audit's
 /// (`CREATURE_AUDIT_SEEDS`, at least 24), from its first.
 #[test]

@@ -353,8 +353,8 @@ pub(crate) struct Layout {
 /// Two consecutive pairs whose sizes are within this ratio step diagonally (3D seed).
 const DIAGONAL_SCALE_RATIO: f32 = 0.8;
 
-/// Derives the layout: groups from the caller or from the legs' positions, for each gait if
-/// `by_speed` (else every gait has the walk's original groups).
+/// Derives the layout: groups from the caller or from the legs' positions, for each gait (the
+/// walk's as before gaits by speed unless `by_speed`).
 pub(crate) fn layout(legs: &[Leg], by_speed: bool) -> Result<Layout, GaitError> {
     let n = legs.len();
     let mut left: Vec<usize> = Vec::new();

@@ -274,17 +274,22 @@ fn a_reset_walks_again_in_the_groups_of_a_controller_just_built() {
 }
 
 #[test]
-fn trotting_from_standing_still_steps_as_one_gait_does_until_the_run() {
+fn below_the_run_the_pattern_of_one_gait_is_kept_bit_for_bit_and_a_reset_returns_to_it() {
     // Up to three pairs, the trot's groups are the ones a controller without gaits by speed
     // walks in: trotting from a Froude number of 0, the feet are the same, bit for bit, until
-    // it runs.
-    for pairs in [1, 2, 3] {
+    // it runs. From four pairs, the walk's (a three-group wave): walking up to the run.
+    for pairs in [1, 2, 3, 4, 5] {
         let legs = creature_legs(pairs, 1.0);
-        let trotting = GaitSpeeds::DEFAULT.with_thresholds(0.0, 2.5);
+        let (from, gait) = if pairs <= 3 {
+            (0.0, Gait::Trot)
+        } else {
+            (2.5, Gait::Walk)
+        };
+        let speeds = GaitSpeeds::DEFAULT.with_thresholds(from, 2.5);
         let mut by_speed =
-            Controller::new(&legs, &GaitOptions::DEFAULT.with_gaits(trotting)).unwrap();
+            Controller::new(&legs, &GaitOptions::DEFAULT.with_gaits(speeds)).unwrap();
         let mut one = Controller::new(&legs, &GaitOptions::DEFAULT).unwrap();
-        assert_eq!(by_speed.gait(), Gait::Trot);
+        assert_eq!(by_speed.gait(), gait);
         let mut z = 0.0;
         for k in 0..600 {
             let v = speed_at(2.4, 1.0) * k as f32 / 600.0;
@@ -299,8 +304,22 @@ fn trotting_from_standing_still_steps_as_one_gait_does_until_the_run() {
                 one.leg_states(),
                 "{pairs} pairs, frame {k}"
             );
-            assert_eq!(by_speed.gait(), Gait::Trot);
+            assert_eq!(by_speed.gait(), gait);
         }
+        // A reset comes back to that gait, from a run.
+        let v = speed_at(3.0, 1.0);
+        for k in 0..240 {
+            let pose = Pose::from_yaw(Vec3::new(0.0, 0.8, z + v * DT * k as f32), 0.0);
+            by_speed
+                .update(DT, pose, Vec3::Z * v, Vec3::ZERO, &Plane::GROUND)
+                .unwrap();
+        }
+        assert_eq!(by_speed.gait(), Gait::Run, "{pairs} pairs");
+        by_speed
+            .reset(Pose::from_yaw(Vec3::new(0.0, 0.8, z), 0.0), &Plane::GROUND)
+            .unwrap();
+        assert_eq!(by_speed.gait(), gait, "{pairs} pairs");
+        assert_eq!(by_speed.groups(), one.groups(), "{pairs} pairs");
     }
 }
 

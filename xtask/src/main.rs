@@ -872,6 +872,9 @@ fn gallery(w: &Workspace) -> Result<(), String> {
     run(c)?;
     let mut c = example(w, "features3d");
     c.arg(w.root.join("creature"));
+    run(c)?;
+    let mut c = example(w, "gaits3d");
+    c.arg(w.root.join("creature").join("gaits3d.png"));
     run(c)
 }
 

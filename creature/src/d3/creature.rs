@@ -264,9 +264,9 @@ impl Creature {
 
     /// Bakes a looping `run`, as [`bake_walk_loop`](Self::bake_walk_loop) bakes the walk, at
     /// the set-up's [`run_speed`](crate::d3::GaitSetup::run_speed) (a Froude number of
-    /// [`RUN_FROUDE`](crate::d3::RUN_FROUDE)): the gait controller changes from a walk to a
-    /// trot and a run in the second of warm-up (see `creature_gait::Gait`), so the clip runs:
-    /// longer swings that overlap, for a moment no foot on the ground on two and four legs.
+    /// [`RUN_FROUDE`](crate::d3::RUN_FROUDE)): the gait controller changes to a run in the
+    /// second of warm-up (see `creature_gait::Gait`), so the clip runs: longer swings that
+    /// overlap, on two and four legs almost always a moment with no foot on the ground.
     ///
     /// Of the first 10,000 walkers' runs, every one holds the audit of delivered creatures but
     /// two (seeds 1714 and 6651: small walkers whose run takes five frames a stride at 30 fps,

@@ -38,8 +38,9 @@ pub struct GaitSetup {
     /// are the next two joints.
     pub hip_joints: Vec<usize>,
     /// Gait options: the defaults, with the creature's speed factor as the speed multiplier
-    /// and gaits by speed (`creature_gait::GaitSpeeds::DEFAULT`: it walks, trots from a
-    /// Froude number of 0.5 and runs from 2.5).
+    /// and gaits by speed (`creature_gait::GaitSpeeds`): below a Froude number of 2.5 the
+    /// pattern walkers always walked in (up to three pairs of legs a trot's two alternating
+    /// groups, from four pairs a three-group wave), a run from 2.5.
     pub options: GaitOptions,
 }
 
@@ -92,12 +93,30 @@ pub(crate) fn mean_leg_size(legs: &[Leg]) -> Option<f32> {
 /// pendulum's limit.
 pub(crate) const MAX_WALK_FROUDE: f32 = 1.0;
 
-/// A walker's gaits by speed: `GaitSpeeds::DEFAULT`'s run (from a Froude number of 2.5, back
-/// to a trot below 2), and below it the trot's pattern (two alternating groups: diagonal
-/// pairs, tripods) at every walking speed, as walkers always walked. (`creature_gait`'s walk,
-/// one foot at a time on four legs, swings each foot in a quarter of a stride: at the
-/// walkers' speeds, faster than their joints may turn.)
-pub(crate) const WALKER_GAITS: GaitSpeeds = GaitSpeeds::DEFAULT.with_thresholds(0.0, 2.5);
+/// A walker's gaits by speed, for `legs`: `GaitSpeeds::DEFAULT`'s run (from a Froude number
+/// of 2.5, back below 2), and below it the pattern walkers always walked in at every walking
+/// speed: up to three pairs the trot's (two alternating groups: diagonal pairs, tripods), from
+/// four pairs the walk's (a three-group wave). (`creature_gait`'s walk on four legs, one foot
+/// at a time, swings each foot in a quarter of a stride: at the walkers' speeds, faster than
+/// their joints may turn.)
+pub(crate) fn walker_gaits(legs: &[Leg]) -> GaitSpeeds {
+    let scale = legs.iter().map(|l| l.size).fold(0.0f32, f32::max).max(1e-6);
+    let walking = || legs.iter().filter(|l| l.kind == LimbKind::Leg);
+    // Pairs as `creature_gait` counts them: the most legs on one side (or the midline).
+    let left = walking().filter(|l| l.rest.x > 1e-4 * scale).count();
+    let right = walking().filter(|l| l.rest.x < -1e-4 * scale).count();
+    let centre = walking().count() - left - right;
+    let run = GaitSpeeds::DEFAULT.run;
+    if left.max(right).max(centre) > WAVE_PAIRS {
+        GaitSpeeds::DEFAULT.with_thresholds(run, run)
+    } else {
+        GaitSpeeds::DEFAULT.with_thresholds(0.0, run)
+    }
+}
+
+/// The most pairs whose walkers trot (two alternating groups) at walking speeds; more walk in
+/// a three-group wave (`creature_gait` derives the same).
+const WAVE_PAIRS: usize = 3;
 
 /// The Froude number a walker's `run` clip runs at: past `GaitSpeeds::DEFAULT`'s 2.5, where
 /// it runs, with room for its hysteresis.

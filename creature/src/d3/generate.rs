@@ -19,7 +19,7 @@ use super::body::{BASE_RADIUS, base_body, centre_of_volume, pill_triangles, volu
 use super::clip::MAX_LEG_TURN_RATE;
 use super::colour::{Colouring, body_surface};
 use super::extremities::Proportions;
-use super::gait::{WALKER_GAITS, mean_leg_size, swing_time_for_joints, walk_speed_limit};
+use super::gait::{mean_leg_size, swing_time_for_joints, walk_speed_limit, walker_gaits};
 use super::head::{self, Shape};
 use super::limbs::{
     Bind, LegChain, LimbNames, LimbStyle, MeshBuilder, Mount, WingSize, add_limb, leg_knees,
@@ -1044,7 +1044,7 @@ fn gait_setup(
     });
     let mut options = GaitOptions::DEFAULT
         .with_speed_multiplier(speed_factor)
-        .with_gaits(WALKER_GAITS);
+        .with_gaits(walker_gaits(&legs));
     options.min_swing_time = swing_time_for_joints(&legs, &options, MAX_LEG_TURN_RATE);
     let setup = GaitSetup {
         legs,

@@ -43,7 +43,7 @@ pub enum Intent {
     /// creature's [`speed`](Creature::speed) (a walker's
     /// [`run_speed`](crate::d3::GaitSetup::run_speed) if that is more) is lowered to that, a
     /// turn rate faster than the animator's [`max_turn_rate`](Animator::max_turn_rate) to
-    /// that. A walker changes gait with its speed: it walks, trots and runs (see
+    /// that. A walker changes gait with its speed: it runs past a Froude number of 2.5 (see
     /// [`GaitSetup::options`](crate::d3::GaitSetup::options)).
     Move {
         /// Velocity over the ground, m/s.

@@ -111,11 +111,19 @@ pub enum Check {
     Stretch,
     /// The shortest edge as a multiple of its rest length.
     Squash,
+    /// A slitherer's body off the ground: the height of its lowest vertex (× body length) in
+    /// a frame.
+    OffGround,
+    /// How far a slitherer's belly slides sideways while on the ground (× body length): each
+    /// vertex's moves across the body where it is (its joints' bones, skinned and blended as
+    /// the vertex is, level), added up over a stretch on the ground, a new stretch each body
+    /// length it moves. A body crawling along its own path slides only along itself.
+    BellySlides,
 }
 
 impl Check {
     /// Every check, in report order.
-    pub const ALL: [Self; 11] = [
+    pub const ALL: [Self; 13] = [
         Self::Tips,
         Self::FootInAir,
         Self::FootNeverDown,
@@ -127,6 +135,8 @@ impl Check {
         Self::BelowGround,
         Self::Stretch,
         Self::Squash,
+        Self::OffGround,
+        Self::BellySlides,
     ];
 
     /// A short name.
@@ -144,6 +154,8 @@ impl Check {
             Self::BelowGround => "below ground",
             Self::Stretch => "skin stretch",
             Self::Squash => "skin squash",
+            Self::OffGround => "body off the ground",
+            Self::BellySlides => "belly slides sideways",
         }
     }
 
@@ -208,6 +220,8 @@ pub struct Report {
     pub body_length: f32,
     /// Whether it is a walker (it has a `walk` clip): the stance checks apply.
     pub walker: bool,
+    /// Whether it is a slitherer (it has a `slither` clip): the belly checks apply.
+    pub slitherer: bool,
     /// The measures.
     pub measures: Vec<Measure>,
 }
@@ -270,7 +284,8 @@ struct Leg {
 /// skinning as a viewer does, and measures every [`Check`] on the skinned mesh. The body
 /// length is the length of the joints named `spine_*`, `tail_*`, `head` and `head_end`; legs
 /// are the joints `leg_<side><n>_hip`, `_knee` and `_foot`; the body frame is `spine_0`'s.
-/// A model with a `walk` or `walk_to` clip is a walker (the stance checks apply). Heights in
+/// A model with a `walk` or `walk_to` clip is a walker (the stance checks apply); one with a
+/// `slither` or `slither_to` clip is a slitherer (the belly checks apply). Heights in
 /// the clips are measured above the model's [`terrain`](Model::terrain) under each point when
 /// it has one, else above `y = 0`; the rest pose stands on `y = 0`.
 ///
@@ -309,6 +324,13 @@ pub fn audit(model: &Model, limits: &Limits) -> Result<Report, AuditError> {
         .clips
         .iter()
         .any(|c| c.name == "walk" || c.name == "walk_to");
+    let slitherer = model
+        .clips
+        .iter()
+        .any(|c| c.name == "slither" || c.name == "slither_to");
+    // Per joint, its bone's direction at rest: toward its child on the spine (the last one's
+    // from its parent).
+    let axes = bone_axes(model, &rest, spine_like);
     // Heights in the clips are above the terrain when the file has one (off it there is no
     // ground), else above `y = 0`; the rest pose stands on `y = 0`.
     let ground = |p: Vec3| match &model.terrain {
@@ -322,6 +344,7 @@ pub fn audit(model: &Model, limits: &Limits) -> Result<Report, AuditError> {
     let mut report = Report {
         body_length: length,
         walker,
+        slitherer,
         measures: Vec::new(),
     };
     let worst = |check: Check, clip: Option<&str>, limit: f32| Worst {
@@ -365,6 +388,13 @@ pub fn audit(model: &Model, limits: &Limits) -> Result<Report, AuditError> {
         let mut squash = worst(Check::Squash, name, limits.stretch[0]);
         let mut cross = worst(Check::FeetCross, name, 0.0);
         let mut intersect = worst(Check::LegsIntersect, name, 0.0);
+        let mut off = worst(Check::OffGround, name, limits.ground);
+        let mut belly = worst(Check::BellySlides, name, limits.slide);
+        // A slitherer's: per vertex, where it was in the last frame and its sideways slide
+        // since it came down on the ground (`None` off it).
+        let mut last: Vec<Vec3> = Vec::new();
+        let mut last_axes: Vec<Vec3> = Vec::new();
+        let mut sideways: Vec<Option<Slide>> = Vec::new();
         // Per leg, per frame: the foot's lowest height and its centre.
         let mut soles = vec![Vec::with_capacity(times.len()); legs.len()];
         let mut centres = vec![Vec::with_capacity(times.len()); legs.len()];
@@ -373,6 +403,27 @@ pub fn audit(model: &Model, limits: &Limits) -> Result<Report, AuditError> {
             let p = &poser.positions;
             let (depth, at) = lowest_above(p, ground);
             below.max(-depth / length, frame, || format!("vertex {at}"));
+            if slitherer {
+                off.max(depth / length, frame, || format!("vertex {at}"));
+                if last.is_empty() {
+                    sideways = vec![None; p.len()];
+                    last_axes = (0..p.len()).map(|v| poser.blended(v, &axes)).collect();
+                } else {
+                    belly_slides(
+                        (&poser, &axes),
+                        (&last, p),
+                        (&mut last_axes, &mut sideways),
+                        (limits.ground * length, length, &ground),
+                    );
+                }
+                for (v, s) in sideways.iter().enumerate() {
+                    if let Some((s, _)) = s {
+                        belly.max(s.abs() / length, frame, || format!("vertex {v}"));
+                    }
+                }
+                last.clear();
+                last.extend_from_slice(p);
+            }
             for &(a, b, rest) in &edges {
                 let ratio = p[a].distance(p[b]) / rest;
                 let at = || {
@@ -416,6 +467,9 @@ pub fn audit(model: &Model, limits: &Limits) -> Result<Report, AuditError> {
         report
             .measures
             .extend([below.done(), stretch.done(), squash.done()]);
+        if slitherer {
+            report.measures.extend([off.done(), belly.done()]);
+        }
         let (mut turn, mut speed) = (
             worst(Check::KeyTurn, name, limits.key_turn_degrees),
             worst(Check::AngularSpeed, name, limits.angular_speed),
@@ -540,6 +594,60 @@ impl Worst {
             frame: self.frame,
             at: self.at,
         }
+    }
+}
+
+/// Per joint, its bone's unit direction at rest (`rest` the joints' places): toward its one
+/// child that is `spine_like` by name, else from its parent; zero without either.
+fn bone_axes(model: &Model, rest: &[Vec3], spine_like: impl Fn(&str) -> bool) -> Vec<Vec3> {
+    let parent_of = |j: usize| {
+        let node = model.nodes[model.skin[j]].parent?;
+        model.skin.iter().position(|&n| n == node)
+    };
+    let mut axes = vec![Vec3::ZERO; model.skin.len()];
+    for j in 0..model.skin.len() {
+        if let Some(p) = parent_of(j) {
+            let from_parent = (rest[j] - rest[p]).normalize_or_zero();
+            if axes[j] == Vec3::ZERO {
+                axes[j] = from_parent;
+            }
+            if spine_like(model.joint_name(j)) && spine_like(model.joint_name(p)) {
+                axes[p] = from_parent;
+            }
+        }
+    }
+    axes
+}
+
+/// A belly vertex's slide across the body since its stretch on the ground began, and how far
+/// it has moved since then.
+type Slide = (f32, f32);
+
+/// One frame of the belly check: each vertex of `now` on the ground (within `ground` of it)
+/// adds its move since `last` across the body there (its joints' bone `axes` skinned and
+/// blended as the vertex is, by `poser`, now and in the last frame, `along`: across their
+/// mean, so a move along a curve is measured against the curve's direction halfway, level)
+/// to its slide in `sideways`, with how far it has moved since its slide started; a vertex
+/// off the ground has none, and one that has moved a `length` starts another.
+fn belly_slides(
+    (poser, axes): (&Poser, &[Vec3]),
+    (last, now): (&[Vec3], &[Vec3]),
+    (along, sideways): (&mut [Vec3], &mut [Option<Slide>]),
+    (ground, length, height): (f32, f32, &dyn Fn(Vec3) -> f32),
+) {
+    for (v, slide) in sideways.iter_mut().enumerate() {
+        let p = now[v];
+        let before = along[v];
+        along[v] = poser.blended(v, axes);
+        if p.y - height(p) > ground {
+            *slide = None;
+            continue;
+        }
+        let along = before.normalize_or_zero() + along[v].normalize_or_zero();
+        let across = Vec3::new(-along.z, 0.0, along.x).normalize_or_zero();
+        let step = p - last[v];
+        let (sideways, travelled) = slide.filter(|&(_, t)| t < length).unwrap_or((0.0, 0.0));
+        *slide = Some((sideways + step.dot(across), travelled + step.length()));
     }
 }
 

@@ -92,6 +92,21 @@ impl<'a> Poser<'a> {
         self.world[self.model.skin[j]]
     }
 
+    /// Vertex `v`'s skinning (as its position is skinned) applied to its joints' `axes`
+    /// (one direction per skin joint, at rest), blended by its weights: a direction along
+    /// the body where it is, posed.
+    pub(crate) fn blended(&self, v: usize, axes: &[Vec3]) -> Vec3 {
+        let model = self.model;
+        let mut sum = Vec3::ZERO;
+        for (&j, &w) in model.joints[v].iter().zip(&model.weights[v]) {
+            let j = usize::from(j);
+            if w != 0.0 {
+                sum += w * self.skinning[j].transform_vector3(axes[j]);
+            }
+        }
+        sum
+    }
+
     fn update(&mut self) {
         for &i in &self.order {
             let local = Mat4::from_scale_rotation_translation(

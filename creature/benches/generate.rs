@@ -171,8 +171,8 @@ fn circling(animator: &Animator, speed: f32) -> Intent {
 
 /// One live update (`d3::Animator`: gait, pose and skinning matrices) of walker 7 and of
 /// median walker 32 on flat ground and on the default procedural terrain, walking in a circle
-/// along its heading; of flier 7 and swimmer 7 (steering, ground under and ahead, wings or
-/// wave, pose, skinning) going round over that terrain; and, as the reference in the same
+/// along its heading; of flier 7, swimmer 7 and slitherer 7 (steering, ground under and
+/// ahead, wings or wave or path, pose, skinning) going round over that terrain; and, as the reference in the same
 /// run, sampling a baked `walk` clip of walker 7 (`Creature::pose` at a frame, then each
 /// joint's skinning matrix).
 fn bench_animator(c: &mut Criterion) {
@@ -216,6 +216,7 @@ fn bench_animator(c: &mut Criterion) {
     for (name, kind) in [
         ("animator_update_flier_terrain", d3::Kind::Flier),
         ("animator_update_swimmer_terrain", d3::Kind::Swimmer),
+        ("animator_update_slitherer_terrain", d3::Kind::Slitherer),
     ] {
         let c = generate(7, &d3::Params::DEFAULT.with_kind(kind)).expect("valid");
         let mut animator = Animator::new(&c).expect("a flier or swimmer");

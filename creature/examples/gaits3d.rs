@@ -1,7 +1,9 @@
 //! Renders `gaits3d.png`, the README's strips of frames per gait: the first two- and
-//! four-legged walkers and the first with six legs or more (from seed 0 up), each in its looping `walk` (a trot's pattern) and its
-//! `run` (`Creature::bake_run_loop`), eight consecutive frames (30 a second) from the side,
-//! each frame's root travel taken off so the body stays in place.
+//! four-legged walkers and the first with six legs or more (from seed 0 up), each in its
+//! looping `walk` (a trot's pattern) and its `run` (`Creature::bake_run_loop`), eight
+//! consecutive frames (30 a second) from the side; then slitherers 0 and 3 in their `slither`,
+//! eight frames spread over one body wave, from above. Each frame's root travel is taken off
+//! so the body stays in place.
 //!
 //! ```sh
 //! cargo run --release -p creature --features export --example gaits3d -- creature/gaits3d.png
@@ -83,29 +85,24 @@ fn run(path: &str, size: u32) -> Result<(), String> {
         let run = c.bake_run_loop().map_err(|e| format!("seed {seed}: {e}"))?;
         for clip in [&walk, &run] {
             println!("row {rows}: seed {seed}, {legs} legs, {}", clip.name);
-            let mut row = vec![0u8; width * side * 4];
-            let posed: Vec<Vec<Vec3>> = (0..FRAMES)
-                .map(|k| in_place(&c, clip, k))
-                .collect::<Result<_, _>>()
-                .map_err(|e| format!("seed {seed}: {e}"))?;
-            // One scale for the strip: every frame's bounds.
-            let (mut lo, mut hi) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
-            for p in posed.iter().flatten() {
-                (lo, hi) = (lo.min(*p), hi.max(*p));
-            }
-            for (k, positions) in posed.into_iter().enumerate() {
-                let view = frame(&c, positions, (lo, hi), size)
-                    .map_err(|e| format!("seed {seed}: {e}"))?;
-                // The side view: the first of the three square views.
-                for y in 0..side {
-                    let from = y * view.width as usize * 4;
-                    let to = (y * width + k * side) * 4;
-                    row[to..to + side * 4].copy_from_slice(&view.rgba[from..from + side * 4]);
-                }
-            }
-            rgba.extend(row);
+            rgba.extend(strip(&c, clip, (0..FRAMES).collect(), (SIDE, size))?);
             rows += 1;
         }
+    }
+    for seed in [0, 3] {
+        let params = Params::DEFAULT.with_kind(Kind::Slitherer);
+        let c = d3::generate(seed, &params).map_err(|e| format!("seed {seed}: {e}"))?;
+        let slither = c
+            .clips
+            .iter()
+            .find(|clip| clip.name == "slither")
+            .ok_or_else(|| format!("slitherer {seed}: no slither"))?;
+        println!("row {rows}: slitherer {seed}, slither");
+        let spread = (0..FRAMES)
+            .map(|k| k * (slither.frames - 1) / FRAMES)
+            .collect();
+        rgba.extend(strip(&c, slither, spread, (TOP, size))?);
+        rows += 1;
     }
     let sheet = Image {
         width: width as u32,
@@ -116,6 +113,41 @@ fn run(path: &str, size: u32) -> Result<(), String> {
     std::fs::write(path, png).map_err(|e| format!("{path}: {e}"))?;
     println!("wrote {path}");
     Ok(())
+}
+
+/// The side and top views of `preview_3d`'s three.
+const SIDE: usize = 0;
+const TOP: usize = 2;
+
+/// One strip: `frames` of `c`'s `clip`, each in `view` (of `preview_3d`'s three) `size`
+/// pixels square, all at one scale (every frame's bounds), side by side.
+fn strip(
+    c: &Creature,
+    clip: &Clip,
+    frames: Vec<usize>,
+    (view, size): (usize, u32),
+) -> Result<Vec<u8>, String> {
+    let side = size as usize;
+    let width = side * frames.len();
+    let mut row = vec![0u8; width * side * 4];
+    let posed: Vec<Vec<Vec3>> = frames
+        .iter()
+        .map(|&k| in_place(c, clip, k))
+        .collect::<Result<_, _>>()
+        .map_err(|e| e.to_string())?;
+    let (mut lo, mut hi) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
+    for p in posed.iter().flatten() {
+        (lo, hi) = (lo.min(*p), hi.max(*p));
+    }
+    for (k, positions) in posed.into_iter().enumerate() {
+        let image = frame(c, positions, (lo, hi), size).map_err(|e| e.to_string())?;
+        for y in 0..side {
+            let from = (y * image.width as usize + view * side) * 4;
+            let to = (y * width + k * side) * 4;
+            row[to..to + side * 4].copy_from_slice(&image.rgba[from..from + side * 4]);
+        }
+    }
+    Ok(row)
 }
 
 /// Frame `k` of `clip` skinned, the root's horizontal travel taken off.

@@ -14,10 +14,10 @@
 //! cargo run --release --example generate -- --help
 //! ```
 //!
-//! Options: `--dim 3d|2d` (default 3d), `--kind walker|flier|swimmer|random` (3D, default
-//! random), `--count N` (default 1), `--seed N` (default 0), `--out DIR` (default `out/`),
+//! Options: `--dim 3d|2d` (default 3d), `--kind walker|flier|swimmer|slitherer|random` (3D,
+//! default random: one of the first three), `--count N` (default 1), `--seed N` (default 0), `--out DIR` (default `out/`),
 //! `--texture-size N` (2D, default 256), `--bones` (2D: draw the bones on the PNG),
-//! `--in-place` (3D), `--terrain SEED` (3D: a walk, flight or swim over procedural terrain,
+//! `--in-place` (3D), `--terrain SEED` (3D: a walk, flight, swim or crawl over procedural terrain,
 //! the terrain in the file), `--body-scale X`, `--head-size X`, `--snout-length X`,
 //! `--neck-width X` (3D: that parameter fixed at X, as the web playground sets it),
 //! `--threads N` (default: every core), `--dry-run` (generate and encode, write
@@ -47,7 +47,7 @@ struct Args {
     /// 3D skinned creatures with baked clips, or 2D metaball creatures.
     #[arg(long, value_enum, default_value_t = Dim::ThreeD)]
     dim: Dim,
-    /// The 3D kind; `random` draws one of the three from each seed.
+    /// The 3D kind; `random` draws a walker, flier or swimmer from each seed.
     #[arg(long, value_enum, default_value_t = KindArg::Random)]
     kind: KindArg,
     /// How many creatures, seeds `--seed` to `--seed + N - 1`; more than one names the files
@@ -118,7 +118,9 @@ enum KindArg {
     Flier,
     /// Swims with fins and a tail.
     Swimmer,
-    /// One of the three, drawn from the seed.
+    /// Crawls on its belly without limbs (a snake).
+    Slitherer,
+    /// One of walker, flier and swimmer, drawn from the seed.
     Random,
 }
 
@@ -128,6 +130,7 @@ impl From<KindArg> for d3::Kind {
             KindArg::Walker => d3::Kind::Walker,
             KindArg::Flier => d3::Kind::Flier,
             KindArg::Swimmer => d3::Kind::Swimmer,
+            KindArg::Slitherer => d3::Kind::Slitherer,
             KindArg::Random => d3::Kind::Random,
         }
     }

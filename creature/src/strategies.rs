@@ -106,12 +106,14 @@ pub fn params_2d() -> impl Strategy<Value = d2::Params> {
     )
 }
 
-/// One of [`Kind::Walker`], [`Kind::Flier`], [`Kind::Swimmer`] and [`Kind::Random`].
+/// One of [`Kind::Walker`], [`Kind::Flier`], [`Kind::Swimmer`], [`Kind::Slitherer`] and
+/// [`Kind::Random`].
 pub fn kind() -> impl Strategy<Value = Kind> {
     prop_oneof![
         Just(Kind::Walker),
         Just(Kind::Flier),
         Just(Kind::Swimmer),
+        Just(Kind::Slitherer),
         Just(Kind::Random),
     ]
 }
@@ -161,7 +163,7 @@ pub fn back_weights() -> impl Strategy<Value = BackWeights> {
 
 /// Valid 3D parameters of the given kind: every field drawn inside its documented range (see
 /// [`Params`]), kept to a moderate box so generation stays fast — up to 24 rings and 16
-/// segments, slice scales 0.3 to 3, body scale 0.1 to 10, bones 0.1 to 0.5 long, at most 40
+/// segments, slice scales 0.3 to 3 (a slitherer's 0.15 to 1 across, 0.5 to 3 along), body scale 0.1 to 10, bones 0.1 to 0.5 long, at most 40
 /// spine bones; colours, the head's eyes, snout and ornaments, the limbs' proportions
 /// ([`Params::thigh_thickness`], [`Params::wing_span`], [`Params::wing_area`]) and the back's
 /// ornaments over their whole ranges. The limb planner keeps its defaults. Always passes [`Params::validate`].
@@ -174,6 +176,9 @@ pub fn params_of_kind(kind: Kind) -> impl Strategy<Value = Params> {
         span(0.3, 3.0),
         span(0.3, 3.0),
         span(0.3, 3.0),
+        span(0.15, 1.0),
+        span(0.15, 1.0),
+        span(0.5, 3.0),
     );
     let body = (
         span(0.1, 10.0),
@@ -204,7 +209,17 @@ pub fn params_of_kind(kind: Kind) -> impl Strategy<Value = Params> {
     (mesh, slices, body, colours, head, limbs).prop_map(
         move |(
             (profiles, rings, segments, limb_sides, flat),
-            (width, height, step, swim_width, swim_height, swim_step),
+            (
+                width,
+                height,
+                step,
+                swim_width,
+                swim_height,
+                swim_step,
+                slither_width,
+                slither_height,
+                slither_step,
+            ),
             (scale, speed, bone_length, spine_bones, bend, head, clearance, clips),
             (saturation, countershading, patterns),
             (eye_size, snout_length, ornament_size, ornament_chance, neck_width),
@@ -218,6 +233,7 @@ pub fn params_of_kind(kind: Kind) -> impl Strategy<Value = Params> {
                 .with_flat_normals(flat)
                 .with_slices(width, height, step)
                 .with_swimmer_slices(swim_width, swim_height, swim_step)
+                .with_slitherer_slices(slither_width, slither_height, slither_step)
                 .with_body_scale(scale)
                 .with_speed_factor(speed)
                 .with_bone_length(bone_length)

@@ -97,7 +97,8 @@ impl TerrainParams {
     /// Terrain sized to `creature`, as the `generate` example's `--terrain` makes it: a square
     /// 24 body lengths wide (193 samples a side), hills half its length high and six lengths
     /// apart on a 12° slope, and steps three lengths apart, a fifth of its gait's shortest leg
-    /// high (a tenth of its length for a creature without a gait).
+    /// high (a slitherer's 1.5% of its length, about a third of its body's thickness; a tenth
+    /// of its length for another creature without a gait).
     ///
     /// ```
     /// use creature::d3::{generate, Kind, Params};
@@ -113,7 +114,9 @@ impl TerrainParams {
     #[must_use]
     pub fn for_creature(creature: &crate::d3::Creature) -> Self {
         let length = creature.length;
-        let step = creature.gait.as_ref().map_or(0.1 * length, |gait| {
+        let crawls = creature.kind == creature_limbs::CreatureKind::Slitherer;
+        let lying = if crawls { 0.015 } else { 0.1 };
+        let step = creature.gait.as_ref().map_or(lying * length, |gait| {
             0.2 * gait
                 .legs
                 .iter()

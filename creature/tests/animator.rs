@@ -27,6 +27,10 @@ fn swimmer(seed: u64) -> d3::Creature {
     d3::generate(seed, &d3::Params::DEFAULT.with_kind(Kind::Swimmer)).unwrap()
 }
 
+fn slitherer(seed: u64) -> d3::Creature {
+    d3::generate(seed, &d3::Params::DEFAULT.with_kind(Kind::Slitherer)).unwrap()
+}
+
 /// The mesh skinned by the animator's skinning matrices (linear blend, as a vertex shader).
 fn skinned(c: &d3::Creature, animator: &Animator) -> Vec<Vec3> {
     let m = animator.skinning_matrices();
@@ -217,7 +221,7 @@ fn a_walker_crosses_hilly_stepped_terrain_to_a_target_feet_on_the_surface() {
 
 #[test]
 fn bad_time_steps_and_intents_are_errors_and_leave_the_pose() {
-    for c in [walker(5), flier(5), swimmer(5)] {
+    for c in [walker(5), flier(5), swimmer(5), slitherer(5)] {
         bad_input_leaves_the_pose(&c);
     }
 }
@@ -256,7 +260,7 @@ fn bad_input_leaves_the_pose(c: &d3::Creature) {
 
 #[test]
 fn the_same_updates_give_the_same_pose() {
-    for c in [walker(6), flier(6), swimmer(6)] {
+    for c in [walker(6), flier(6), swimmer(6), slitherer(6)] {
         same_updates_same_pose(&c);
     }
 }
@@ -931,10 +935,12 @@ fn regression_a_creature_put_down_under_or_over_the_terrain_is_put_onto_it() {
         ("walker 11", walker(11)),
         ("flier 7", flier(7)),
         ("swimmer 7", swimmer(7)),
+        ("slitherer 7", slitherer(7)),
     ] {
         // Deeper under the ground, and higher over it, than their rays reach from the body
         // (a flier's and a swimmer's start 4 lengths above it and reach 100 below).
-        let walks = c.gait.is_some();
+        // (A slitherer's, 2 lengths above and below it.)
+        let walks = c.gait.is_some() || c.kind == creature::limbs::CreatureKind::Slitherer;
         let deep = if walks { 2.0 } else { 5.0 };
         assert!(
             top > deep * c.length,
@@ -977,9 +983,16 @@ fn regression_a_creature_put_down_under_or_over_the_terrain_is_put_onto_it() {
 }
 
 /// `c` as `animator` poses it stands on `ground`: a walker's soles on it and planted, a
-/// flier's or swimmer's lowest vertex above it by less than 5 lengths.
+/// slitherer's belly on it, a flier's or swimmer's lowest vertex above it by less than 5
+/// lengths.
 fn stands_on<G: Ground>(c: &d3::Creature, animator: &Animator, ground: &G, label: &str) {
-    if c.gait.is_some() {
+    if c.kind == creature::limbs::CreatureKind::Slitherer {
+        let gap = lowest_gap(c, animator, ground);
+        assert!(
+            gap.abs() <= ON_GROUND * c.length,
+            "{label}: its lowest vertex {gap} over the ground"
+        );
+    } else if c.gait.is_some() {
         let posed = skinned(c, animator);
         let soles = soles(&posed, &foot_vertices(c), ground);
         for (sole, planted) in soles.into_iter().zip(planted(c, animator)) {
@@ -1042,6 +1055,128 @@ fn a_walker_asked_to_go_faster_runs_and_slows_back_to_a_trot_its_feet_on_the_gro
         assert_eq!(gaits, [Gait::Trot, Gait::Run, Gait::Trot], "seed {seed}");
         if feet.len() <= 4 {
             assert!(flying > 0, "seed {seed}: never every foot off the ground");
+        }
+    }
+}
+
+/// A belly is on the ground when its lowest vertex is within this many body lengths of it, and
+/// no vertex may be deeper (the audit of delivered creatures' `ground`).
+const ON_GROUND: f32 = 0.005;
+
+/// The steps a slitherer crosses, in body lengths.
+const STEP: f32 = 0.015;
+
+/// Crawls `c` from the origin toward `target` on `ground` for at most `seconds`: every fifth
+/// update, its skinned belly on the ground (the lowest vertex within [`ON_GROUND`] of it, none
+/// deeper). The updates taken to arrive within 0.3 body lengths, `None` if it did not, and
+/// how far it went from where it started (over the ground) and how many body waves it made
+/// (by `beat_frequency`).
+fn crawls<G: Ground>(
+    c: &d3::Creature,
+    ground: &G,
+    intent: impl Fn(&Animator) -> Intent,
+    seconds: f32,
+    label: &str,
+) -> (Option<usize>, f32, f32) {
+    let mut animator = Animator::new(c).unwrap();
+    let mut waves = 0.0;
+    let dt = 1.0 / 30.0;
+    let start = animator.position();
+    let distance = |a: &Animator| {
+        let moved = a.position() - start;
+        Vec3::new(moved.x, 0.0, moved.z).length()
+    };
+    for frame in 0..(seconds / dt) as usize {
+        let wanted = intent(&animator);
+        animator.update(dt, wanted, ground).unwrap();
+        waves += animator.beat_frequency().unwrap() * dt;
+        if frame % 5 == 0 {
+            let posed = skinned(c, &animator);
+            let gaps: Vec<f32> = posed.iter().map(|&p| p.y - height(ground, p)).collect();
+            let (v, lowest) =
+                gaps.iter()
+                    .copied()
+                    .enumerate()
+                    .fold(
+                        (0, f32::INFINITY),
+                        |m, (v, g)| if g < m.1 { (v, g) } else { m },
+                    );
+            assert!(
+                lowest.abs() <= ON_GROUND * c.length,
+                "{label} frame {frame}: its lowest vertex {v} (at rest {}, joints {:?} {:?}) {lowest} over the ground",
+                c.mesh.positions[v],
+                c.mesh.joints[v],
+                c.mesh.weights[v],
+            );
+        }
+        if let Intent::GoTo(target) = wanted {
+            let p = animator.lead();
+            if Vec3::new(p.x, 0.0, p.z).distance(target) < 0.3 * c.length {
+                return (Some(frame), distance(&animator), waves);
+            }
+        }
+    }
+    eprintln!(
+        "{label}: at {} heading {} after {seconds} s",
+        animator.position(),
+        animator.heading()
+    );
+    (None, distance(&animator), waves)
+}
+
+#[test]
+fn a_slitherer_crawls_more_than_its_length_per_body_wave_its_belly_on_flat_ground() {
+    for seed in [0, 5, 11, 23, 58] {
+        let c = slitherer(seed);
+        let label = format!("slitherer {seed}");
+        let forward = |a: &Animator| Intent::Move {
+            velocity: Vec3::new(a.heading().sin(), 0.0, a.heading().cos()) * c.speed,
+            turn_rate: 0.0,
+        };
+        let (_, distance, waves) = crawls(&c, &Plane::GROUND, forward, 8.0, &label);
+        assert!(waves > 2.0, "{label}: {waves} waves");
+        let per_wave = distance / waves / c.length;
+        assert!(per_wave >= 1.0, "{label}: {per_wave} body lengths per wave");
+        // And at its speed: 8 s at the speed it was asked (its head, where the position is,
+        // swinging from side to side).
+        assert!(
+            (distance - 8.0 * c.speed).abs() < 0.05 * 8.0 * c.speed,
+            "{label}: {distance} m in 8 s at {} m/s",
+            c.speed
+        );
+    }
+}
+
+#[test]
+fn a_slitherer_climbs_a_fifteen_degree_slope_to_a_target_on_its_belly() {
+    let angle = 15f32.to_radians();
+    let slope = Plane::new(Vec3::ZERO, Vec3::new(0.0, angle.cos(), -angle.sin())).unwrap();
+    for seed in [1, 2, 3, 4] {
+        let c = slitherer(seed);
+        let label = format!("slitherer {seed} up 15°");
+        let target = Vec3::new(2.0, 0.0, 10.0) * c.length;
+        let (arrived, _, _) = crawls(&c, &slope, |_| Intent::GoTo(target), 60.0, &label);
+        assert!(arrived.is_some(), "{label}: did not arrive");
+    }
+}
+
+#[test]
+fn a_slitherer_turns_round_over_hills_to_a_target_behind_it_on_its_belly() {
+    for seed in [1, 2, 3, 4] {
+        let c = slitherer(seed);
+        // Steps a third of its body's thickness high (about 2% of its length); see the
+        // README for higher ones.
+        let params = TerrainParams::DEFAULT
+            .with_extent(40.0 * c.length, 321)
+            .with_hills(0.3 * c.length, 6.0 * c.length)
+            .with_slope(10.0)
+            .with_steps(STEP * c.length, 3.0 * c.length);
+        let ground = terrain(seed, &params).unwrap();
+        for target in [Vec3::new(6.0, 0.0, 8.0), Vec3::new(-8.0, 0.0, -6.0)] {
+            let label = format!("slitherer {seed} to {target}");
+            let target = target * c.length;
+            let (arrived, _, _) = crawls(&c, &ground, |_| Intent::GoTo(target), 90.0, &label);
+            assert!(arrived.is_some(), "{label}: did not arrive");
         }
     }
 }

@@ -1,5 +1,5 @@
 //! `Animator::update` allocates nothing once the animator is built: a counting global
-//! allocator (this test binary's only one) watches walkers, fliers and swimmers standing,
+//! allocator (this test binary's only one) watches walkers, fliers, swimmers and slitherers standing,
 //! moving, turning and going to targets over a plane and over procedural terrain, with variable time steps.
 
 // The allocator below needs `unsafe impl GlobalAlloc`; it only forwards to the system's.
@@ -98,7 +98,7 @@ fn drive(animator: &mut Animator, ground: &dyn Ground, length: f32, frames: u32)
 #[test]
 fn an_update_allocates_nothing() {
     let hills = terrain(3, &TerrainParams::DEFAULT).unwrap();
-    let kinds = [Kind::Walker, Kind::Flier, Kind::Swimmer];
+    let kinds = [Kind::Walker, Kind::Flier, Kind::Swimmer, Kind::Slitherer];
     for (seed, kind) in [1, 2, 3].into_iter().flat_map(|s| kinds.map(|k| (s, k))) {
         let c = d3::generate(seed, &d3::Params::DEFAULT.with_kind(kind).with_clips(false)).unwrap();
         for ground in [&Plane::GROUND as &dyn Ground, &hills] {

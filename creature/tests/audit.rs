@@ -70,6 +70,26 @@ fn audit_swimmers() {
     run(Kind::Swimmer, &Check::ALL);
 }
 
+#[test]
+fn audit_slitherers() {
+    run(Kind::Slitherer, &Check::ALL);
+}
+
+/// Slitherers crawling over terrain to a point 10 body lengths away (`slither_to`, as
+/// `--terrain` exports it) hold every check on that terrain: the belly on it, never in it,
+/// never sliding sideways.
+#[test]
+fn slithers_over_terrain_pass_the_audit_on_the_terrain() {
+    let params = d3::Params::DEFAULT
+        .with_kind(Kind::Slitherer)
+        .with_clips(false);
+    for seed in [3, 7, 12, 40] {
+        let report = terrain_report(&params, seed);
+        assert!(report.slitherer);
+        assert!(report.passes(), "seed {seed}: {}", listed(&report));
+    }
+}
+
 /// The walkers the regressions were found on: before bodies narrowed into a neck, without
 /// one, as then.
 const REGRESSION_WALKER: d3::Params = d3::Params::DEFAULT

@@ -18,6 +18,7 @@ fn same_seed_same_creature() {
         d3::Kind::Walker,
         d3::Kind::Flier,
         d3::Kind::Swimmer,
+        d3::Kind::Slitherer,
         d3::Kind::Random,
     ] {
         let params = d3::Params::DEFAULT.with_kind(kind);
@@ -48,6 +49,45 @@ fn kinds_are_honoured_and_random_draws_all_three() {
         }] = true;
     }
     assert_eq!(seen, [true; 3]);
+}
+
+#[test]
+fn slitherers_are_long_legless_and_many_jointed_rooted_at_the_head_on_their_bellies() {
+    let walkers: usize = (0..20)
+        .map(|seed| {
+            let c = generate(seed, &d3::Params::DEFAULT.with_kind(d3::Kind::Walker)).unwrap();
+            c.rig.spine.len()
+        })
+        .sum();
+    let mut spines = 0;
+    for seed in 0..20 {
+        let c = generate(seed, &d3::Params::DEFAULT.with_kind(d3::Kind::Slitherer)).unwrap();
+        assert_eq!(c.kind, CreatureKind::Slitherer);
+        assert!(c.plan.limbs.is_empty(), "seed {seed}: {:?}", c.plan.limbs);
+        assert!(c.gait.is_none());
+        assert_eq!(c.rig.root(), Some(c.rig.head));
+        let names: Vec<&str> = c.clips.iter().map(|clip| clip.name).collect();
+        assert_eq!(names, ["idle", "slither"]);
+        // Long and thin: 8 to 30 times as long as it is wide.
+        let (min, max) = c.mesh.positions.iter().fold(
+            (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)),
+            |(lo, hi), &p| (lo.min(p), hi.max(p)),
+        );
+        let (width, length) = (max.x - min.x, max.z - min.z);
+        assert!(
+            (8.0..=30.0).contains(&(length / width)),
+            "seed {seed}: {length} long, {width} wide"
+        );
+        // Its belly on the ground.
+        assert!(
+            min.y.abs() < 1e-5,
+            "seed {seed}: lowest vertex at {}",
+            min.y
+        );
+        spines += c.rig.spine.len();
+    }
+    // Twice as many spine bones as walkers' (half as long each).
+    assert!(spines > 2 * walkers, "{spines} against walkers' {walkers}");
 }
 
 #[test]

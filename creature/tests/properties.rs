@@ -175,6 +175,7 @@ proptest! {
             d3::Kind::Walker => Some(creature::limbs::CreatureKind::Walker),
             d3::Kind::Flier => Some(creature::limbs::CreatureKind::Flier),
             d3::Kind::Swimmer => Some(creature::limbs::CreatureKind::Swimmer),
+            d3::Kind::Slitherer => Some(creature::limbs::CreatureKind::Slitherer),
             _ => None,
         };
         if let Some(kind) = expected {
@@ -1113,6 +1114,7 @@ proptest! {
             Just(d3::Kind::Walker),
             Just(d3::Kind::Flier),
             Just(d3::Kind::Swimmer),
+            Just(d3::Kind::Slitherer),
         ],
     ) {
         // Every update is done or a typed error that leaves the pose; the pose is never NaN.

@@ -89,7 +89,7 @@ fn sweep_3d(kind: d3::Kind) {
                         "the neck {r} × as wide as the narrower of head and body, not less"
                     )),
                     Some(_) => {}
-                    None if kind != d3::Kind::Swimmer => {
+                    None if !matches!(kind, d3::Kind::Swimmer | d3::Kind::Slitherer) => {
                         problems.push("a head, but no neck measured".into());
                     }
                     None => {}
@@ -173,4 +173,9 @@ fn sweep_fliers() {
 #[test]
 fn sweep_swimmers() {
     sweep_3d(d3::Kind::Swimmer);
+}
+
+#[test]
+fn sweep_slitherers() {
+    sweep_3d(d3::Kind::Slitherer);
 }

@@ -24,6 +24,8 @@ pub enum CreatureKind {
     Flier,
     /// Swims with dorsal fins, pectoral fin pairs and a tail.
     Swimmer,
+    /// Crawls on its belly without limbs (a snake): the plan is empty.
+    Slitherer,
 }
 
 /// Which end of [`Body::bones`] is the head.

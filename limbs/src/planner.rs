@@ -125,6 +125,8 @@ pub fn plan<R: Rng + ?Sized>(
         CreatureKind::Walker => ctx.walker(&mut out, rng)?,
         CreatureKind::Flier => ctx.flier(&mut out, rng),
         CreatureKind::Swimmer => ctx.swimmer(&mut out, rng),
+        // No limbs: it moves by bending its body.
+        CreatureKind::Slitherer => {}
     }
     Ok(out)
 }

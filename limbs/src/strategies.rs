@@ -129,6 +129,7 @@ pub fn creature_kind() -> impl Strategy<Value = CreatureKind> {
         Just(CreatureKind::Walker),
         Just(CreatureKind::Flier),
         Just(CreatureKind::Swimmer),
+        Just(CreatureKind::Slitherer),
     ]
 }
 

@@ -87,6 +87,39 @@ fn a_long_low_body_gets_many_pairs() {
 }
 
 #[test]
+fn a_slitherer_gets_no_limbs_and_draws_nothing() {
+    struct Counting(u64);
+    impl creature_limbs::rand_core::TryRng for Counting {
+        type Error = core::convert::Infallible;
+        fn try_next_u32(&mut self) -> Result<u32, Self::Error> {
+            self.0 += 1;
+            Ok(0)
+        }
+        fn try_next_u64(&mut self) -> Result<u64, Self::Error> {
+            self.0 += 1;
+            Ok(0)
+        }
+        fn try_fill_bytes(&mut self, dest: &mut [u8]) -> Result<(), Self::Error> {
+            self.0 += 1;
+            dest.fill(0);
+            Ok(())
+        }
+    }
+    let body = straight_body(&[0.3; 16], &[0.2; 16], 0.1, HeadEnd::Last);
+    let mut rng = Counting(0);
+    let p = plan(
+        &body,
+        CreatureKind::Slitherer,
+        &PlanOptions::DEFAULT,
+        &mut rng,
+    )
+    .unwrap();
+    assert!(p.limbs.is_empty(), "{p:?}");
+    assert_eq!(p.kind, CreatureKind::Slitherer);
+    assert_eq!(rng.0, 0, "a plan without limbs draws nothing");
+}
+
+#[test]
 fn walking_legs_reach_the_ground() {
     let body = walker_body(9);
     let p = walker(&body, &PlanOptions::DEFAULT, 11);

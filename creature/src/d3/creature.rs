@@ -382,7 +382,8 @@ impl Creature {
     /// The clips of the creature's kind, each looping (the turn where that keeps its feet
     /// plausible): walkers `idle`, `walk` (whole strides, see
     /// [`bake_walk_loop`](Self::bake_walk_loop)) and `turn` (a full turn in place, see
-    /// [`bake_turn`](Self::bake_turn)); fliers `hover` and `fly`; swimmers `idle` and `swim`.
+    /// [`bake_turn`](Self::bake_turn)); fliers `hover` and `fly`; swimmers `idle` and `swim`;
+    /// slitherers `idle` and `slither`.
     ///
     /// Fliers' wings beat by `gait::FlapParams` (flapping wings slow, 4 bones with a lagging
     /// tip; buzzing wings at 8 beats per second, the fastest a 30 fps clip shows), the body
@@ -391,13 +392,16 @@ impl Creature {
     /// flight, the tail follows through; the chains run three seconds (whole periods) before
     /// the first frame, so their start-up has died away and the clip loops. Swimmers' spines wave from
     /// head to tail by `gait::SwimParams` (`idle`: the gentle sway), the tail fin following
-    /// with a lag and the other fins fluttering. Each looping clip lasts a whole number of
-    /// its motion's periods.
+    /// with a lag and the other fins fluttering. Slitherers are baked by their
+    /// [`Animator`](crate::d3::Animator) on flat ground: `slither` crawls straight ahead at
+    /// their speed for one wave, every joint of the spine on the path the head crawled;
+    /// `idle` lies still, the front of the body raised and bobbing. Each looping clip lasts a
+    /// whole number of its motion's periods.
     ///
     /// ```
     /// use creature::d3::{generate, Kind, Params};
     ///
-    /// for kind in [Kind::Walker, Kind::Flier, Kind::Swimmer] {
+    /// for kind in [Kind::Walker, Kind::Flier, Kind::Swimmer, Kind::Slitherer] {
     ///     let c = generate(3, &Params::DEFAULT.with_kind(kind))?;
     ///     let clips = c.bake_clips()?;
     ///     assert!(clips.len() >= 2);
@@ -432,6 +436,12 @@ impl Creature {
                 alloc::vec![
                     clip::swim(self, "idle", 0.0),
                     clip::swim(self, "swim", self.speed)
+                ]
+            }
+            CreatureKind::Slitherer => {
+                alloc::vec![
+                    clip::slither(self, "idle", 0.0)?,
+                    clip::slither(self, "slither", self.speed)?
                 ]
             }
             _ => {

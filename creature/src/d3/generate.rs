@@ -94,6 +94,9 @@ pub(crate) struct KindSpec {
     pub(crate) neck_and_head: bool,
     /// Whether the limbs are registered with the gait controller (walkers).
     pub(crate) walks: bool,
+    /// Whether it lies on its belly (slitherers): no clearance under the body, more rings
+    /// along it (it bends all along), and a speed by its length.
+    pub(crate) crawls: bool,
 }
 
 /// The shared slice ranges of walkers and fliers.
@@ -110,14 +113,24 @@ fn swimmer_slices(p: &Params) -> [Span; 3] {
     ]
 }
 
-/// Every kind [`Kind::Random`] draws from, in the order it draws them.
-pub(crate) const KINDS: [KindSpec; 3] = [
+/// The slitherers' own slice ranges (long, thin bodies).
+fn slitherer_slices(p: &Params) -> [Span; 3] {
+    [
+        p.slitherer_slice_width,
+        p.slitherer_slice_height,
+        p.slitherer_slice_step,
+    ]
+}
+
+/// Every kind; [`Kind::Random`] draws from the first [`RANDOM_KINDS`], in this order.
+pub(crate) const KINDS: [KindSpec; 4] = [
     KindSpec {
         limbs: CreatureKind::Walker,
         root: RootAt::Centre,
         slices: body_slices,
         neck_and_head: true,
         walks: true,
+        crawls: false,
     },
     KindSpec {
         limbs: CreatureKind::Flier,
@@ -125,6 +138,7 @@ pub(crate) const KINDS: [KindSpec; 3] = [
         slices: body_slices,
         neck_and_head: true,
         walks: false,
+        crawls: false,
     },
     KindSpec {
         limbs: CreatureKind::Swimmer,
@@ -132,8 +146,34 @@ pub(crate) const KINDS: [KindSpec; 3] = [
         slices: swimmer_slices,
         neck_and_head: false,
         walks: false,
+        crawls: false,
+    },
+    KindSpec {
+        limbs: CreatureKind::Slitherer,
+        root: RootAt::Head,
+        slices: slitherer_slices,
+        neck_and_head: false,
+        walks: false,
+        crawls: true,
     },
 ];
+
+/// How many of [`KINDS`] (the first) [`Kind::Random`] draws from: walkers, fliers and
+/// swimmers, as it always has (a seed's random creature stays the one it was).
+const RANDOM_KINDS: usize = 3;
+
+/// A slitherer's rings along its body per ring of [`Params::rings`], and its spine bones per
+/// bone of [`Params::bone_length`] (and of the most of [`Params::spine_bones`], up to
+/// [`MAX_CRAWLER_BONES`]): it bends all along, each joint a little.
+const CRAWLER_RINGS: u32 = 2;
+
+/// The most spine bones a slitherer's doubling gives (the most [`Params::spine_bones`]
+/// allows).
+const MAX_CRAWLER_BONES: u32 = 60;
+
+/// A slitherer's speed per metre of its length, times its speed factor (m/s): at the default
+/// factors, about half a body length a second.
+const CRAWL_SPEED: f32 = 0.5;
 
 impl KindSpec {
     /// The entry of `kind`; [`Kind::Random`] draws one of [`KINDS`] uniformly.
@@ -142,9 +182,10 @@ impl KindSpec {
             Kind::Walker => &KINDS[0],
             Kind::Flier => &KINDS[1],
             Kind::Swimmer => &KINDS[2],
+            Kind::Slitherer => &KINDS[3],
             Kind::Random => {
-                let pick = (uniform(rng) * KINDS.len() as f32) as usize;
-                &KINDS[pick.min(KINDS.len() - 1)]
+                let pick = (uniform(rng) * RANDOM_KINDS as f32) as usize;
+                &KINDS[pick.min(RANDOM_KINDS - 1)]
             }
         }
     }
@@ -153,6 +194,26 @@ impl KindSpec {
 /// The pipeline for one kind, stage by stage. The stages draw from `rng` in this order, so
 /// the order is part of the output (the goldens pin it).
 fn generate_kind(rng: &mut Pcg64Mcg, params: &Params, spec: &KindSpec) -> Result<Creature, Error> {
+    let crawler;
+    let params = if spec.crawls {
+        crawler = Params {
+            rings: params.rings.saturating_mul(CRAWLER_RINGS),
+            bone_length: params.bone_length / CRAWLER_RINGS as f32,
+            spine_bones: crate::span::IntSpan::new(
+                params.spine_bones.min,
+                params
+                    .spine_bones
+                    .max
+                    .saturating_mul(CRAWLER_RINGS)
+                    .min(MAX_CRAWLER_BONES)
+                    .max(params.spine_bones.max),
+            ),
+            ..*params
+        };
+        &crawler
+    } else {
+        params
+    };
     let body = shape_body(rng, params, spec)?;
     // Where each body vertex lies on the rest-pose surface, before the spine bends.
     let surface = body_surface(
@@ -165,7 +226,8 @@ fn generate_kind(rng: &mut Pcg64Mcg, params: &Params, spec: &KindSpec) -> Result
     let salt = match spec.limbs {
         CreatureKind::Walker => 1,
         CreatureKind::Flier => 2,
-        _ => 3,
+        CreatureKind::Swimmer => 3,
+        _ => 4,
     };
     let colouring = Colouring::draw(rng, &params.colours(), salt);
     let paint = colouring.paint_body(
@@ -180,7 +242,9 @@ fn generate_kind(rng: &mut Pcg64Mcg, params: &Params, spec: &KindSpec) -> Result
     let face = if spec.neck_and_head {
         add_head(&mut mesh, &rigged.rig, head_size, &head, &colouring)?
     } else {
-        add_fish_face(&mut mesh, &rigged.rig, params, &head, &colouring)
+        // A snake's head is shorter than a fish's: its face nearer the tip.
+        let behind = if spec.crawls { 0.05 } else { 0.1 };
+        add_fish_face(&mut mesh, &rigged.rig, params, &head, &colouring, behind)
     };
     // Measured before anything else joins the head's joint.
     let neck = face
@@ -203,9 +267,12 @@ fn generate_kind(rng: &mut Pcg64Mcg, params: &Params, spec: &KindSpec) -> Result
     } else {
         (0, None)
     };
+    // A crawler's belly lies on the ground (the draw is made all the same: one order of
+    // draws for every kind).
+    let clearance = params.ground_clearance.at(uniform(rng));
     let ground = ground_under(
         &mesh,
-        params.ground_clearance.at(uniform(rng)) * rigged.length,
+        if spec.crawls { 0.0 } else { clearance } * rigged.length,
     );
     let proportions = Proportions::draw(&mut colouring.limb_rng(), params);
     let mut limbs = add_limbs(
@@ -277,7 +344,11 @@ fn generate_kind(rng: &mut Pcg64Mcg, params: &Params, spec: &KindSpec) -> Result
         ground_offset: offset,
         profiles: rigged.profiles,
         body_scale: rigged.body_scale,
-        speed: rigged.body_scale * speed_factor,
+        speed: if spec.crawls {
+            CRAWL_SPEED * rigged.length * speed_factor
+        } else {
+            rigged.body_scale * speed_factor
+        },
         gait,
         clips: Vec::new(),
         length: rigged.length,
@@ -1210,14 +1281,17 @@ fn add_head(
     Ok(Some(head::add_head(mesh, mount, shape, colouring)))
 }
 
-/// A swimmer's face on its body's front (the first `body_vertices` of `mesh`, the pill's:
-/// tail tip, rings, head tip), each part bound as the body vertex nearest it.
+/// A swimmer's (or slitherer's) face on its body's front (the first `body_vertices` of
+/// `mesh`, the pill's: tail tip, rings, head tip), on the ring `behind` × the body's length
+/// behind its front (a snake's, less than a tenth: its eyes lower on its sides), each part
+/// bound as the body vertex nearest it.
 fn add_fish_face(
     mesh: &mut MeshBuilder,
     body: &creature_autorig::Rig,
     params: &Params,
     shape: &Shape,
     colouring: &Colouring,
+    behind: f32,
 ) -> Option<head::Built> {
     let (rings, segments) = (params.rings as usize, params.segments as usize);
     let body_vertices = 2 + rings * segments;
@@ -1238,13 +1312,13 @@ fn add_fish_face(
         .copied()
         .max_by(|a, b| a.dot(forward).total_cmp(&b.dot(forward)))?;
     let length = body.spine_length();
-    // The ring about a tenth of the body's length behind the front.
+    // The ring about `behind` the body's length behind the front.
     let ring_at = |i: usize| {
         let ring = &positions[1 + i * segments..1 + (i + 1) * segments];
         let centre = ring.iter().copied().sum::<Vec3>() / segments as f32;
         (centre, ring)
     };
-    let target = front.dot(forward) - 0.1 * length;
+    let target = front.dot(forward) - behind * length;
     let i = (0..rings).min_by(|&a, &b| {
         let d = |i: usize| (ring_at(i).0.dot(forward) - target).abs();
         d(a).total_cmp(&d(b))
@@ -1261,6 +1335,12 @@ fn add_fish_face(
         ring_centre: centre,
         half_width,
         half_height,
+        // A snake's eyes lower on the sides of its head than a fish's.
+        eyes_at: if behind < 0.1 {
+            (0.92, 0.4)
+        } else {
+            (0.8, 0.6)
+        },
     };
     let nearest = |p: Vec3| {
         let v = positions
@@ -1622,6 +1702,7 @@ mod tests {
         slices: swimmer_slices,
         neck_and_head: true,
         walks: false,
+        crawls: false,
     };
 
     #[test]
@@ -1726,7 +1807,7 @@ mod tests {
     }
 
     #[test]
-    fn random_draws_every_kind_of_the_table() {
+    fn random_draws_every_kind_of_the_table_but_the_slitherer() {
         let mut seen = [false; KINDS.len()];
         for seed in 0..64 {
             let spec = KindSpec::of(Kind::Random, &mut rng_for(seed));
@@ -1736,6 +1817,9 @@ mod tests {
                 .expect("drawn from the table");
             seen[i] = true;
         }
-        assert_eq!(seen, [true; KINDS.len()]);
+        let mut expected = [true; KINDS.len()];
+        expected[RANDOM_KINDS..].fill(false);
+        assert_eq!(seen, expected);
+        assert_eq!(KINDS[RANDOM_KINDS].limbs, CreatureKind::Slitherer);
     }
 }

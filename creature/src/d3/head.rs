@@ -758,6 +758,8 @@ pub(crate) struct FishFront {
     pub(crate) ring_centre: Vec3,
     pub(crate) half_width: f32,
     pub(crate) half_height: f32,
+    /// Where up the sides the eyes sit: the cosine and sine of their angle on the ellipse.
+    pub(crate) eyes_at: (f32, f32),
 }
 
 /// A swimmer's face on the body's front: a pair of eyes on the sides of the ring behind the
@@ -774,8 +776,9 @@ pub(crate) fn add_fish_face(
     let size = w.min(h);
     let base = colouring.palette.base;
     let mut eyes = Vec::new();
-    // Eyes a third of the way up the side of the ellipse (its normal there, facing out).
-    let (c, s) = (0.8f32, 0.6f32);
+    // Eyes up the side of the ellipse (a fish's a third of the way; its normal there, facing
+    // out).
+    let (c, s) = front.eyes_at;
     for sign in [1.0f32, -1.0] {
         let point = frame.at(sign * w * c, h * s, 0.0);
         let normal = frame
@@ -951,6 +954,7 @@ mod tests {
             ring_centre: Vec3::new(0.0, 0.5, 1.7),
             half_width: 0.15,
             half_height: 0.3,
+            eyes_at: (0.8, 0.6),
         };
         let mut mesh = MeshBuilder::default();
         let built = add_fish_face(&mut mesh, front, &shape, &colouring(5), |_| Bind::one(7));

@@ -1,5 +1,5 @@
-//! 3D creatures, the 3D seed's way: walkers, fliers and swimmers with a skinned low-poly mesh,
-//! a skeleton, limbs and baked gait clips.
+//! 3D creatures, the 3D seed's way: walkers, fliers, swimmers and slitherers with a skinned
+//! low-poly mesh, a skeleton, limbs and baked gait clips.
 //!
 //! [`generate`] runs the pipeline from a seed as a short sequence of stages (see
 //! `ARCHITECTURE.md` for the crates each uses): body (blended pill profiles, FFD), rig and

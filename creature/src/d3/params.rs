@@ -18,7 +18,11 @@ pub enum Kind {
     Flier,
     /// Swims with dorsal fins, pectoral fins and a tail.
     Swimmer,
-    /// One of the three, drawn from the seed (each with probability 1/3).
+    /// Crawls on its belly without limbs (a snake): a long, thin body of many spine bones,
+    /// moving by a wave that travels from head to tail.
+    Slitherer,
+    /// One of the first three (walker, flier, swimmer), drawn from the seed (each with
+    /// probability 1/3; a seed's random creature is the one it always was).
     #[default]
     Random,
 }
@@ -49,7 +53,7 @@ pub struct Params {
     /// Default 3 (the seed's).
     pub profiles: u32,
     /// Rings of the pill along the body (between its two tip vertices). From 4 to 64.
-    /// Default 16.
+    /// Default 16. A slitherer's long body has twice as many.
     pub rings: u32,
     /// Vertices around each ring. From 3 to 64. Default 10 (low poly).
     pub segments: u32,
@@ -74,6 +78,13 @@ pub struct Params {
     pub swimmer_slice_height: Span,
     /// Swimmers' slice step (shorter). From 0.05 to 10. Default 0.6..1.1.
     pub swimmer_slice_step: Span,
+    /// Slitherers' slice width (thin: a snake's body). From 0.1 to 10. Default 0.22..0.34.
+    pub slitherer_slice_width: Span,
+    /// Slitherers' slice height. From 0.1 to 10. Default 0.2..0.3.
+    pub slitherer_slice_height: Span,
+    /// Slitherers' slice step (longer: their bodies are 10 to 20 times as long as they are
+    /// wide). From 0.05 to 10. Default 1.3..2.0.
+    pub slitherer_slice_step: Span,
     /// Uniform scale of the body. From 0.01 to 100. Default 0.5..2 (the seed's).
     pub body_scale: Span,
     /// Speed factor: the speed is the body scale times this (m/s); it is also the gait's speed
@@ -181,6 +192,9 @@ impl Params {
         swimmer_slice_width: Span::new(0.4, 0.8),
         swimmer_slice_height: Span::new(1.0, 1.8),
         swimmer_slice_step: Span::new(0.6, 1.1),
+        slitherer_slice_width: Span::new(0.22, 0.34),
+        slitherer_slice_height: Span::new(0.2, 0.3),
+        slitherer_slice_step: Span::new(1.3, 2.0),
         body_scale: Span::new(0.5, 2.0),
         speed_factor: Span::new(0.8, 1.25),
         bone_length: 0.25,
@@ -263,6 +277,17 @@ impl Params {
         self.swimmer_slice_width = width;
         self.swimmer_slice_height = height;
         self.swimmer_slice_step = step;
+        self
+    }
+
+    /// Sets the slitherers' [`slitherer_slice_width`](Self::slitherer_slice_width),
+    /// [`slitherer_slice_height`](Self::slitherer_slice_height) and
+    /// [`slitherer_slice_step`](Self::slitherer_slice_step).
+    #[must_use]
+    pub const fn with_slitherer_slices(mut self, width: Span, height: Span, step: Span) -> Self {
+        self.slitherer_slice_width = width;
+        self.slitherer_slice_height = height;
+        self.slitherer_slice_step = step;
         self
     }
 
@@ -464,6 +489,12 @@ impl Params {
             .check("swimmer_slice_height", 0.1, 10.0)?;
         self.swimmer_slice_step
             .check("swimmer_slice_step", 0.05, 10.0)?;
+        self.slitherer_slice_width
+            .check("slitherer_slice_width", 0.1, 10.0)?;
+        self.slitherer_slice_height
+            .check("slitherer_slice_height", 0.1, 10.0)?;
+        self.slitherer_slice_step
+            .check("slitherer_slice_step", 0.05, 10.0)?;
         self.body_scale.check("body_scale", 0.01, 100.0)?;
         self.speed_factor.check("speed_factor", 0.01, 10.0)?;
         scalar("bone_length", self.bone_length, 0.01, 10.0)?;

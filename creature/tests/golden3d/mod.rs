@@ -53,6 +53,7 @@ fn golden_hashes() {
         ("walker", d3::Kind::Walker),
         ("flier", d3::Kind::Flier),
         ("swimmer", d3::Kind::Swimmer),
+        ("slitherer", d3::Kind::Slitherer),
     ] {
         for seed in SEEDS {
             let c = generate(seed, &d3::Params::DEFAULT.with_kind(kind)).unwrap();

@@ -21,6 +21,7 @@ use crate::math::{Roots, max_f};
 
 pub(super) mod bake;
 mod fly_swim;
+mod slither;
 
 /// What a live creature is asked to do in one update of an [`Animator`].
 ///
@@ -99,6 +100,16 @@ pub const ARRIVAL_RADIUS: f32 = 0.25;
 ///   waves as in that clip, faster the faster it swims (half the clip's rate at rest, the
 ///   clip's at its speed), blending into the idle sway below half its speed, and bends toward
 ///   its turn as a walker's tail does; each joint keeps within the clip's bend limits.
+///
+/// A slitherer crawls forward along its heading (at the speed of the intent's velocity along
+/// it; it never crawls backward) by lateral undulation: its head crawls along a path whose
+/// heading swings from side to side, every joint of its spine lies on the path the head has
+/// crawled (no part of its belly slides sideways), and it steers by turning that path, no
+/// tighter than its skin allows (asked to turn standing still, it creeps forward to turn).
+/// Each joint lies on the ground under it, its bone tilted with the ground's slope. Its
+/// [`lead`](Self::lead), the head's place, goes to an [`Intent::GoTo`] target; its
+/// [`beat_frequency`](Self::beat_frequency) is its body waves per second. Lying still, it
+/// raises the front of its body.
 ///
 /// ```
 /// use creature::d3::{generate, Animator, Intent, Kind, Params};
@@ -180,6 +191,8 @@ enum Drive {
     Fly(alloc::boxed::Box<fly_swim::Flight>),
     /// A swimmer: its body wave and swimming height.
     Swim(alloc::boxed::Box<fly_swim::Swimming>),
+    /// A slitherer: its body wave and the path it crawls along.
+    Slither(alloc::boxed::Box<slither::Slithering>),
 }
 
 /// One leg's (or arm's) posing: its joints, its knee hinge and how far its knee's ring of
@@ -347,20 +360,22 @@ impl LiveLeg {
 
 impl Animator {
     /// An animator for `creature` at its rest place, facing +Z: a walker standing, a flier
-    /// hovering, a swimmer at its swimming height (each over flat ground at `y = 0` until the
-    /// first update).
+    /// hovering, a swimmer at its swimming height, a slitherer lying in its wave's shape
+    /// (each over flat ground at `y = 0` until the first update).
     ///
     /// # Errors
     /// [`Error::NoGait`] for a walker without a gait set-up (or a kind this version does not
     /// animate); [`Error::Gait`] if the gait controller rejects its set-up (an edited
-    /// creature); [`Error::BadParent`] for a skeleton whose parents form a cycle or a leg whose
-    /// hip, knee and foot joints are not a chain; [`Error::Degenerate`] for a gait set-up
-    /// whose `hip_joints` and `legs` differ in length.
+    /// creature); [`Error::BadParent`] for a skeleton whose parents form a cycle, a leg whose
+    /// hip, knee and foot joints are not a chain or a slitherer's spine that is not one;
+    /// [`Error::Degenerate`] for a gait set-up whose `hip_joints` and `legs` differ in length
+    /// or a slitherer with fewer than two spine joints.
     pub fn new(creature: &Creature) -> Result<Self, Error> {
         match (&creature.gait, creature.kind) {
             (Some(setup), _) => Self::walker(creature, setup),
             (None, CreatureKind::Flier) => Self::flier(creature),
             (None, CreatureKind::Swimmer) => Self::swimmer(creature),
+            (None, CreatureKind::Slitherer) => Self::slitherer(creature),
             (None, _) => Err(Error::NoGait),
         }
     }
@@ -544,6 +559,11 @@ impl Animator {
                 self.drive = Drive::Swim(swimming);
                 done
             }
+            Drive::Slither(mut slithering) => {
+                let done = self.slither(&mut slithering, dt, (velocity, turn_rate), ground);
+                self.drive = Drive::Slither(slithering);
+                done
+            }
         }
     }
 
@@ -666,7 +686,8 @@ impl Animator {
                         what: "intent target",
                     });
                 }
-                let to = Vec2::new(target.x - self.position.x, target.z - self.position.z);
+                let lead = self.lead();
+                let to = Vec2::new(target.x - lead.x, target.z - lead.z);
                 let distance = to.norm();
                 if distance <= ARRIVAL_RADIUS * self.length {
                     return Ok((Vec3::ZERO, 0.0));
@@ -907,10 +928,29 @@ impl Animator {
     }
 
     /// Where the creature stands (x, z) and the ground height its body follows (y); for a
-    /// flier or swimmer, the height of its model origin (its rest pose's ground level).
+    /// flier or swimmer, the height of its model origin (its rest pose's ground level); for a
+    /// slitherer, its model origin were its body straight behind its head (x, z) and the
+    /// ground under its head (y).
     #[must_use]
     pub const fn position(&self) -> Vec3 {
         self.position
+    }
+
+    /// The point that goes to an [`Intent::GoTo`] target: the [`position`](Self::position);
+    /// for a slitherer, its head's place on the ground (its body follows where its head goes).
+    #[must_use]
+    pub fn lead(&self) -> Vec3 {
+        match self.drive {
+            Drive::Slither(_) => {
+                let ahead = Quat::from_rotation_y(self.heading) * self.rest_root;
+                Vec3::new(
+                    self.position.x + ahead.x,
+                    self.position.y,
+                    self.position.z + ahead.z,
+                )
+            }
+            _ => self.position,
+        }
     }
 
     /// The creature's heading, radians about +Y from +Z.
@@ -956,12 +996,13 @@ impl Animator {
     }
 
     /// Whether the creature has come to rest: a walker with every foot planted, a flier
-    /// landed and still, a swimmer slowed to a twentieth of its speed.
+    /// landed and still, a swimmer or slitherer slowed to a twentieth of its speed.
     fn settled(&self) -> bool {
         match &self.drive {
             Drive::Walk => self.controller.all_planted(),
             Drive::Fly(flight) => flight.landed(self.length),
             Drive::Swim(swimming) => swimming.speed() <= 0.05 * self.speed,
+            Drive::Slither(slithering) => slithering.speed() <= 0.05 * self.speed,
         }
     }
 }
@@ -1323,6 +1364,8 @@ impl Creature {
     /// - A flier's is `fly_to`: it starts landed on the ground at the origin, takes off, flies
     ///   there and lands (see [`Animator`]); its frames have no contacts.
     /// - A swimmer's is `swim_to`: it swims there and ends once it has slowed to a sway.
+    /// - A slitherer's is `slither_to`: it crawls there and ends once it has slowed to its
+    ///   idle sway.
     ///
     /// ```
     /// use creature::d3::{generate, Kind, Params};
@@ -1379,6 +1422,7 @@ impl Creature {
                 "fly_to"
             }
             Drive::Swim(_) => "swim_to",
+            Drive::Slither(_) => "slither_to",
         };
         let most = (max_seconds * CLIP_FPS) as usize + 1;
         let mut clip = animator.empty_clip(name);
@@ -1388,7 +1432,7 @@ impl Creature {
             let dt = if frame == 0 { 0.0 } else { 1.0 / CLIP_FPS };
             animator.update(dt, intent, ground)?;
             animator.push_frame(&mut clip, &Pose::IDENTITY);
-            let at = animator.position;
+            let at = animator.lead();
             if Vec2::new(target.x - at.x, target.z - at.z).norm() <= arrived {
                 // Arrived (a go-to's intent now, as a stand's): it stands, a flier lands.
                 intent = Intent::Stand;

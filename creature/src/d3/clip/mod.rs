@@ -31,7 +31,7 @@ pub(crate) use walk::MAX_LEG_TURN_RATE;
 
 pub(crate) use flight::flight;
 pub(crate) use kinematics::{pose, skinned};
-pub(crate) use live::bake::live_walk;
+pub(crate) use live::bake::{live_walk, slither};
 pub(crate) use swim::swim;
 pub(crate) use walk::{AtRest, gait, run_loop, turn, walk_loop};
 
@@ -473,7 +473,7 @@ pub(super) fn limit_looping_turn_rate(rotations: &mut [Quat], max: f32) {
     rotations[cycle] = rotations[0];
 }
 
-fn frames_for(seconds: f32) -> (usize, f32) {
+pub(super) fn frames_for(seconds: f32) -> (usize, f32) {
     let frames = ((seconds * CLIP_FPS + 0.5) as usize).max(1) + 1;
     (frames, (frames - 1) as f32 / seconds.max(1e-6))
 }

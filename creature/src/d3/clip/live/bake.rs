@@ -69,6 +69,47 @@ pub(crate) fn live_walk(c: &Creature, seconds: f32) -> Result<Clip, Error> {
     record(c, "walk", seconds, c.speed, 0.0)
 }
 
+/// A slitherer's looping `idle` (`speed` 0: lying still, the front of its body swaying, one
+/// sway) or `slither` (crawling straight ahead at `speed`, one wave), baked on flat ground by
+/// its [`Animator`]: each frame as the animator poses it, the root relative to the first.
+///
+/// # Errors
+/// [`Error::Unsupported`] for a creature that is not a slitherer; the animator's errors.
+pub(crate) fn slither(c: &Creature, name: &'static str, speed: f32) -> Result<Clip, Error> {
+    let mut animator = Animator::new(c)?;
+    let Drive::Slither(slithering) = &animator.drive else {
+        return Err(Error::Unsupported {
+            what: "slither clips of a creature that is not a slitherer",
+        });
+    };
+    let (seconds, intent) = if speed > 0.0 {
+        let velocity = Vec3::Z * speed;
+        (
+            1.0 / slithering.frequency_at(speed),
+            Intent::Move {
+                velocity,
+                turn_rate: 0.0,
+            },
+        )
+    } else {
+        (1.0 / super::slither::IDLE_RATE, Intent::Stand)
+    };
+    let (frames, fps) = super::super::frames_for(seconds);
+    let mut clip = animator.empty_clip(name);
+    clip.fps = fps;
+    let mut start = Pose::IDENTITY;
+    for frame in 0..frames {
+        let dt = if frame == 0 { 0.0 } else { 1.0 / fps };
+        animator.update(dt, intent, &Plane::GROUND)?;
+        if frame == 0 {
+            start = Pose::from_yaw(animator.position, animator.heading);
+        }
+        animator.push_frame(&mut clip, &start);
+    }
+    clip.loop_error = loop_error(&clip);
+    Ok(clip)
+}
+
 impl Animator {
     /// A clip named `name` without frames, with a track for every joint the animator turns
     /// (translations too for the legs' hips).

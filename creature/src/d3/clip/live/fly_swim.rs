@@ -415,7 +415,7 @@ impl Animator {
     }
 
     /// Marks `joints` as turned by the drive (their local rotations change).
-    fn turning(mut self, joints: &[usize]) -> Self {
+    pub(super) fn turning(mut self, joints: &[usize]) -> Self {
         for &j in joints {
             if let Some(turns) = self.turns.get_mut(j) {
                 *turns = true;
@@ -540,7 +540,7 @@ impl Animator {
     }
 
     /// Every joint's world transform from the local ones (parents first).
-    fn forward_kinematics(&mut self) {
+    pub(super) fn forward_kinematics(&mut self) {
         for &j in &self.order {
             self.world[j] = match self.parents[j] {
                 Some(p) => self.world[p] * self.local[j],
@@ -814,8 +814,8 @@ impl Animator {
         Ok(())
     }
 
-    /// A flier's wing beats or a swimmer's body waves per second in the last update (they
-    /// follow its speed); `None` for a walker. (A landing flier's wings slow their sweep to
+    /// A flier's wing beats or a swimmer's or slitherer's body waves per second in the last
+    /// update (they follow its speed); `None` for a walker. (A landing flier's wings slow their sweep to
     /// rest, not their rate.)
     #[must_use]
     pub fn beat_frequency(&self) -> Option<f32> {
@@ -823,6 +823,7 @@ impl Animator {
             Drive::Walk => None,
             Drive::Fly(flight) => Some(flight.hold.frequency),
             Drive::Swim(swimming) => Some(swimming.hold.frequency),
+            Drive::Slither(slithering) => Some(slithering.frequency()),
         }
     }
 }

@@ -1,0 +1,487 @@
+//! The live animator's slitherers: lateral undulation without slip. The head crawls along a
+//! path whose heading swings from side to side (a serpenoid: the heading is the way it goes
+//! plus `amplitude · sin(2π s / wavelength)` at the path's length `s`), and every joint of
+//! the spine lies on the path the head has crawled, so the wave travels from head to tail as
+//! fast as the body moves forward and no part of the body slides sideways (as a snake in
+//! grass, pushing against what it passes). The path turns where the creature steers, so its
+//! body bends into the turn and follows it. Each joint lies on the ground under it, its bone
+//! tilted with the ground's slope.
+
+use alloc::vec::Vec;
+
+use glam::{Affine3A, Mat3A, Quat, Vec2, Vec3};
+
+use creature_gait::Ground;
+
+use super::super::swim::swim_spine;
+use super::Animator;
+use crate::Error;
+use crate::d3::Creature;
+use crate::math::Roots;
+
+/// The most the path's heading swings either side of the way the creature goes (radians), and
+/// the least: a thick body's wave is as large as its skin allows in between.
+pub(crate) const SLITHER_AMPLITUDE: f32 = 0.6;
+const MIN_AMPLITUDE: f32 = 0.25;
+
+/// The share of the sharpest curve its skin allows (each joint's bend limit over its bones)
+/// that the wave's sharpest bend takes, and that its tightest turn takes on top of it. (The
+/// limits are cautious: the audit measures the skin itself.)
+const BEND_SHARE: f32 = 0.7;
+
+/// The body wave's length along the path, in body lengths: more than the body, so each wave
+/// carries it forward more than its length (the path's length over the ground it covers is
+/// [`Slithering::stretch`]).
+pub(crate) const SLITHER_WAVELENGTH: f32 = 1.25;
+
+/// Points of the head's path kept per wavelength.
+const PATH_SAMPLES: usize = 80;
+
+/// The tightest a slitherer's path ever turns, as curvature × body length: a circle a quarter
+/// of its length in radius.
+const MAX_CURVATURE: f32 = 4.0;
+
+/// Lying still, it raises the front of its body: the head this many body lengths (bobbing by
+/// a quarter of it, this many times a second), less and less over this share of the body from
+/// the head. (It does not sway: the wave's bends leave its skin too little to bend further.)
+const IDLE_LIFT: f32 = 0.06;
+const IDLE_LIFT_REACH: f32 = 0.3;
+pub(crate) const IDLE_RATE: f32 = 0.3;
+
+/// Rays down for the ground under a joint start this many body lengths above the ground it
+/// lay on in the last update and reach as far below it.
+const RAY_REACH: f32 = 2.0;
+
+/// A slitherer's body wave and the path it crawls along.
+#[derive(Debug, Clone)]
+pub(in crate::d3::clip) struct Slithering {
+    /// The spine from the head (the root) toward the tail's tip: its joints, each one's
+    /// distance from the head along the rest spine over the ground (metres), and each one's
+    /// height over the ground at rest.
+    spine: Vec<usize>,
+    arc: Vec<f32>,
+    rise: Vec<f32>,
+    /// Per spine bone (joint `i` to `i + 1`): its rest frame's inverse (side, up, along the
+    /// bone toward the tail, as rows).
+    rest_frames: Vec<Mat3A>,
+    /// The wave's amplitude (radians) and length (metres of path).
+    amplitude: f32,
+    wavelength: f32,
+    /// Metres of path per metre the body covers over the ground.
+    stretch: f32,
+    /// The tightest its path turns (per metre).
+    curvature: f32,
+    /// Metres of path between two kept points.
+    step: f32,
+    /// The head's path: a ring of its points (x, z), `step` apart, the newest at `newest`.
+    path: Vec<Vec2>,
+    newest: usize,
+    /// Points added, modulo [`PATH_SAMPLES`]: the wave's phase at the newest point.
+    count: usize,
+    /// How far the head is past the newest point (metres of path, less than `step`).
+    past: f32,
+    /// The idle sway's phase (turns).
+    idle: f32,
+    /// The speed over the ground (m/s), smoothed, and the waves per second of the last update.
+    speed: f32,
+    frequency: f32,
+    /// Per spine joint, the ground under it in the last update: height and normal.
+    ground: Vec<(f32, Vec3)>,
+    /// Per spine bone, how far its joints rise for it to clear the ground (scratch).
+    raise: Vec<f32>,
+}
+
+/// The unit direction (x, z) of a path heading `angle` (radians from +Z toward +X).
+fn direction(angle: f32) -> Vec2 {
+    Vec2::new(crate::math::sin(angle), crate::math::cos(angle))
+}
+
+impl Slithering {
+    /// The wave's phase (turns) halfway between the path's points `count` and `count + 1`.
+    fn mid_phase(count: isize) -> f32 {
+        let samples = PATH_SAMPLES as isize;
+        (count.rem_euclid(samples) as f32 + 0.5) / PATH_SAMPLES as f32
+    }
+
+    /// The path's heading at `phase` (turns) of the wave, the way it goes being `heading`.
+    fn heading_at(&self, heading: f32, phase: f32) -> f32 {
+        heading + self.amplitude * crate::math::sin(core::f32::consts::TAU * phase)
+    }
+
+    /// The ring's index `k` points older than the newest.
+    fn older(&self, k: usize) -> usize {
+        let n = self.path.len();
+        (self.newest + n - k % n) % n
+    }
+
+    /// A path as if the head had always crawled straight along `heading` to `head`, the wave
+    /// at phase 0 there.
+    fn fill(&mut self, head: Vec2, heading: f32) {
+        self.newest = 0;
+        self.count = 0;
+        self.past = 0.0;
+        self.path[0] = head;
+        for k in 1..self.path.len() {
+            let phase = Self::mid_phase(-(k as isize));
+            let back = direction(self.heading_at(heading, phase)) * self.step;
+            let (from, to) = (self.older(k - 1), self.older(k));
+            self.path[to] = self.path[from] - back;
+        }
+    }
+
+    /// The head crawls `distance` metres further along its path, which goes along `heading`.
+    fn advance(&mut self, distance: f32, heading: f32) {
+        self.past += distance;
+        while self.past >= self.step {
+            let phase = Self::mid_phase(self.count as isize);
+            let next =
+                self.path[self.newest] + direction(self.heading_at(heading, phase)) * self.step;
+            self.newest = (self.newest + 1) % self.path.len();
+            self.path[self.newest] = next;
+            self.count = (self.count + 1) % PATH_SAMPLES;
+            self.past -= self.step;
+        }
+    }
+
+    /// Where the head is (x, z), the path going along `heading`.
+    fn head(&self, heading: f32) -> Vec2 {
+        let phase = Self::mid_phase(self.count as isize);
+        self.path[self.newest] + direction(self.heading_at(heading, phase)) * self.past
+    }
+
+    /// The path's point `behind` metres behind the head at `head` (the oldest kept point
+    /// beyond the path's end).
+    fn point(&self, behind: f32, head: Vec2) -> Vec2 {
+        if behind <= self.past {
+            if self.past <= 0.0 {
+                return head;
+            }
+            return head.lerp(self.path[self.newest], behind / self.past);
+        }
+        let back = (behind - self.past) / self.step;
+        let k = crate::math::floor_f(back);
+        let last = self.path.len() - 1;
+        let at = k as usize;
+        if at >= last {
+            return self.path[self.older(last)];
+        }
+        self.path[self.older(at)].lerp(self.path[self.older(at + 1)], back - k)
+    }
+
+    /// The body waves per second, crawling at `speed` (m/s over the ground).
+    pub(in crate::d3::clip) fn frequency_at(&self, speed: f32) -> f32 {
+        speed * self.stretch / self.wavelength
+    }
+
+    /// The waves per second of the last update.
+    pub(super) const fn frequency(&self) -> f32 {
+        self.frequency
+    }
+
+    /// The speed over the ground (m/s), smoothed.
+    pub(super) const fn speed(&self) -> f32 {
+        self.speed
+    }
+}
+
+impl Animator {
+    /// A slitherer's animator: lying straight on flat ground, its body in the wave's shape.
+    pub(super) fn slitherer(c: &Creature) -> Result<Self, Error> {
+        let (spine, _) = swim_spine(c);
+        if spine.len() < 2 {
+            return Err(Error::Degenerate {
+                what: "slitherer spine (fewer than two joints)",
+            });
+        }
+        // A chain from the head, each joint the next one's parent.
+        let joints = &c.skeleton.joints;
+        for pair in spine.windows(2) {
+            let parent = joints.get(pair[1]).and_then(|j| j.parent);
+            if pair[0] >= joints.len() || parent != Some(pair[0]) {
+                return Err(Error::BadParent {
+                    bone: pair[1],
+                    parent,
+                });
+            }
+        }
+        let rest: Vec<Vec3> = spine
+            .iter()
+            .map(|&j| c.skeleton.joints[j].position)
+            .collect();
+        let mut arc = Vec::with_capacity(spine.len());
+        let mut along = 0.0f32;
+        for (i, p) in rest.iter().enumerate() {
+            if i > 0 {
+                along += Vec2::new(p.x - rest[i - 1].x, p.z - rest[i - 1].z).norm();
+            }
+            arc.push(along);
+        }
+        let rest_frames = rest
+            .windows(2)
+            .map(|pair| {
+                let along = (pair[1] - pair[0]).unit_or(Vec3::NEG_Z);
+                frame(along, Vec3::Y).transpose()
+            })
+            .collect();
+        let bend = c.bend_limits();
+        let limits: Vec<f32> = spine
+            .iter()
+            .map(|&j| bend.get(j).copied().unwrap_or(f32::INFINITY))
+            .collect();
+        let limits_of = |i: usize| Some(limits[i]).filter(|l| l.is_finite());
+        let length = c.length.max(1e-3);
+        let wavelength = SLITHER_WAVELENGTH * length;
+        // The wave's amplitude: its sharpest bend (the serpenoid's curvature peaks at
+        // `2π · amplitude / wavelength`) within [`BEND_SHARE`] of each joint's limit over the
+        // bones either side, but at least [`MIN_AMPLITUDE`].
+        // The sharpest curve its skin allows: each joint's limit over its bones either side.
+        let bendable = (1..spine.len() - 1)
+            .filter_map(|i| Some(limits_of(i)? / (0.5 * (arc[i + 1] - arc[i - 1]))))
+            .fold(f32::INFINITY, f32::min);
+        // (`bendable` is a number: `f32::min` passes NaN over.)
+        let amplitude = (BEND_SHARE * bendable * wavelength / core::f32::consts::TAU)
+            .clamp(MIN_AMPLITUDE, SLITHER_AMPLITUDE);
+        // Its tightest turn: as much again, at most [`MAX_CURVATURE`].
+        let curvature = (BEND_SHARE * bendable).min(MAX_CURVATURE / length);
+        let step = wavelength / PATH_SAMPLES as f32;
+        // The path's points span the body and two more.
+        let points = crate::math::ceil_non_negative(along / step) + 3;
+        let slithering = Slithering {
+            rise: rest.iter().map(|p| p.y).collect(),
+            ground: alloc::vec![(0.0, Vec3::Y); spine.len()],
+            raise: alloc::vec![0.0; spine.len()],
+
+            spine,
+            arc,
+            rest_frames,
+            amplitude,
+            wavelength,
+            stretch: 1.0 / mean_cos(amplitude),
+            curvature,
+            step,
+            path: alloc::vec![Vec2::ZERO; points],
+            newest: 0,
+            count: 0,
+            past: 0.0,
+            idle: 0.0,
+            speed: 0.0,
+            frequency: 0.0,
+        };
+        let controller =
+            creature_gait::Controller::chains_only(length, &creature_gait::GaitOptions::DEFAULT)?;
+        let bones = slithering.spine.len() - 1;
+        let turned: Vec<usize> = slithering.spine[1..bones].to_vec();
+        let max_turn = curvature * c.speed * slithering.stretch;
+        let drive = super::Drive::Slither(alloc::boxed::Box::new(slithering));
+        let mut animator = Self::bare(c, controller, max_turn, drive)?.turning(&turned);
+        animator.update(0.0, super::Intent::Stand, &creature_gait::Plane::GROUND)?;
+        animator.fresh = true;
+        Ok(animator)
+    }
+
+    /// A slitherer's update (see [`update`](Self::update)): it crawls forward along its
+    /// heading at the speed of `velocity`'s part along it, turning at `turn_rate`, no tighter
+    /// than [`MAX_CURVATURE`] allows (asked to turn while still, it creeps forward to).
+    pub(super) fn slither<G: Ground + ?Sized>(
+        &mut self,
+        s: &mut Slithering,
+        dt: f32,
+        (velocity, turn_rate): (Vec3, f32),
+        ground: &G,
+    ) -> Result<(), Error> {
+        let (share, _) = self.smoothing(dt);
+        let forward = direction(self.heading);
+        let wanted = (velocity.x * forward.x + velocity.z * forward.y).max(0.0);
+        let mut speed = if self.fresh {
+            wanted
+        } else {
+            s.speed + (wanted - s.speed) * share
+        };
+        // A turn needs the body to crawl along it: at least fast enough for the turn's circle.
+        let curvature = s.curvature;
+        let creep = (turn_rate.abs() / (curvature * s.stretch)).min(self.speed);
+        speed = speed.max(creep);
+        let path_speed = speed * s.stretch;
+
+        let turn = turn_rate.clamp(-curvature * path_speed, curvature * path_speed);
+        let heading = super::wrap(self.heading + turn * dt);
+        let yaw = Quat::from_rotation_y(heading);
+        let root_offset = yaw * self.rest_root;
+        if self.fresh {
+            let head = Vec2::new(
+                self.position.x + root_offset.x,
+                self.position.z + root_offset.z,
+            );
+            s.fill(head, heading);
+        } else {
+            s.advance(path_speed * dt, heading);
+        }
+        s.idle = fract(s.idle + IDLE_RATE * dt);
+        let relative = if self.speed > 0.0 {
+            speed / self.speed
+        } else {
+            0.0
+        };
+        // Lying still it raises its front; crawling from half its speed, not at all.
+        let still = 1.0 - (2.0 * relative).min(1.0);
+
+        let head = s.head(heading);
+        // Each joint on the ground under its place on the path (its rest height above it,
+        // along the ground's normal).
+        let reach = RAY_REACH * self.length;
+        let fresh_height = self.position.y;
+        // Each joint its bone's length from the one before: as far along the path as the bone
+        // reaches level, less where the ground climbs or falls that way (its slope under the
+        // joint before, at most 45°), so the bones reach their places on a hill too.
+        let mut behind = 0.0;
+        let mut before = head;
+        for i in 0..s.spine.len() {
+            if i > 0 {
+                let level = s.arc[i] - s.arc[i - 1];
+                let ahead = s.point(behind + level, head) - before;
+                let normal = s.ground[i - 1].1;
+                let slope = if normal.y > 0.0 {
+                    ((normal.x * ahead.x + normal.z * ahead.y)
+                        / (normal.y * ahead.norm().max(1e-9)))
+                    .clamp(-1.0, 1.0)
+                } else {
+                    0.0
+                };
+                behind += level / crate::math::sqrt(1.0 + slope * slope);
+            }
+            let at = s.point(behind, head);
+            before = at;
+            let mut lift = 0.0;
+            let lifted = behind / (IDLE_LIFT_REACH * self.length);
+            if still > 0.0 && lifted < 1.0 {
+                let bob = 0.75 + 0.25 * crate::math::sin(core::f32::consts::TAU * s.idle);
+                lift = still * bob * IDLE_LIFT * self.length * (1.0 - lifted) * (1.0 - lifted);
+            }
+            let last = if self.fresh {
+                fresh_height
+            } else {
+                s.ground[i].0
+            };
+            let cast = |origin: Vec3, (above, below): (f32, f32)| {
+                ground
+                    .cast_down(origin + Vec3::Y * above, above + below)
+                    .filter(creature_gait::RayHit::is_valid)
+            };
+            let origin = Vec3::new(at.x, last, at.y);
+            let hit = if self.fresh {
+                super::put_down(origin, (reach, reach), |h| h.point.y, cast)
+            } else {
+                cast(origin, (reach, reach))
+            };
+            s.ground[i] = match hit {
+                Some(hit) => (hit.point.y, hit.normal.unit_or(Vec3::Y)),
+                None => (last, Vec3::Y),
+            };
+            // The joint's place, kept in the scratch of its world transform: straight above the
+            // ground, as high as its rest height along the normal puts it on a plane (at most
+            // twice as high, on a step's face).
+            let (height, normal) = s.ground[i];
+            let up = (s.rise[i] + lift) / normal.y.max(0.5);
+            let joint = Vec3::new(at.x, height + up, at.y);
+            self.world[s.spine[i]].translation = joint.into();
+        }
+        // Each bone clear of the ground under its middle (a crest or a step's edge between two
+        // joints): both its joints raised as far as its middle is short of its height there.
+        for i in 0..s.spine.len() - 1 {
+            let (a, b) = (
+                Vec3::from(self.world[s.spine[i]].translation),
+                Vec3::from(self.world[s.spine[i + 1]].translation),
+            );
+            let middle = 0.5 * (a + b);
+            let rise = 0.5 * (s.rise[i] + s.rise[i + 1]);
+            let origin = Vec3::new(middle.x, middle.y + reach, middle.z);
+            s.raise[i] = ground
+                .cast_down_point(origin, 2.0 * reach)
+                .map_or(0.0, |hit| (hit.y + rise - middle.y).max(0.0));
+        }
+        let last = s.spine.len() - 1;
+        for i in 0..=last {
+            let before = if i > 0 { s.raise[i - 1] } else { 0.0 };
+            let after = if i < last { s.raise[i] } else { 0.0 };
+            self.world[s.spine[i]].translation.y += before.max(after);
+        }
+        // Each bone along the path, its up the ground's normal. (Turns as unit quaternions: a
+        // product of matrices would grow its rounding down the chain.)
+        let mut parent = Quat::IDENTITY;
+        // Where the joint is as posed so far (a bone is as long as it is, so its end may miss
+        // its place a little: the next one aims at its own place from there).
+        let mut at = Vec3::from(self.world[s.spine[0]].translation);
+        for i in 0..s.spine.len() - 1 {
+            let to = Vec3::from(self.world[s.spine[i + 1]].translation);
+            let along = (to - at).unit_or(-Vec3::new(forward.x, 0.0, forward.y));
+            let normal = tilted((s.ground[i].1 + s.ground[i + 1].1).unit_or(Vec3::Y));
+            let world = crate::math::quat_from_mat3a(&(frame(along, normal) * s.rest_frames[i]));
+            let joint = s.spine[i];
+            let local = if i == 0 {
+                self.local[joint] = Affine3A::from_rotation_translation(world.unit(), at);
+                world.unit()
+            } else {
+                let local = (parent.conjugate() * world).unit();
+                self.local[joint] =
+                    Affine3A::from_rotation_translation(local, self.rest_local[joint]);
+                local
+            };
+            parent = (parent * local).unit();
+            at += parent * self.rest_local[s.spine[i + 1]];
+        }
+        let (height, _) = s.ground[0];
+        self.position = Vec3::new(head.x - root_offset.x, height, head.y - root_offset.z);
+        self.heading = heading;
+        self.turn = turn;
+        s.speed = speed;
+        s.frequency = s.frequency_at(speed);
+        self.fresh = false;
+        self.forward_kinematics();
+        self.skin();
+        Ok(())
+    }
+}
+
+/// The most a slitherer's body rolls or pitches with the ground's normal under it (radians):
+/// a step's face tilts the normal far more than the ground the body lies on.
+const MAX_TILT: f32 = 0.35;
+
+/// `normal` (a unit vector, up) tilted from +Y by at most [`MAX_TILT`].
+fn tilted(normal: Vec3) -> Vec3 {
+    let cos = crate::math::cos(MAX_TILT);
+    if normal.y >= cos {
+        return normal;
+    }
+    let level = Vec3::new(normal.x, 0.0, normal.z).unit_or(Vec3::X);
+    level * crate::math::sin(MAX_TILT) + Vec3::Y * cos
+}
+
+/// `x` less its whole part (for non-negative phases).
+fn fract(x: f32) -> f32 {
+    x - crate::math::floor_f(x)
+}
+
+/// The rotation whose columns are the side, the up (`up` square to `along`, a unit vector)
+/// and `along`.
+fn frame(along: Vec3, up: Vec3) -> Mat3A {
+    // `up` along the bone (a cliff): any up square to it (+Z and +Y are not both along it).
+    let up = (up - along * up.dot(along))
+        .try_unit()
+        .or_else(|| (Vec3::Z - along * along.z).try_unit())
+        .unwrap_or(Vec3::Y);
+    let side = up.cross(along);
+    Mat3A::from_cols(side.into(), up.into(), along.into())
+}
+
+/// The mean over a period of `cos(amplitude · sin θ)`: the share of its path's length a
+/// serpenoid of that amplitude covers along its way.
+fn mean_cos(amplitude: f32) -> f32 {
+    let n = 64;
+    let sum: f32 = (0..n)
+        .map(|k| {
+            let theta = core::f32::consts::TAU * (k as f32 + 0.5) / n as f32;
+            crate::math::cos(amplitude * crate::math::sin(theta))
+        })
+        .sum();
+    sum / n as f32
+}

@@ -1136,7 +1136,9 @@ fn a_slitherer_crawls_more_than_its_length_per_body_wave_its_belly_on_flat_groun
         let (_, distance, waves) = crawls(&c, &Plane::GROUND, forward, 8.0, &label);
         assert!(waves > 2.0, "{label}: {waves} waves");
         let per_wave = distance / waves / c.length;
-        assert!(per_wave >= 1.0, "{label}: {per_wave} body lengths per wave");
+        // (The issue asks for one; the wave is made to carry it 1.14 or more: less would be
+        // a body slipping back.)
+        assert!(per_wave >= 1.1, "{label}: {per_wave} body lengths per wave");
         // And at its speed: 8 s at the speed it was asked (its head, where the position is,
         // swinging from side to side).
         assert!(
@@ -1164,8 +1166,8 @@ fn a_slitherer_climbs_a_fifteen_degree_slope_to_a_target_on_its_belly() {
 fn a_slitherer_turns_round_over_hills_to_a_target_behind_it_on_its_belly() {
     for seed in [1, 2, 3, 4] {
         let c = slitherer(seed);
-        // Steps a third of its body's thickness high (about 2% of its length); see the
-        // README for higher ones.
+        // Steps 1.5% of its length high (about a third of its body's thickness), as
+        // `TerrainParams::for_creature` makes them for it.
         let params = TerrainParams::DEFAULT
             .with_extent(40.0 * c.length, 321)
             .with_hills(0.3 * c.length, 6.0 * c.length)
@@ -1178,5 +1180,40 @@ fn a_slitherer_turns_round_over_hills_to_a_target_behind_it_on_its_belly() {
             let (arrived, _, _) = crawls(&c, &ground, |_| Intent::GoTo(target), 90.0, &label);
             assert!(arrived.is_some(), "{label}: did not arrive");
         }
+    }
+}
+
+/// A creature edited to a speed that is not a number or below zero is a typed error; one edited
+/// to crawl a millionth of a metre or a million metres a second animates without a panic, a
+/// hang or a NaN (a crawl past its whole kept path is taken straight), and one too slow to
+/// bake a wave in a minute (or so fast a wave is shorter than a frame) is a typed error, not a
+/// clip of a million seconds.
+#[test]
+fn regression_an_edited_slitherers_speed_is_an_error_or_animates() {
+    let c = slitherer(3);
+    for speed in [f32::NAN, f32::INFINITY, -1.0] {
+        let mut edited = c.clone();
+        edited.speed = speed;
+        assert!(Animator::new(&edited).is_err(), "speed {speed}");
+    }
+    for speed in [0.0, 1e-6, 1e6] {
+        let mut edited = c.clone();
+        edited.speed = speed;
+        let mut animator = Animator::new(&edited).unwrap();
+        for k in 0..20 {
+            let intent = Intent::Move {
+                velocity: Vec3::Z * speed,
+                turn_rate: if k % 2 == 0 { 1.0 } else { -1.0 },
+            };
+            animator.update(0.1, intent, &Plane::GROUND).unwrap();
+            assert!(
+                animator.skinning_matrices().iter().all(|m| m.is_finite()),
+                "speed {speed}"
+            );
+        }
+        // Standing still its `slither` is its lying still; a wave longer than a minute, or
+        // shorter than a frame, is no clip.
+        let baked = edited.bake_clips().map(|clips| clips.len());
+        assert_eq!(baked.is_ok(), speed == 0.0, "speed {speed}: {baked:?}");
     }
 }

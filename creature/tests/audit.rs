@@ -75,6 +75,44 @@ fn audit_slitherers() {
     run(Kind::Slitherer, &Check::ALL);
 }
 
+/// The belly checks fail where they should. A slitherer's `slither` (which passes, and by
+/// which the audit knows it for a slitherer) frozen in its first frame's shape while its root
+/// still travels (a body gliding along in its S, as a fish's wave would carry it) slides its
+/// belly sideways; raised by 2% of its length, its body is off the ground.
+#[test]
+fn the_belly_checks_fail_a_gliding_or_a_floating_slitherer() {
+    let c = d3::generate(3, &d3::Params::DEFAULT.with_kind(Kind::Slitherer)).unwrap();
+    let slither = c
+        .clips
+        .iter()
+        .find(|clip| clip.name == "slither")
+        .unwrap()
+        .clone();
+    let audit = |clip: d3::Clip| {
+        let mut c = c.clone();
+        c.clips = vec![clip];
+        audit_glb(&glb_3d(&c, &c.clips).unwrap(), &Limits::DEFAULT).unwrap()
+    };
+    let report = audit(slither.clone());
+    assert!(report.slitherer);
+    assert!(report.passes(), "{}", listed(&report));
+    let mut gliding = slither.clone();
+    let first = gliding.root_rotation[0];
+    gliding.root_rotation.fill(first);
+    for track in &mut gliding.tracks {
+        let first = track.rotations[0];
+        track.rotations.fill(first);
+    }
+    let report = audit(gliding);
+    assert!(report.fails(Check::BellySlides), "{}", listed(&report));
+    let mut floating = slither;
+    for t in &mut floating.root_translation {
+        t.y += 0.02 * c.length;
+    }
+    let report = audit(floating);
+    assert!(report.fails(Check::OffGround), "{}", listed(&report));
+}
+
 /// Slitherers crawling over terrain to a point 10 body lengths away (`slither_to`, as
 /// `--terrain` exports it) hold every check on that terrain: the belly on it, never in it,
 /// never sliding sideways.

@@ -63,7 +63,7 @@ pub fn seed_from(seed: f64) -> Result<u64, String> {
     }
 }
 
-/// The kind named `kind`: `walker`, `flier`, `swimmer` or `random`.
+/// The kind named `kind`: `walker`, `flier`, `swimmer`, `slitherer` or `random`.
 ///
 /// # Errors
 /// For any other name.
@@ -72,9 +72,10 @@ pub fn kind_from(kind: &str) -> Result<Kind, String> {
         "walker" => Ok(Kind::Walker),
         "flier" => Ok(Kind::Flier),
         "swimmer" => Ok(Kind::Swimmer),
+        "slitherer" => Ok(Kind::Slitherer),
         "random" => Ok(Kind::Random),
         other => Err(format!(
-            "kind `{other}` is not one of walker, flier, swimmer, random"
+            "kind `{other}` is not one of walker, flier, swimmer, slitherer, random"
         )),
     }
 }
@@ -451,7 +452,7 @@ impl World {
         Ok(self.get(i)?.creature.length)
     }
 
-    /// Creature `i`'s kind: `walker`, `flier` or `swimmer`.
+    /// Creature `i`'s kind: `walker`, `flier`, `swimmer` or `slitherer`.
     ///
     /// # Errors
     /// No creature `i`.
@@ -460,6 +461,7 @@ impl World {
             creature::limbs::CreatureKind::Walker => "walker",
             creature::limbs::CreatureKind::Flier => "flier",
             creature::limbs::CreatureKind::Swimmer => "swimmer",
+            creature::limbs::CreatureKind::Slitherer => "slitherer",
             _ => "creature",
         }
         .to_string())
@@ -507,13 +509,14 @@ impl World {
         at
     }
 
-    /// Creature `i`'s position (its root's ground point: `x, y, z`) and heading (radians).
+    /// Creature `i`'s place (the point that goes to its target, `Animator::lead`: its root's
+    /// ground point, a slitherer's head's; `x, y, z`) and heading (radians).
     ///
     /// # Errors
     /// No creature `i`.
     pub fn place(&self, i: usize) -> Result<Vec<f32>, JsError> {
         let a = &self.get(i)?.animator;
-        let p = a.position();
+        let p = a.lead();
         Ok(vec![p.x, p.y, p.z, a.heading()])
     }
 
@@ -565,7 +568,7 @@ impl World {
         for (i, live) in self.creatures.iter_mut().enumerate() {
             let intent = match live.target {
                 Some(t) => {
-                    let p = live.animator.position();
+                    let p = live.animator.lead();
                     let near = ARRIVAL_RADIUS * live.creature.length;
                     if Vec2::new(p.x - t.x, p.z - t.z).length() <= near {
                         live.target = None;

@@ -120,7 +120,7 @@ async function main() {
   check(covered > 0.005, `the creature covers ${(100 * covered).toFixed(1)}% of the canvas`);
 
   // A click on the ground: each kind goes there and arrives.
-  for (const kind of ['walker', 'flier', 'swimmer']) {
+  for (const kind of ['walker', 'flier', 'swimmer', 'slitherer']) {
     if (kind !== 'walker') {
       const f = await page.evaluate(() => window.playground.frames);
       await page.selectOption('#kind', kind);

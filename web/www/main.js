@@ -609,7 +609,7 @@ Object.assign(playground, {
   bench({ seeds = 20, walkers = 1000, frames = 60 } = {}) {
     const median = (xs) => xs.sort((a, b) => a - b)[xs.length >> 1];
     const out = {};
-    for (const kind of ['walker', 'flier', 'swimmer']) {
+    for (const kind of ['walker', 'flier', 'swimmer', 'slitherer']) {
       const times = [];
       for (let s = 0; s < seeds; s++) {
         const t0 = performance.now();

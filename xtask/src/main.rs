@@ -842,9 +842,9 @@ fn gltf(w: &Workspace) -> Result<(), String> {
     c.args(["--kind", "random", "--count", "8", "--seed", "100", "--out"]);
     c.arg(dir.join("3d"));
     run(c)?;
-    // A walker, a flier and a swimmer crossing procedural terrain, the terrain a second node
-    // of each file.
-    for kind in ["walker", "flier", "swimmer"] {
+    // A walker, a flier, a swimmer and a slitherer crossing procedural terrain, the terrain a
+    // second node of each file.
+    for kind in ["walker", "flier", "swimmer", "slitherer"] {
         let mut c = example(w, "generate");
         c.args(["--kind", kind, "--seed", "7", "--terrain", "3", "--out"]);
         c.arg(dir.join("terrain").join(kind));

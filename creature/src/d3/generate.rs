@@ -176,7 +176,8 @@ const MAX_CRAWLER_BONES: u32 = 60;
 const CRAWL_SPEED: f32 = 0.5;
 
 impl KindSpec {
-    /// The entry of `kind`; [`Kind::Random`] draws one of [`KINDS`] uniformly.
+    /// The entry of `kind`; [`Kind::Random`] draws one of the first [`RANDOM_KINDS`] of
+    /// [`KINDS`] uniformly.
     fn of(kind: Kind, rng: &mut impl Rng) -> &'static Self {
         match kind {
             Kind::Walker => &KINDS[0],

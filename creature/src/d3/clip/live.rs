@@ -104,8 +104,9 @@ pub const ARRIVAL_RADIUS: f32 = 0.25;
 /// A slitherer crawls forward along its heading (at the speed of the intent's velocity along
 /// it; it never crawls backward) by lateral undulation: its head crawls along a path whose
 /// heading swings from side to side, every joint of its spine lies on the path the head has
-/// crawled (no part of its belly slides sideways), and it steers by turning that path, no
-/// tighter than its skin allows (asked to turn standing still, it creeps forward to turn).
+/// crawled (no part of its belly slides sideways), and it steers by turning that path (its
+/// tightest turn bending its joints as far again as its wave does; asked to turn faster than
+/// it crawls for that, it crawls faster, up to its speed).
 /// Each joint lies on the ground under it, its bone tilted with the ground's slope. Its
 /// [`lead`](Self::lead), the head's place, goes to an [`Intent::GoTo`] target; its
 /// [`beat_frequency`](Self::beat_frequency) is its body waves per second. Lying still, it
@@ -138,7 +139,8 @@ pub const ARRIVAL_RADIUS: f32 = 0.25;
 #[derive(Debug, Clone)]
 pub struct Animator {
     controller: Controller,
-    /// What moves the body: a walker's legs, a flier's wings, a swimmer's wave.
+    /// What moves the body: a walker's legs, a flier's wings, a swimmer's wave, a
+    /// slitherer's path.
     drive: Drive,
     /// The body's place on the ground (x, z; y the ground's height it follows) and heading.
     position: Vec3,
@@ -169,8 +171,8 @@ pub struct Animator {
     /// Per joint, the leg (index into `legs`) whose hip it is.
     leg_at: Vec<Option<usize>>,
     /// Per joint, whether its local transform turns: a walker's root, legs' joints and neck's
-    /// and tail's bending joints; a flier's wings and chains; a swimmer's spine and fins. The
-    /// others only sit at their rest offset.
+    /// and tail's bending joints; a flier's wings and chains; a swimmer's spine and fins; a
+    /// slitherer's spine. The others only sit at their rest offset.
     turns: Vec<bool>,
     /// The time step the smoothing shares were last computed for, and the shares (terrain,
     /// turn bend).
@@ -1364,8 +1366,8 @@ impl Creature {
     /// - A flier's is `fly_to`: it starts landed on the ground at the origin, takes off, flies
     ///   there and lands (see [`Animator`]); its frames have no contacts.
     /// - A swimmer's is `swim_to`: it swims there and ends once it has slowed to a sway.
-    /// - A slitherer's is `slither_to`: it crawls there and ends once it has slowed to its
-    ///   idle sway.
+    /// - A slitherer's is `slither_to`: it crawls there (its head to the target) and ends
+    ///   once it has slowed to lie still.
     ///
     /// ```
     /// use creature::d3::{generate, Kind, Params};

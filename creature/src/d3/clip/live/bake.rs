@@ -69,12 +69,14 @@ pub(crate) fn live_walk(c: &Creature, seconds: f32) -> Result<Clip, Error> {
     record(c, "walk", seconds, c.speed, 0.0)
 }
 
-/// A slitherer's looping `idle` (`speed` 0: lying still, the front of its body swaying, one
-/// sway) or `slither` (crawling straight ahead at `speed`, one wave), baked on flat ground by
-/// its [`Animator`]: each frame as the animator poses it, the root relative to the first.
+/// A slitherer's looping `idle` (`speed` 0: lying still, the front of its body raised and
+/// bobbing once) or `slither` (crawling straight ahead at `speed`, one wave), baked on flat
+/// ground by its [`Animator`]: each frame as the animator poses it, the root relative to the
+/// first.
 ///
 /// # Errors
-/// [`Error::Unsupported`] for a creature that is not a slitherer; the animator's errors.
+/// [`Error::Unsupported`] for a creature that is not a slitherer; [`Error::OutOfRange`] for a
+/// wave longer than a minute (a creature edited to crawl very slowly); the animator's errors.
 pub(crate) fn slither(c: &Creature, name: &'static str, speed: f32) -> Result<Clip, Error> {
     let mut animator = Animator::new(c)?;
     let Drive::Slither(slithering) = &animator.drive else {
@@ -94,7 +96,7 @@ pub(crate) fn slither(c: &Creature, name: &'static str, speed: f32) -> Result<Cl
     } else {
         (1.0 / super::slither::IDLE_RATE, Intent::Stand)
     };
-    let (frames, fps) = super::super::frames_for(seconds);
+    let (frames, fps) = super::super::frames_for(clip_seconds(seconds)?);
     let mut clip = animator.empty_clip(name);
     clip.fps = fps;
     let mut start = Pose::IDENTITY;

@@ -80,7 +80,7 @@ pub(in crate::d3::clip) struct Slithering {
     count: usize,
     /// How far the head is past the newest point (metres of path, less than `step`).
     past: f32,
-    /// The idle sway's phase (turns).
+    /// The idle bob's phase (turns).
     idle: f32,
     /// The speed over the ground (m/s), smoothed, and the waves per second of the last update.
     speed: f32,
@@ -89,6 +89,8 @@ pub(in crate::d3::clip) struct Slithering {
     ground: Vec<(f32, Vec3)>,
     /// Per spine bone, how far its joints rise for it to clear the ground (scratch).
     raise: Vec<f32>,
+    /// Whether the spine is every joint of the skeleton (none to pose by forward kinematics).
+    whole: bool,
 }
 
 /// The unit direction (x, z) of a path heading `angle` (radians from +Z toward +X).
@@ -130,7 +132,15 @@ impl Slithering {
     }
 
     /// The head crawls `distance` metres further along its path, which goes along `heading`.
+    /// A crawl past every point kept (a creature edited to crawl its length many times in
+    /// one update) is taken straight along `heading`, the path behind it filled afresh.
     fn advance(&mut self, distance: f32, heading: f32) {
+        let kept = self.step * self.path.len() as f32;
+        if !(self.past + distance < kept) {
+            let head = self.head(heading) + direction(heading) * distance;
+            self.fill(head, heading);
+            return;
+        }
         self.past += distance;
         while self.past >= self.step {
             let phase = Self::mid_phase(self.count as isize);
@@ -187,6 +197,19 @@ impl Slithering {
 impl Animator {
     /// A slitherer's animator: lying straight on flat ground, its body in the wave's shape.
     pub(super) fn slitherer(c: &Creature) -> Result<Self, Error> {
+        if !c.speed.is_finite() {
+            return Err(Error::NonFinite {
+                what: "creature speed",
+            });
+        }
+        if c.speed < 0.0 {
+            return Err(Error::OutOfRange {
+                what: "creature speed",
+                value: c.speed,
+                min: 0.0,
+                max: f32::INFINITY,
+            });
+        }
         let (spine, _) = swim_spine(c);
         if spine.len() < 2 {
             return Err(Error::Degenerate {
@@ -250,6 +273,7 @@ impl Animator {
             rise: rest.iter().map(|p| p.y).collect(),
             ground: alloc::vec![(0.0, Vec3::Y); spine.len()],
             raise: alloc::vec![0.0; spine.len()],
+            whole: spine.len() == joints.len(),
 
             spine,
             arc,
@@ -281,7 +305,8 @@ impl Animator {
 
     /// A slitherer's update (see [`update`](Self::update)): it crawls forward along its
     /// heading at the speed of `velocity`'s part along it, turning at `turn_rate`, no tighter
-    /// than [`MAX_CURVATURE`] allows (asked to turn while still, it creeps forward to).
+    /// than [`Slithering::curvature`] allows (asked to turn faster than its crawl allows, it
+    /// crawls faster, up to its speed).
     pub(super) fn slither<G: Ground + ?Sized>(
         &mut self,
         s: &mut Slithering,
@@ -299,7 +324,11 @@ impl Animator {
         };
         // A turn needs the body to crawl along it: at least fast enough for the turn's circle.
         let curvature = s.curvature;
-        let creep = (turn_rate.abs() / (curvature * s.stretch)).min(self.speed);
+        let creep = if curvature > 0.0 {
+            (turn_rate.abs() / (curvature * s.stretch)).min(self.speed)
+        } else {
+            0.0
+        };
         speed = speed.max(creep);
         let path_speed = speed * s.stretch;
 
@@ -333,12 +362,16 @@ impl Animator {
         // Each joint its bone's length from the one before: as far along the path as the bone
         // reaches level, less where the ground climbs or falls that way (its slope under the
         // joint before, at most 45°), so the bones reach their places on a hill too.
+        // (The path's way from the joint before is taken as its way from the one before that:
+        // back along the heading from the head.)
         let mut behind = 0.0;
         let mut before = head;
+        let mut previous = head + forward;
+        let bob = 0.75 + 0.25 * crate::math::sin(core::f32::consts::TAU * s.idle);
         for i in 0..s.spine.len() {
             if i > 0 {
                 let level = s.arc[i] - s.arc[i - 1];
-                let ahead = s.point(behind + level, head) - before;
+                let ahead = before - previous;
                 let normal = s.ground[i - 1].1;
                 let slope = if normal.y > 0.0 {
                     ((normal.x * ahead.x + normal.z * ahead.y)
@@ -350,11 +383,13 @@ impl Animator {
                 behind += level / crate::math::sqrt(1.0 + slope * slope);
             }
             let at = s.point(behind, head);
+            if i > 0 {
+                previous = before;
+            }
             before = at;
             let mut lift = 0.0;
             let lifted = behind / (IDLE_LIFT_REACH * self.length);
             if still > 0.0 && lifted < 1.0 {
-                let bob = 0.75 + 0.25 * crate::math::sin(core::f32::consts::TAU * s.idle);
                 lift = still * bob * IDLE_LIFT * self.length * (1.0 - lifted) * (1.0 - lifted);
             }
             let last = if self.fresh {
@@ -387,11 +422,24 @@ impl Animator {
         }
         // Each bone clear of the ground under its middle (a crest or a step's edge between two
         // joints): both its joints raised as far as its middle is short of its height there.
+        // Where the ground under its joints is one plane (their normals alike, its height
+        // between them as that plane has it), its middle is on it: no ray is cast.
         for i in 0..s.spine.len() - 1 {
             let (a, b) = (
                 Vec3::from(self.world[s.spine[i]].translation),
                 Vec3::from(self.world[s.spine[i + 1]].translation),
             );
+            let ((ground_a, normal_a), (ground_b, normal_b)) = (s.ground[i], s.ground[i + 1]);
+            let normal = normal_a + normal_b;
+            let run = b - a;
+            let planar = normal_a.dot(normal_b) > PLANAR
+                && normal.y > 0.0
+                && ((ground_b - ground_a) * normal.y + normal.x * run.x + normal.z * run.z).abs()
+                    < PLANAR_GAP * run.norm() * normal.y;
+            if planar {
+                s.raise[i] = 0.0;
+                continue;
+            }
             let middle = 0.5 * (a + b);
             let rise = 0.5 * (s.rise[i] + s.rise[i + 1]);
             let origin = Vec3::new(middle.x, middle.y + reach, middle.z);
@@ -407,28 +455,34 @@ impl Animator {
         }
         // Each bone along the path, its up the ground's normal. (Turns as unit quaternions: a
         // product of matrices would grow its rounding down the chain.)
-        let mut parent = Quat::IDENTITY;
         // Where the joint is as posed so far (a bone is as long as it is, so its end may miss
-        // its place a little: the next one aims at its own place from there).
+        // its place a little: the next one aims at its own place from there), and the turn of
+        // the bone before. Each joint's world transform is set here (its local one too): the
+        // spine's forward kinematics, done as it is posed.
         let mut at = Vec3::from(self.world[s.spine[0]].translation);
-        for i in 0..s.spine.len() - 1 {
+        let mut parent = Quat::IDENTITY;
+        let back = -Vec3::new(forward.x, 0.0, forward.y);
+        let last = s.spine.len() - 1;
+        for i in 0..last {
             let to = Vec3::from(self.world[s.spine[i + 1]].translation);
-            let along = (to - at).unit_or(-Vec3::new(forward.x, 0.0, forward.y));
+            let along = (to - at).unit_or(back);
             let normal = tilted((s.ground[i].1 + s.ground[i + 1].1).unit_or(Vec3::Y));
             let world = crate::math::quat_from_mat3a(&(frame(along, normal) * s.rest_frames[i]));
             let joint = s.spine[i];
-            let local = if i == 0 {
-                self.local[joint] = Affine3A::from_rotation_translation(world.unit(), at);
-                world.unit()
+            self.local[joint] = if i == 0 {
+                Affine3A::from_rotation_translation(world, at)
             } else {
-                let local = (parent.conjugate() * world).unit();
-                self.local[joint] =
-                    Affine3A::from_rotation_translation(local, self.rest_local[joint]);
-                local
+                Affine3A::from_rotation_translation(
+                    parent.conjugate() * world,
+                    self.rest_local[joint],
+                )
             };
-            parent = (parent * local).unit();
-            at += parent * self.rest_local[s.spine[i + 1]];
+            self.world[joint] = Affine3A::from_rotation_translation(world, at);
+            parent = world;
+            at += world * self.rest_local[s.spine[i + 1]];
         }
+        // The tail's tip: where its bone ends, turned as it.
+        self.world[s.spine[last]] = Affine3A::from_rotation_translation(parent, at);
         let (height, _) = s.ground[0];
         self.position = Vec3::new(head.x - root_offset.x, height, head.y - root_offset.z);
         self.heading = heading;
@@ -436,11 +490,19 @@ impl Animator {
         s.speed = speed;
         s.frequency = s.frequency_at(speed);
         self.fresh = false;
-        self.forward_kinematics();
+        if !s.whole {
+            // Joints off the spine follow it.
+            self.forward_kinematics();
+        }
         self.skin();
         Ok(())
     }
 }
+
+/// The ground under two joints is one plane when their normals' cosine is above this and the
+/// height between them is that plane's within this share of the distance between them.
+const PLANAR: f32 = 0.9995;
+const PLANAR_GAP: f32 = 0.01;
 
 /// The most a slitherer's body rolls or pitches with the ground's normal under it (radians):
 /// a step's face tilts the normal far more than the ground the body lies on.

@@ -562,7 +562,7 @@ impl Animator {
                 done
             }
             Drive::Slither(mut slithering) => {
-                let done = self.slither(&mut slithering, dt, (velocity, turn_rate), ground);
+                let done = self.slither(&mut slithering, dt, (velocity, turn_rate), &ground);
                 self.drive = Drive::Slither(slithering);
                 done
             }

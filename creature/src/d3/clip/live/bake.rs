@@ -76,7 +76,8 @@ pub(crate) fn live_walk(c: &Creature, seconds: f32) -> Result<Clip, Error> {
 ///
 /// # Errors
 /// [`Error::Unsupported`] for a creature that is not a slitherer; [`Error::OutOfRange`] for a
-/// wave longer than a minute (a creature edited to crawl very slowly); the animator's errors.
+/// wave longer than a minute or shorter than a frame (a creature edited to crawl very slowly
+/// or very fast); the animator's errors.
 pub(crate) fn slither(c: &Creature, name: &'static str, speed: f32) -> Result<Clip, Error> {
     let mut animator = Animator::new(c)?;
     let Drive::Slither(slithering) = &animator.drive else {

@@ -202,12 +202,15 @@ impl Animator {
                 what: "creature speed",
             });
         }
-        if c.speed < 0.0 {
+        // (At most as fast as a place may be far from the origin: its crawl in an update stays
+        // a number.)
+        let fastest = creature_gait::MAX_COORDINATE;
+        if !(0.0..=fastest).contains(&c.speed) {
             return Err(Error::OutOfRange {
                 what: "creature speed",
                 value: c.speed,
                 min: 0.0,
-                max: f32::INFINITY,
+                max: fastest,
             });
         }
         let (spine, _) = swim_spine(c);
@@ -218,6 +221,14 @@ impl Animator {
         }
         // A chain from the head, each joint the next one's parent.
         let joints = &c.skeleton.joints;
+        if let Some(&root) = spine.first()
+            && let Some(parent) = joints.get(root).and_then(|j| j.parent)
+        {
+            return Err(Error::BadParent {
+                bone: root,
+                parent: Some(parent),
+            });
+        }
         for pair in spine.windows(2) {
             let parent = joints.get(pair[1]).and_then(|j| j.parent);
             if pair[0] >= joints.len() || parent != Some(pair[0]) {
@@ -307,12 +318,15 @@ impl Animator {
     /// heading at the speed of `velocity`'s part along it, turning at `turn_rate`, no tighter
     /// than [`Slithering::curvature`] allows (asked to turn faster than its crawl allows, it
     /// crawls faster, up to its speed).
-    pub(super) fn slither<G: Ground + ?Sized>(
+    ///
+    /// (One body for every ground: its rays through a virtual call, which costs little
+    /// against the pose, and keeps one copy of it in a WebAssembly module.)
+    pub(super) fn slither(
         &mut self,
         s: &mut Slithering,
         dt: f32,
         (velocity, turn_rate): (Vec3, f32),
-        ground: &G,
+        ground: &dyn Ground,
     ) -> Result<(), Error> {
         let (share, _) = self.smoothing(dt);
         let forward = direction(self.heading);
@@ -363,10 +377,11 @@ impl Animator {
         // reaches level, less where the ground climbs or falls that way (its slope under the
         // joint before, at most 45°), so the bones reach their places on a hill too.
         // (The path's way from the joint before is taken as its way from the one before that:
-        // back along the heading from the head.)
+        // for the first bone, the path's way at the head.)
         let mut behind = 0.0;
         let mut before = head;
-        let mut previous = head + forward;
+        // (A point a step ahead of the head on the path's line there.)
+        let mut previous = 2.0 * head - s.point(s.step, head);
         let bob = 0.75 + 0.25 * crate::math::sin(core::f32::consts::TAU * s.idle);
         for i in 0..s.spine.len() {
             if i > 0 {
@@ -423,7 +438,9 @@ impl Animator {
         // Each bone clear of the ground under its middle (a crest or a step's edge between two
         // joints): both its joints raised as far as its middle is short of its height there.
         // Where the ground under its joints is one plane (their normals alike, its height
-        // between them as that plane has it), its middle is on it: no ray is cast.
+        // between them as that plane has it), its middle is taken to be on it: no ray is cast
+        // (an obstacle narrower than a bone between them, on a ground of your own, is not
+        // seen).
         for i in 0..s.spine.len() - 1 {
             let (a, b) = (
                 Vec3::from(self.world[s.spine[i]].translation),

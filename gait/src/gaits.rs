@@ -20,10 +20,14 @@ use crate::leg::{Leg, LimbKind};
 /// | 4 | one at a time: left hind, left fore, right hind, right fore | diagonal pairs | bound: hind pair, fore pair, with a flight phase |
 /// | 6 and more | a wave from the back in three groups (two legs at a time on six) | two alternating groups (tripods on six) | two alternating groups, swings overlapping (a fast tripod on six; rarely all feet up) |
 ///
+/// A hopper ([`GaitOptions::hop`](crate::GaitOptions::hop)) hops instead of trotting and
+/// running: [`Hop`](Gait::Hop), every walking leg in one group.
+///
 /// Legs whose [`group`](crate::Leg::group) the caller set keep their groups in every gait;
 /// a run still lengthens and overlaps its swings (all feet up at once only with two groups).
 ///
-/// Gaits are ordered by speed: `Walk < Trot < Run`.
+/// Gaits are ordered by speed, `Walk < Trot < Run`; `Hop`, a style rather than a speed,
+/// comes last.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Default)]
 #[non_exhaustive]
 pub enum Gait {
@@ -39,6 +43,21 @@ pub enum Gait {
     /// At high speed: longer swings, and the next group lifts off before the one in the air
     /// lands, so with two groups for a moment no foot is on the ground (a flight phase).
     Run,
+    /// A hopper's gait from the trot's speed up (or at every speed without gaits by speed):
+    /// every walking leg lifts off together once one wants to step, swings over 0.6 of the
+    /// stride (all feet in the air: a flight phase) and lands
+    /// together; they stand until the body has carried them back out of reach.
+    Hop,
+}
+
+/// The swing's share of a hop's stride (the body's travel while the feet are in the air over
+/// the step's length): the feet are in the air for most of a hop and stand for the rest, as
+/// a hopping kangaroo's do (duty factor about 0.3–0.4 at speed).
+pub(crate) const HOP_SWING_FRACTION: f32 = 1.5;
+
+impl Gait {
+    /// Every gait, in order (the index of each is `gait as usize`).
+    pub(crate) const ALL: [Self; 4] = [Self::Walk, Self::Trot, Self::Run, Self::Hop];
 }
 
 /// The speeds at which a walker changes gait, as Froude numbers `v² / (g · l)`: `v` the body's
@@ -126,9 +145,16 @@ impl GaitSpeeds {
     }
 
     /// The gait for `speed` on legs of `leg` metres, coming from `current`: up at the
-    /// thresholds, down below [`hysteresis`](Self::hysteresis) of them.
+    /// thresholds, down below [`hysteresis`](Self::hysteresis) of them. Coming from
+    /// [`Gait::Hop`], the hop is taken as a trot (a hopper hops from the trot's speed up): the
+    /// answer is never `Hop`.
     #[must_use]
     pub fn choose(&self, current: Gait, speed: f32, leg: f32) -> Gait {
+        let current = if current == Gait::Hop {
+            Gait::Trot
+        } else {
+            current
+        };
         let froude = self.froude(speed, leg);
         let at = |scale: f32| {
             if froude >= self.run * scale {
@@ -245,6 +271,8 @@ pub(crate) fn groups(legs: &[Leg], sides: &Sides, gait: Gait, by_speed: bool) ->
             alternate(&mut groups, 2);
             2
         }
+        // Every leg in group 0 (as built).
+        Gait::Hop => 1,
     };
     debug_assert!(
         legs.iter()

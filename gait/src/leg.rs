@@ -340,7 +340,7 @@ pub(crate) struct Layout {
     pub(crate) group_count: u8,
     /// Each gait's groups and group count, by `Gait as usize` (the caller's groups in each, if
     /// the caller set them).
-    pub(crate) by_gait: [(Vec<u8>, u8); 3],
+    pub(crate) by_gait: [(Vec<u8>, u8); 4],
     /// The leg that must be planted before this one may step (3D seed rule).
     pub(crate) opposite: Vec<Option<usize>>,
     /// The other leg of this leg's left/right pair (hip roll).
@@ -434,8 +434,7 @@ pub(crate) fn layout(legs: &[Leg], by_speed: bool) -> Result<Layout, GaitError> 
         right,
         centre,
     };
-    let by_gait =
-        [Gait::Walk, Gait::Trot, Gait::Run].map(|gait| gaits::groups(legs, &sides, gait, by_speed));
+    let by_gait = Gait::ALL.map(|gait| gaits::groups(legs, &sides, gait, by_speed));
     let (groups, group_count) = by_gait[Gait::Walk as usize].clone();
     let Sides { left, right, .. } = sides;
     // The seed's opposite references: a foot steps only while its opposite is planted; the

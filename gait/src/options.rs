@@ -131,6 +131,12 @@ pub struct GaitOptions {
     /// [`Gait`](crate::Gait)), starting (and [reset](crate::Controller::reset)) in the gait
     /// they give standing still; `None` (default) to walk in one pattern at every speed.
     pub gaits: Option<GaitSpeeds>,
+    /// Hopping: `true` to hop instead of trotting and running, every walking leg in one group
+    /// (both feet of a biped together, as a kangaroo or a sparrow), a flight phase each hop
+    /// (see [`Gait::Hop`](crate::Gait::Hop)). With [`gaits`](Self::gaits) set, a hopper walks
+    /// below the trot's speed and hops from there; without, it hops at every speed. Legs whose
+    /// [`group`](crate::Leg::group) the caller set keep their groups. Default `false`.
+    pub hop: bool,
 }
 
 impl GaitOptions {
@@ -171,12 +177,21 @@ impl GaitOptions {
         foot_spacing: 0.25,
         min_swing_time: 0.1,
         gaits: None,
+        hop: false,
     };
 
     /// Sets [`gaits`](Self::gaits): change gait by speed at `speeds`.
     #[must_use]
     pub const fn with_gaits(mut self, speeds: GaitSpeeds) -> Self {
         self.gaits = Some(speeds);
+        self
+    }
+
+    /// Sets [`hop`](Self::hop): hop instead of trotting and running (or at every speed
+    /// without [`gaits`](Self::gaits)).
+    #[must_use]
+    pub const fn with_hop(mut self, hop: bool) -> Self {
+        self.hop = hop;
         self
     }
 

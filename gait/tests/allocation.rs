@@ -119,6 +119,12 @@ fn updates_allocate_nothing_after_the_controller_is_built() {
         &options.with_gaits(GaitSpeeds::DEFAULT),
     )
     .unwrap();
+    // A biped that hops.
+    let mut hopper = Controller::new(
+        &creature_legs(1, 1.0),
+        &options.with_gaits(GaitSpeeds::DEFAULT).with_hop(true),
+    )
+    .unwrap();
     c.add_chain(Chain::new(Vec3::new(0.0, 0.0, -0.6), Vec3::NEG_Z, 6, 0.15).with_gravity(4.0))
         .unwrap();
     let mut flier = Controller::chains_only(0.5, &options).unwrap();
@@ -141,10 +147,12 @@ fn updates_allocate_nothing_after_the_controller_is_built() {
         walk(&mut c, &field, on_field, 300);
         walk(&mut flier, &plane, |_, _| 2.0, 300);
         walk(&mut changing, &plane, |_, _| 0.0, 480);
+        walk(&mut hopper, &plane, |_, _| 0.0, 480);
     });
     assert_eq!(count, 0, "updates allocated {count} times");
     assert!(steps > 50, "{steps} steps");
     assert_ne!(changing.gait(), Gait::Walk, "never changed gait");
+    assert_eq!(hopper.gait(), Gait::Hop, "never hopped");
     // The counter works: a controller's construction allocates.
     assert!(allocations_in(|| drop(Controller::new(&legs, &options).unwrap())) > 0);
 }

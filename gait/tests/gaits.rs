@@ -20,6 +20,8 @@ struct Sample {
     turn: f32,
     stepping: Vec<bool>,
     all_up: bool,
+    /// The body's height as shown (the reaction's bob included).
+    height: f32,
 }
 
 /// What a drive saw, worst over its frames.
@@ -85,10 +87,21 @@ fn angle(a: Quat, b: Quat) -> f32 {
 /// number: at 60 frames a second, a mouse's trot turns its joints further between frames
 /// than a horse's, whatever its gait).
 fn drive(pairs: usize, length: f32, seconds: f32, speed: impl Fn(f32) -> f32) -> Drive {
+    let options = GaitOptions::DEFAULT.with_gaits(GaitSpeeds::DEFAULT);
+    drive_with(&options, pairs, length, seconds, speed)
+}
+
+/// [`drive`] with `options`.
+fn drive_with(
+    options: &GaitOptions,
+    pairs: usize,
+    length: f32,
+    seconds: f32,
+    speed: impl Fn(f32) -> f32,
+) -> Drive {
     let dt = DT * length.sqrt();
     let legs = creature_legs(pairs, length);
-    let options = GaitOptions::DEFAULT.with_gaits(GaitSpeeds::DEFAULT);
-    let mut c = Controller::new(&legs, &options).unwrap();
+    let mut c = Controller::new(&legs, options).unwrap();
     let mut d = Drive::default();
     let mut z = 0.0f32;
     let mut last: Option<Vec<(Quat, Quat)>> = None;
@@ -123,6 +136,7 @@ fn drive(pairs: usize, length: f32, seconds: f32, speed: impl Fn(f32) -> f32) ->
                 .map(|s| s.stepping && !s.is_escaping())
                 .collect(),
             all_up: states.iter().all(|s| !s.planted),
+            height: c.reacted_pose().translation.y,
         });
     }
     d.escapes = c.leg_states().iter().map(|s| s.escapes).sum();
@@ -346,4 +360,114 @@ fn bad_gait_speeds_are_rejected_with_the_field_named() {
     assert!(error.contains("run Froude number"), "{error}");
     let bad = GaitOptions::DEFAULT.with_gaits(GaitSpeeds::DEFAULT.with_gravity(f32::NAN));
     assert!(Controller::new(&legs, &bad).is_err());
+}
+
+/// The frames of `samples` in which any leg lifted off in turn, and those in which every leg
+/// did.
+fn lift_offs<'a>(samples: impl Iterator<Item = &'a Sample>) -> (usize, usize) {
+    let (mut any, mut all) = (0, 0);
+    let mut last: Option<&Vec<bool>> = None;
+    for s in samples {
+        if let Some(last) = last {
+            let lifted: Vec<bool> = last
+                .iter()
+                .zip(&s.stepping)
+                .map(|(a, b)| !a && *b)
+                .collect();
+            if lifted.iter().any(|&x| x) {
+                any += 1;
+                all += usize::from(lifted.iter().zip(last).all(|(&l, &was)| l || was));
+            }
+        }
+        last = Some(&s.stepping);
+    }
+    (any, all)
+}
+
+#[test]
+fn a_hopper_walks_then_hops_with_its_feet_together_and_its_body_thrown_up() {
+    let s = GaitSpeeds::DEFAULT;
+    let options = GaitOptions::DEFAULT
+        .with_gaits(GaitSpeeds::DEFAULT)
+        .with_hop(true);
+    for (pairs, length) in [(1, 0.3f32), (1, 1.0), (1, 3.0), (2, 1.0)] {
+        // 0.1 to 3.5 and back, over 24 s.
+        let (low, top) = (speed_at(0.1, length), speed_at(3.5, length));
+        let d = drive_with(&options, pairs, length, 24.0, |t| {
+            low + (top - low) * (1.0 - (t / 12.0 - 1.0).abs())
+        });
+        let label = format!("{pairs} pairs of {length} m legs");
+        let froude = |v: f32| v * v / (G * length);
+        let changes = d.changes();
+        let gaits: Vec<Gait> = changes.iter().map(|c| c.1).collect();
+        assert_eq!(gaits, [Gait::Walk, Gait::Hop, Gait::Walk], "{label}");
+        // Hopping from the trot's threshold, walking again below its hysteresis.
+        for (k, (&(speed, gait), threshold)) in changes[1..]
+            .iter()
+            .zip([s.trot, s.trot * s.hysteresis])
+            .enumerate()
+        {
+            let f = froude(speed);
+            let late = if k == 0 { f - threshold } else { threshold - f };
+            assert!(
+                (0.0..=0.15).contains(&late),
+                "{label}: {gait:?} at Froude {f}, threshold {threshold}"
+            );
+        }
+        let turn = d.max_joint_turn.to_degrees();
+        assert!(turn <= 45.0, "{label}: a joint turned {turn}° in a frame");
+        let (near, away) = d.turns_near_changes_and_elsewhere(30);
+        assert!(
+            near <= 1.5 * away,
+            "{label}: {near} rad a frame near a change, {away} elsewhere"
+        );
+        assert!(
+            d.max_skate <= 1e-4 * length,
+            "{label}: skate {}",
+            d.max_skate
+        );
+        assert!(d.max_overstretch <= 1e-5 * length, "{label}: overstretch");
+        assert!(
+            d.escapes * 10 <= d.steps,
+            "{label}: {} of {} steps escaped",
+            d.escapes,
+            d.steps
+        );
+        // Every foot lifts off together: in nine of ten lift-offs (the rest, a foot that
+        // escaped out of turn catching up).
+        let hop: Vec<&Sample> = d.samples.iter().filter(|s| s.gait == Gait::Hop).collect();
+        let (lifts, together) = lift_offs(hop.iter().copied());
+        assert!(
+            lifts > 20 && together * 10 >= lifts * 9,
+            "{label}: {together} of {lifts} lift-offs together"
+        );
+        // A flight in every hop: a quarter of the time at least with every foot up (a
+        // walk never has one, as a test above shows), the body thrown up 8% of its leg at
+        // least (the feet's lift alone raises it 5.5-6.5%; its flight's arc 9.5-16%).
+        let up = hop.iter().filter(|s| s.all_up).count();
+        assert!(
+            up * 4 >= hop.len(),
+            "{label}: {up} of {} frames in flight",
+            hop.len()
+        );
+        let rise = hop.iter().map(|s| s.height).fold(f32::MIN, f32::max) - 0.8 * length;
+        assert!(rise >= 0.08 * length, "{label}: the body rose {rise}");
+    }
+}
+
+#[test]
+fn without_gaits_by_speed_a_hopper_hops_at_every_speed() {
+    let options = GaitOptions::DEFAULT.with_hop(true);
+    let legs = creature_legs(1, 1.0);
+    assert_eq!(Controller::new(&legs, &options).unwrap().gait(), Gait::Hop);
+    for froude in [0.1, 0.3, 2.0] {
+        let v = speed_at(froude, 1.0);
+        let d = drive_with(&options, 1, 1.0, 6.0, |_| v);
+        assert!(d.samples.iter().all(|s| s.gait == Gait::Hop));
+        let (lifts, together) = lift_offs(d.samples.iter());
+        assert!(
+            lifts > 5 && together == lifts,
+            "Froude {froude}: {together} of {lifts}"
+        );
+    }
 }

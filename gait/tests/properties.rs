@@ -134,13 +134,14 @@ proptest! {
     }
 
     /// Gaits by speed: short legs (so the motion's speeds reach a trot and a run), with the
-    /// same invariants whatever gait they are in and when they change.
+    /// same invariants whatever gait they are in and when they change, hopping or not.
     #[test]
     fn random_motion_with_gaits_by_speed_stays_finite_grounded_and_skate_free(
         legs in strategies::leg_layout(),
         field in strategies::height_field(0.2),
         motion in strategies::motion_sequence(40),
         scale in 0.2f32..1.0,
+        hop in any::<bool>(),
     ) {
         let legs: Vec<Leg> = legs
             .iter()
@@ -151,12 +152,12 @@ proptest! {
                 l
             })
             .collect();
-        let options = GaitOptions::DEFAULT.with_gaits(GaitSpeeds::DEFAULT);
+        let options = GaitOptions::DEFAULT.with_gaits(GaitSpeeds::DEFAULT).with_hop(hop);
         soak_with(&legs, &options, &field, |x, z| field.height(x, z), &motion)?;
     }
 
     /// The gait chosen for a speed is at least the one its thresholds reach and at most the
-    /// one their hysteresis keeps, coming from any gait.
+    /// one their hysteresis keeps, coming from any gait (a hop as a trot).
     #[test]
     fn the_chosen_gait_lies_between_the_thresholds_and_their_hysteresis(
         trot in 0.0f32..5.0,
@@ -164,7 +165,7 @@ proptest! {
         hysteresis in 0.05f32..=1.0,
         speed in 0.0f32..20.0,
         leg in 0.01f32..5.0,
-        from in 0usize..3,
+        from in 0usize..4,
     ) {
         let speeds = GaitSpeeds::DEFAULT
             .with_thresholds(trot, trot + above)
@@ -180,8 +181,11 @@ proptest! {
                 Gait::Walk
             }
         };
-        let from = [Gait::Walk, Gait::Trot, Gait::Run][from];
+        let from = [Gait::Walk, Gait::Trot, Gait::Run, Gait::Hop][from];
         let chosen = speeds.choose(from, speed, leg);
+        // A hop is taken as the trot it replaces, and never chosen.
+        prop_assert!(chosen != Gait::Hop);
+        let from = if from == Gait::Hop { Gait::Trot } else { from };
         prop_assert!(chosen >= at(1.0) && chosen <= at(hysteresis));
         // Staying where it is whenever that is allowed.
         if from >= at(1.0) && from <= at(hysteresis) {

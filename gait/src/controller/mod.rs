@@ -228,6 +228,11 @@ pub struct Controller {
     metrics: GaitMetrics,
     wants: Vec<u8>,
     motion: Vec<Vec3>,
+    /// Each leg's hop: the apex its step's flight rises to (a ballistic arc over the
+    /// swing's expected time), 0 for a step that is not a hop's.
+    hop_heights: Vec<f32>,
+    /// How far the body is risen in a hop's flight this update (see `action`).
+    hop_rise: f32,
 
     // Per-update scratch and per-leg invariants, so an update does no allocation and does not
     // recompute what the legs and options fix.
@@ -293,6 +298,8 @@ impl Controller {
             self.reset_chain(i);
         }
         self.reaction = BodyReaction::NEUTRAL;
+        self.hop_heights.fill(0.0);
+        self.hop_rise = 0.0;
         self.look_cache = None;
         self.look = Look {
             rotation: Quat::IDENTITY,

@@ -123,7 +123,7 @@ impl Controller {
             turn,
         ));
         let breathe = o.breathe_amplitude * self.mean_size * (sign * s.w);
-        r.offset = Vec3::Y * ((r.bob + breathe) * w);
+        r.offset = Vec3::Y * ((r.bob + breathe + self.hop_rise) * w);
         r.rotation = quat_yxz_sin_cos(s, c);
 
         // Hip roll: the height difference between a foot and its partner (3D seed). A pair

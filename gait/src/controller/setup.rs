@@ -6,7 +6,7 @@ use glam::{Quat, Vec3, Vec3A};
 
 use super::{BodyReaction, Controller, HipPair, LegLanes, LegState, Look};
 use crate::error::{GaitError, finite, finite3, in_range};
-use crate::gaits::{Gait, RUN_SWING_FRACTION};
+use crate::gaits::{Gait, HOP_SWING_FRACTION, RUN_SWING_FRACTION};
 use crate::leg::{Leg, LimbKind, Pose, layout};
 use crate::math::{Roots, abs, cos};
 use crate::metrics::GaitMetrics;
@@ -16,9 +16,20 @@ use crate::options::GaitOptions;
 /// standing still: the one its gait speeds give at speed 0 (a walk, unless they trot or run
 /// from 0), or a walk without gaits by speed.
 fn rest_gait(options: &GaitOptions, walking_size: f32) -> Gait {
-    options
+    let gait = options
         .gaits
-        .map_or(Gait::Walk, |s| s.choose(Gait::Walk, 0.0, walking_size))
+        .map_or(Gait::Walk, |s| s.choose(Gait::Walk, 0.0, walking_size));
+    hopping(options, gait)
+}
+
+/// `gait` as `options` take it: a hopper hops where others trot or run, and at every speed
+/// without gaits by speed.
+pub(super) fn hopping(options: &GaitOptions, gait: Gait) -> Gait {
+    if options.hop && (gait != Gait::Walk || options.gaits.is_none()) {
+        Gait::Hop
+    } else {
+        gait
+    }
 }
 
 impl Controller {
@@ -157,6 +168,8 @@ impl Controller {
             metrics: GaitMetrics::default(),
             wants: alloc::vec![0; legs.len()],
             motion: alloc::vec![Vec3::ZERO; legs.len()],
+            hop_heights: alloc::vec![0.0; legs.len()],
+            hop_rise: 0.0,
             rest_world: legs.iter().map(|l| l.rest).collect(),
             hip_pairs,
             has_arms: legs.iter().any(|l| l.kind == LimbKind::Arm),
@@ -184,10 +197,11 @@ impl Controller {
     /// handover progress (see `handover`), with `group_count` groups.
     pub(super) fn swing(gait: Gait, group_count: u8) -> (f32, f32) {
         let alternating = 1.0 / f32::from(group_count.max(2));
-        if gait == Gait::Run {
-            (RUN_SWING_FRACTION, alternating / RUN_SWING_FRACTION)
-        } else {
-            (alternating, 1.0)
+        match gait {
+            Gait::Run => (RUN_SWING_FRACTION, alternating / RUN_SWING_FRACTION),
+            // One group: it hands over to itself as its feet land.
+            Gait::Hop => (HOP_SWING_FRACTION, 1.0),
+            Gait::Walk | Gait::Trot => (alternating, 1.0),
         }
     }
 

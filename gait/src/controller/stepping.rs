@@ -25,7 +25,8 @@ impl Controller {
     ) {
         if let Some(speeds) = &self.options.gaits {
             let speed = horizontal(velocity).norm();
-            self.wanted_gait = speeds.choose(self.gait, speed, self.walking_size);
+            let gait = speeds.choose(self.gait, speed, self.walking_size);
+            self.wanted_gait = super::setup::hopping(&self.options, gait);
         }
         let o = &self.options;
         let forward = horizontal(pose.rotation * Vec3::Z)
@@ -307,7 +308,12 @@ impl Controller {
         //    that are ahead (just landed) never join: they would step again at once.
         //    In a run, the group whose turn comes lifts off at the handover, every trailing leg
         //    of it: its swings overlap the last group's, for a moment no foot on the ground.
+        //    In a hop, every leg of the one group lifts off with the first that wants to, all
+        //    feet together (trailing or not: they landed together), once every foot of the
+        //    last hop has landed (a foot landing before the others stands until they do).
         let lift_all = advance & (self.gait == Gait::Run);
+        let hopping = self.gait == Gait::Hop;
+        let hop = hopping & !group_stepping;
         let group_moves = if advance {
             next_moves | lift_all
         } else {
@@ -333,7 +339,7 @@ impl Controller {
                 // The stray's length and the reach in its direction, as step 2 found them
                 // (every idle leg went through it, and no foot has moved since).
                 let far = lift_all | (distance > o.group_join * reach_here * leg.size);
-                if idle & trailing & far {
+                if idle & ((trailing & far) | hop) {
                     *want = WANT;
                 }
             }
@@ -345,10 +351,14 @@ impl Controller {
             }
             let leg = &self.legs[i];
             let sequenced = leg.kind == LimbKind::Leg;
-            // A run's groups lift off while the others are in the air.
-            let opposite_busy = self.gait != Gait::Run
+            // A run's groups lift off while the others are in the air; a hop's feet together,
+            // and none before every foot of the last hop has landed (feet that fell out of
+            // step, one escaping, hop together again).
+            let opposite_busy = !matches!(self.gait, Gait::Run | Gait::Hop)
                 && self.layout.opposite[i].is_some_and(|j| self.states[j].stepping);
-            let in_turn = !sequenced || (self.layout.groups[i] == active && !opposite_busy);
+            let landing = hopping & group_stepping;
+            let in_turn =
+                !sequenced || (self.layout.groups[i] == active && !opposite_busy && !landing);
             let escape = sequenced && !in_turn && flags & ESCAPE != 0;
             if !(escape || (flags & WANT != 0 && in_turn)) {
                 continue;
@@ -377,6 +387,19 @@ impl Controller {
             state.swing_length =
                 horizontal(target - state.foot).norm().max(0.05 * leg.size) * self.swing_fraction;
             state.steps = state.steps.saturating_add(1);
+            // A hop's flight: the arc a body thrown up rises to over the swing's expected time
+            // (its length at the leg's speed, or the settle rate's time, no shorter than the
+            // shortest swing), no higher than `HOP_RISE` of the leg.
+            self.hop_heights[i] = if sequenced && self.gait == Gait::Hop {
+                let rate = (self.motion[i].norm() / state.swing_length.max(1e-6))
+                    .max(o.settle_rate)
+                    .min(1.0 / (o.min_swing_time * sqrt(leg.size.min(1.0))));
+                let time = 1.0 / rate;
+                let gravity = o.gaits.map_or(GRAVITY, |s| s.gravity);
+                (gravity * time * time / 8.0).min(HOP_RISE * leg.size)
+            } else {
+                0.0
+            };
             if sequenced {
                 steps_started += 1;
                 if escape {
@@ -389,8 +412,41 @@ impl Controller {
         }
         self.metrics.steps_started = steps_started;
         self.metrics.escapes_started = escapes_started;
+
+        // 5. A hop's flight: the body rises on the mean of its walking legs' arcs (each
+        //    `4 h p (1 − p)` over its step's progress `p`: none at lift-off and landing), and
+        //    the feet in the air with it, so the legs keep their swing's shape.
+        let mut rise = 0.0f32;
+        let mut walking = 0usize;
+        for ((leg, state), &height) in self.legs.iter().zip(&self.states).zip(&self.hop_heights) {
+            if leg.kind == LimbKind::Leg {
+                walking += 1;
+                if state.stepping && height > 0.0 {
+                    let p = state.progress;
+                    rise += 4.0 * height * p * (1.0 - p);
+                }
+            }
+        }
+        self.hop_rise = if rise > 0.0 {
+            rise / walking as f32
+        } else {
+            0.0
+        };
+        if self.hop_rise > 0.0 {
+            for (state, &height) in self.states.iter_mut().zip(&self.hop_heights) {
+                if state.stepping && height > 0.0 {
+                    state.foot.y += self.hop_rise;
+                }
+            }
+        }
     }
 }
+
+/// The most a hop's body rises in its flight, × the leg's size.
+const HOP_RISE: f32 = 0.2;
+
+/// Gravity (m/s²) of a hop's flight without gaits by speed (whose `gravity` it takes).
+const GRAVITY: f32 = 9.81;
 
 /// The ray hit under a leg's rest position (`rest_world`): `(point, normal, grounded)`; arms
 /// and misses give the rest position itself.

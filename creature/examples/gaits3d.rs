@@ -1,7 +1,8 @@
 //! Renders `gaits3d.png`, the README's strips of frames per gait: the first two- and
-//! four-legged walkers and the first with six legs or more (from seed 0 up), each in its
-//! looping `walk` (a trot's pattern) and its `run` (`Creature::bake_run_loop`), eight
-//! consecutive frames (30 a second) from the side; then slitherers 0 and 3 in their `slither`,
+//! four-legged walkers and the first with six legs or more (from seed 0 up) that do not hop,
+//! each in its looping `walk` (a trot's pattern) and its `run` (`Creature::bake_run_loop`), and
+//! the first biped that hops in its `walk` and its `hop`, eight consecutive frames (30 a
+//! second) from the side; then slitherers 0 and 3 in their `slither`,
 //! eight frames spread over one body wave, from above. Each frame's root travel is taken off
 //! so the body stays in place.
 //!
@@ -51,15 +52,17 @@ fn main() -> ExitCode {
     }
 }
 
-/// The first walker from seed 0 up with `legs` walking legs, or at least that many if `more`.
-fn walker(legs: usize, more: bool) -> Result<(u64, Creature), String> {
+/// The first walker from seed 0 up with `legs` walking legs, or at least that many if `more`,
+/// that hops if `hops` (and does not if not).
+fn walker(legs: usize, more: bool, hops: bool) -> Result<(u64, Creature), String> {
     let params = Params::DEFAULT.with_kind(Kind::Walker);
     for seed in 0..SEARCH {
         let c = d3::generate(seed, &params).map_err(|e| format!("seed {seed}: {e}"))?;
         let count = c.gait.as_ref().map_or(0, |g| {
             g.legs.iter().filter(|l| l.kind == LimbKind::Leg).count()
         });
-        if count == legs || (more && count > legs) {
+        let hopper = c.gait.as_ref().is_some_and(|g| g.options.hop);
+        if (count == legs || (more && count > legs)) && hopper == hops {
             return Ok((seed, c));
         }
     }
@@ -71,8 +74,13 @@ fn run(path: &str, size: u32) -> Result<(), String> {
     let width = side * FRAMES;
     let mut rgba = Vec::new();
     let mut rows = 0;
-    for (legs, more) in [(2, false), (4, false), (6, true)] {
-        let (seed, c) = walker(legs, more)?;
+    for (legs, more, hops) in [
+        (2, false, false),
+        (4, false, false),
+        (6, true, false),
+        (2, false, true),
+    ] {
+        let (seed, c) = walker(legs, more, hops)?;
         let legs = c.gait.as_ref().map_or(0, |g| {
             g.legs.iter().filter(|l| l.kind == LimbKind::Leg).count()
         });
@@ -82,7 +90,12 @@ fn run(path: &str, size: u32) -> Result<(), String> {
             .find(|clip| clip.name == "walk")
             .cloned()
             .ok_or_else(|| format!("seed {seed}: no walk"))?;
-        let run = c.bake_run_loop().map_err(|e| format!("seed {seed}: {e}"))?;
+        let run = if hops {
+            c.bake_hop_loop()
+        } else {
+            c.bake_run_loop()
+        }
+        .map_err(|e| format!("seed {seed}: {e}"))?;
         for clip in [&walk, &run] {
             println!("row {rows}: seed {seed}, {legs} legs, {}", clip.name);
             rgba.extend(strip(&c, clip, (0..FRAMES).collect(), (SIDE, size))?);

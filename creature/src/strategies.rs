@@ -204,7 +204,7 @@ pub fn params_of_kind(kind: Kind) -> impl Strategy<Value = Params> {
         span(0.1, 10.0),
         span(0.0, 3.0),
         0.0f32..=1.0,
-        (wing_weights(), back_weights(), span(0.0, 1.0)),
+        (wing_weights(), back_weights(), span(0.0, 1.0), 0.0f32..=1.0),
     );
     (mesh, slices, body, colours, head, limbs).prop_map(
         move |(
@@ -223,7 +223,14 @@ pub fn params_of_kind(kind: Kind) -> impl Strategy<Value = Params> {
             (scale, speed, bone_length, spine_bones, bend, head, clearance, clips),
             (saturation, countershading, patterns),
             (eye_size, snout_length, ornament_size, ornament_chance, neck_width),
-            (thigh_thickness, wing_span, wing_area, back_size, back_chance, (wings, backs, shell)),
+            (
+                thigh_thickness,
+                wing_span,
+                wing_area,
+                back_size,
+                back_chance,
+                (wings, backs, shell, hop_chance),
+            ),
         )| {
             Params::DEFAULT
                 .with_kind(kind)
@@ -254,6 +261,7 @@ pub fn params_of_kind(kind: Kind) -> impl Strategy<Value = Params> {
                 .with_wing_kinds(wings)
                 .with_back_kinds(backs)
                 .with_shell_size(shell)
+                .with_hop_chance(hop_chance)
                 .with_clips(clips)
         },
     )
@@ -302,7 +310,7 @@ pub fn bad_params_2d() -> impl Strategy<Value = d2::Params> {
 /// out of range (a colour range outside 0 to 1, an eye size above 0.6, a negative pattern
 /// weight) or every pattern, wing-kind or back-kind weight 0. [`Params::validate`] — and so [`generate`](crate::generate) — rejects every one.
 pub fn bad_params() -> impl Strategy<Value = Params> {
-    (params(), non_finite_f32(), 0usize..23).prop_map(|(p, bad, which)| {
+    (params(), non_finite_f32(), 0usize..24).prop_map(|(p, bad, which)| {
         let swap = |s: Span| {
             if s.min < s.max {
                 Span::new(s.max, s.min)
@@ -335,6 +343,7 @@ pub fn bad_params() -> impl Strategy<Value = Params> {
             }
             20 => p.with_shell_size(swap(p.shell_size)),
             21 => p.with_neck_width(bad),
+            22 => p.with_hop_chance(bad),
             _ => p.with_spine_bones(IntSpan::new(0, 0)),
         }
     })

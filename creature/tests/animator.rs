@@ -1011,17 +1011,16 @@ fn stands_on<G: Ground>(c: &d3::Creature, animator: &Animator, ground: &G, label
 #[test]
 fn a_walker_asked_to_go_faster_runs_and_slows_back_to_a_trot_its_feet_on_the_ground() {
     use creature::gait::Gait;
+    // Walkers that run (walker 7, a biped, hops unless asked not to).
+    let runner = d3::Params::DEFAULT
+        .with_kind(Kind::Walker)
+        .with_clips(false)
+        .with_hop_chance(0.0);
     for seed in [7, 11, 42] {
-        let c = walker(seed);
+        let c = d3::generate(seed, &runner).unwrap();
         let run = c.gait.as_ref().unwrap().run_speed().unwrap();
-        let feet = foot_vertices(&c);
-        let ground = Plane::GROUND;
-        let mut animator = Animator::new(&c).unwrap();
-        let mut gaits = vec![animator.controller().gait()];
-        let mut flying = 0;
         // To its run speed over 3 s, held 2 s, back to its walking speed over 3 s.
-        for frame in 0..240 {
-            let t = frame as f32 / 30.0;
+        let speed = |t: f32| {
             let ramp = if t < 3.0 {
                 t / 3.0
             } else if t < 5.0 {
@@ -1029,34 +1028,57 @@ fn a_walker_asked_to_go_faster_runs_and_slows_back_to_a_trot_its_feet_on_the_gro
             } else {
                 (8.0 - t) / 3.0
             };
-            let speed = c.speed + (run - c.speed) * ramp.max(0.0);
-            let intent = Intent::Move {
-                velocity: Vec3::Z * speed,
-                turn_rate: 0.0,
-            };
-            animator.update(1.0 / 30.0, intent, &ground).unwrap();
-            let gait = animator.controller().gait();
-            if gaits.last() != Some(&gait) {
-                gaits.push(gait);
-            }
-            let planted = planted(&c, &animator);
-            flying += usize::from(planted.iter().all(|&p| !p));
-            let posed = skinned(&c, &animator);
-            assert!(posed.iter().all(|p| p.is_finite()));
-            for (sole, planted) in soles(&posed, &feet, &ground).into_iter().zip(planted) {
-                foot_on(
-                    sole,
-                    planted,
-                    c.length,
-                    &format!("seed {seed} frame {frame}"),
-                );
-            }
-        }
+            c.speed + (run - c.speed) * ramp.max(0.0)
+        };
+        let (gaits, flying) = ramp_feet_on_the_ground(&c, speed, 240, |_, _| {}, seed);
         assert_eq!(gaits, [Gait::Trot, Gait::Run, Gait::Trot], "seed {seed}");
-        if feet.len() <= 4 {
+        if foot_vertices(&c).len() <= 4 {
             assert!(flying > 0, "seed {seed}: never every foot off the ground");
         }
     }
+}
+
+/// Drives `c` straight ahead on flat ground at `speed(t)` for `frames` frames at 30 a second,
+/// each frame its skinned soles never in the ground and on it when planted, then `each` with
+/// the animator and its gait. The gaits in the order they came, and the frames in which every
+/// foot was off the ground.
+fn ramp_feet_on_the_ground(
+    c: &d3::Creature,
+    speed: impl Fn(f32) -> f32,
+    frames: usize,
+    mut each: impl FnMut(&Animator, creature::gait::Gait),
+    seed: u64,
+) -> (Vec<creature::gait::Gait>, usize) {
+    let feet = foot_vertices(c);
+    let ground = Plane::GROUND;
+    let mut animator = Animator::new(c).unwrap();
+    let mut gaits = vec![animator.controller().gait()];
+    let mut flying = 0;
+    for frame in 0..frames {
+        let intent = Intent::Move {
+            velocity: Vec3::Z * speed(frame as f32 / 30.0),
+            turn_rate: 0.0,
+        };
+        animator.update(1.0 / 30.0, intent, &ground).unwrap();
+        let gait = animator.controller().gait();
+        if gaits.last() != Some(&gait) {
+            gaits.push(gait);
+        }
+        let planted = planted(c, &animator);
+        flying += usize::from(planted.iter().all(|&p| !p));
+        let posed = skinned(c, &animator);
+        assert!(posed.iter().all(|p| p.is_finite()));
+        for (sole, planted) in soles(&posed, &feet, &ground).into_iter().zip(planted) {
+            foot_on(
+                sole,
+                planted,
+                c.length,
+                &format!("seed {seed} frame {frame}"),
+            );
+        }
+        each(&animator, gait);
+    }
+    (gaits, flying)
 }
 
 /// A belly is on the ground when its lowest vertex is within this many body lengths of it, and
@@ -1215,5 +1237,62 @@ fn regression_an_edited_slitherers_speed_is_an_error_or_animates() {
         // shorter than a frame, is no clip.
         let baked = edited.bake_clips().map(|clips| clips.len());
         assert_eq!(baked.is_ok(), speed == 0.0, "speed {speed}: {baked:?}");
+    }
+}
+
+/// The height of joint `joint` over the root, in the body's frame (its rotation taken off).
+fn over_root(animator: &Animator, joint: usize, root: usize) -> f32 {
+    let world = animator.world_transforms();
+    let root = world[root];
+    (root.inverse().transform_point3a(world[joint].translation)).y
+}
+
+#[test]
+fn a_hopper_asked_to_go_faster_hops_its_tail_up_and_walks_again_its_feet_on_the_ground() {
+    use creature::gait::Gait;
+    let params = d3::Params::DEFAULT
+        .with_kind(Kind::Walker)
+        .with_hop_chance(1.0);
+    for seed in [7, 11, 101] {
+        let c = d3::generate(seed, &params).unwrap();
+        let hop = c.gait.as_ref().unwrap().hop_speed().unwrap();
+        let joints = &c.skeleton.joints;
+        let tail = joints.iter().position(|j| j.name == "tail_end").unwrap();
+        let root = joints.iter().position(|j| j.parent.is_none()).unwrap();
+        let rest = over_root(&Animator::new(&c).unwrap(), tail, root);
+        let (mut highest, mut last) = (f32::MIN, 0.0);
+        // To its hop speed over 3 s, held 2 s, back to half its walking speed over 3 s, held 2 s.
+        let speed = |t: f32| {
+            if t < 3.0 {
+                c.speed + (hop - c.speed) * t / 3.0
+            } else if t < 5.0 {
+                hop
+            } else {
+                hop + (0.5 * c.speed - hop) * ((t - 5.0) / 3.0).min(1.0)
+            }
+        };
+        let tail_up = |animator: &Animator, gait: Gait| {
+            let up = over_root(animator, tail, root) - rest;
+            if gait == Gait::Hop {
+                highest = highest.max(up);
+            }
+            last = up;
+        };
+        let (gaits, flying) = ramp_feet_on_the_ground(&c, speed, 300, tail_up, seed);
+        assert_eq!(gaits, [Gait::Walk, Gait::Hop, Gait::Walk], "seed {seed}");
+        assert!(
+            flying >= 10,
+            "seed {seed}: {flying} frames with both feet up"
+        );
+        // The tail's tip swung up 2.5% of the body's length at least while hopping (measured
+        // 3.3-7.3%), and back down after (within a hundredth).
+        assert!(
+            highest >= 0.025 * c.length,
+            "seed {seed}: the tail rose {highest}"
+        );
+        assert!(
+            last.abs() <= 0.01 * c.length,
+            "seed {seed}: the tail stayed {last} up"
+        );
     }
 }

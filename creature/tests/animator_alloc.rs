@@ -110,3 +110,34 @@ fn an_update_allocates_nothing() {
         }
     }
 }
+
+#[test]
+fn a_hoppers_update_allocates_nothing() {
+    let hills = terrain(3, &TerrainParams::DEFAULT).unwrap();
+    let params = d3::Params::DEFAULT
+        .with_kind(Kind::Walker)
+        .with_clips(false)
+        .with_hop_chance(1.0);
+    for seed in [7, 11] {
+        let c = d3::generate(seed, &params).unwrap();
+        let hop = c.gait.as_ref().unwrap().hop_speed().unwrap();
+        for ground in [&Plane::GROUND as &dyn Ground, &hills] {
+            let mut animator = Animator::new(&c).unwrap();
+            animator.update(0.0, Intent::Stand, ground).unwrap();
+            let mut hopped = false;
+            let n = allocations_in(|| {
+                for f in 0..300 {
+                    let turn_rate = if f < 150 { 0.3 } else { -0.3 };
+                    let intent = Intent::Move {
+                        velocity: Vec3::Z * hop,
+                        turn_rate,
+                    };
+                    animator.update(1.0 / 60.0, intent, ground).unwrap();
+                    hopped |= animator.controller().gait() == creature::gait::Gait::Hop;
+                }
+            });
+            assert_eq!(n, 0, "hopper {seed}: {n} allocations in 300 updates");
+            assert!(hopped, "hopper {seed} never hopped");
+        }
+    }
+}

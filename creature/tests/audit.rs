@@ -1239,3 +1239,84 @@ fn run_clips_hold_the_audit_but_for_joint_speed_and_fly() {
         "never all up: {grounded:?}"
     );
 }
+
+/// Every hopping biped's `hop` (`Creature::bake_hop_loop`; every biped made to hop) holds every
+/// check of the audit of delivered creatures, and has a flight each hop (frames with both feet
+/// off the ground), over as many seeds as the audit's (`CREATURE_AUDIT_SEEDS`), from its first.
+#[test]
+fn hop_clips_hold_the_audit_and_fly() {
+    use creature::gait::LimbKind;
+    let params = d3::Params::DEFAULT
+        .with_kind(Kind::Walker)
+        .with_clips(false)
+        .with_hop_chance(1.0);
+    let first = first_seed();
+    let (mut count, mut failed) = (0, Vec::new());
+    for seed in first..first + seeds() {
+        let mut c = d3::generate(seed, &params).unwrap();
+        let setup = c.gait.as_ref().unwrap();
+        let walking = setup
+            .legs
+            .iter()
+            .filter(|l| l.kind == LimbKind::Leg)
+            .count();
+        assert_eq!(
+            setup.options.hop,
+            walking == 2,
+            "seed {seed}: bipeds hop, no others"
+        );
+        if walking != 2 {
+            assert!(
+                c.bake_hop_loop().is_err(),
+                "seed {seed}: {walking} legs hop"
+            );
+            continue;
+        }
+        let hop = c.bake_hop_loop().unwrap();
+        let flying = hop
+            .contacts
+            .iter()
+            .filter(|frame| {
+                frame
+                    .iter()
+                    .zip(&setup.legs)
+                    .all(|(&down, l)| l.kind != LimbKind::Leg || !down)
+            })
+            .count();
+        c.clips = vec![hop];
+        let report = audit_glb(&glb_3d(&c, &c.clips).unwrap(), &Limits::DEFAULT).unwrap();
+        let fails: Vec<Check> = Check::ALL
+            .into_iter()
+            .filter(|&k| report.fails(k))
+            .collect();
+        if !fails.is_empty() || flying == 0 {
+            eprintln!("seed {seed}: flying {flying} {}", listed(&report));
+            failed.push(seed);
+        }
+        count += 1;
+    }
+    eprintln!(
+        "hop clips: {count} audited, {} failed: {failed:?}",
+        failed.len()
+    );
+    assert!(count > 0 && failed.is_empty(), "{failed:?}");
+}
+
+/// Regression: a hopper's tail swung on the spine joints its legs hang from (biped 802's hips
+/// hang from its first tail joint), moving its legs off where the gait put its feet: a landing
+/// foot 0.0098 body lengths under the ground. The tail now swings only behind every limb.
+#[test]
+fn regression_a_hoppers_tail_swings_behind_its_legs_only() {
+    let params = d3::Params::DEFAULT
+        .with_kind(Kind::Walker)
+        .with_clips(false)
+        .with_hop_chance(1.0);
+    let mut c = d3::generate(802, &params).unwrap();
+    c.clips = vec![c.bake_hop_loop().unwrap()];
+    let report = audit_glb(&glb_3d(&c, &c.clips).unwrap(), &Limits::DEFAULT).unwrap();
+    assert!(
+        Check::ALL.into_iter().all(|k| !report.fails(k)),
+        "{}",
+        listed(&report)
+    );
+}

@@ -156,6 +156,8 @@ fn bad_params_are_errors() {
             Span::new(1.0, 1.0),
         ),
         d3::Params::DEFAULT.with_ground_clearance(Span::new(0.5, 0.1)),
+        d3::Params::DEFAULT.with_hop_chance(1.5),
+        d3::Params::DEFAULT.with_hop_chance(f32::NAN),
     ];
     for params in bad {
         let e = generate(1, &params).unwrap_err();
@@ -281,7 +283,10 @@ fn every_kind_bakes_two_clips_that_loop() {
             let c = generate(seed, &d3::Params::DEFAULT.with_kind(kind)).unwrap();
             let clips = &c.clips;
             let got: Vec<&str> = clips.iter().map(|c| c.name).collect();
-            assert_eq!(got, names(kind));
+            // A hopper hops too.
+            let hops = c.gait.as_ref().is_some_and(|g| g.options.hop);
+            let expected = [names(kind), if hops { vec!["hop"] } else { vec![] }].concat();
+            assert_eq!(got, expected);
             for clip in clips {
                 assert!(clip.frames >= 2);
                 assert!((clip.fps - 30.0).abs() < 1.0, "{}", clip.fps);
@@ -828,4 +833,47 @@ fn no_back_spike_on_a_tail_pinched_to_a_point() {
     let c = generate(1_202_798_772_737_850_067, &params).unwrap();
     let problems = check(&c);
     assert!(problems.is_empty(), "{problems:?}");
+}
+
+#[test]
+fn hoppers_are_the_bipeds_drawn_to_hop_with_their_clips_and_a_hop() {
+    use creature::gait::{Gait, LimbKind as GaitLimb};
+    let walker = d3::Params::DEFAULT.with_kind(d3::Kind::Walker);
+    let (mut hoppers, mut bipeds) = (0, 0);
+    for seed in 0..40 {
+        let never = generate(seed, &walker.with_hop_chance(0.0)).unwrap();
+        let always = generate(seed, &walker.with_hop_chance(1.0)).unwrap();
+        let drawn = generate(seed, &walker).unwrap();
+        let setup = always.gait.as_ref().unwrap();
+        let legs = setup
+            .legs
+            .iter()
+            .filter(|l| l.kind == GaitLimb::Leg)
+            .count();
+        // The chance changes no shape.
+        assert_eq!(never.mesh, always.mesh, "seed {seed}");
+        assert_eq!(setup.options.hop, legs == 2, "seed {seed}: only bipeds hop");
+        assert!(!never.gait.as_ref().unwrap().options.hop);
+        let names = |c: &d3::Creature| c.clips.iter().map(|k| k.name).collect::<Vec<_>>();
+        if legs == 2 {
+            bipeds += 1;
+            // A hopper's idle, walk and turn are the ones it had as a walker, and it hops.
+            assert_eq!(
+                names(&always),
+                ["idle", "walk", "turn", "hop"],
+                "seed {seed}"
+            );
+            assert_eq!(always.clips[..3], never.clips[..], "seed {seed}");
+            let controller = setup.controller().unwrap();
+            assert_eq!(controller.gait(), Gait::Walk);
+            hoppers += usize::from(drawn.gait.as_ref().unwrap().options.hop);
+        } else {
+            assert_eq!(always, never, "seed {seed}");
+        }
+    }
+    // Half the bipeds, about, hop by default.
+    assert!(
+        bipeds >= 8 && hoppers * 4 >= bipeds && hoppers * 4 <= 3 * bipeds,
+        "{hoppers} of {bipeds}"
+    );
 }

@@ -450,6 +450,12 @@ impl Colouring {
         Pcg64Mcg::seed_from_u64(self.seed ^ 0xbac4_bac4_bac4_bac4)
     }
 
+    /// A generator of its own for the gait's style (whether a biped hops), as
+    /// [`head_rng`](Self::head_rng) is for the head.
+    pub(crate) fn gait_rng(&self) -> Pcg64Mcg {
+        Pcg64Mcg::seed_from_u64(self.seed ^ 0x6a17_6a17_6a17_6a17)
+    }
+
     /// How far toward the belly colour the skin facing `up` (1 back, −1 belly) goes, and how
     /// much darker it is.
     fn countershading(&self, up: f32) -> (f32, f32) {

@@ -266,7 +266,8 @@ impl Creature {
     /// the set-up's [`run_speed`](crate::d3::GaitSetup::run_speed) (a Froude number of
     /// [`RUN_FROUDE`](crate::d3::RUN_FROUDE)): the gait controller changes to a run in the
     /// second of warm-up (see `creature_gait::Gait`), so the clip runs: longer swings that
-    /// overlap, on two and four legs almost always a moment with no foot on the ground.
+    /// overlap, on two and four legs almost always a moment with no foot on the ground. A
+    /// hopper ([`bake_hop_loop`](Self::bake_hop_loop)) hops at that speed instead.
     ///
     /// Of the first 10,000 walkers' runs, every one holds the audit of delivered creatures but
     /// two (seeds 1714 and 6651: small walkers whose run takes five frames a stride at 30 fps,
@@ -288,6 +289,28 @@ impl Creature {
     /// legs, and the controller's errors as [`Error::Gait`].
     pub fn bake_run_loop(&self) -> Result<Clip, Error> {
         clip::run_loop(self, &mut clip::AtRest::default())
+    }
+
+    /// Bakes a hopping biped's looping `hop` (see [`Params::hop_chance`](crate::d3::Params::hop_chance)):
+    /// hopping straight ahead at [`GaitSetup::hop_speed`](crate::d3::GaitSetup::hop_speed)
+    /// (a Froude number of [`HOP_CLIP_FROUDE`](crate::d3::HOP_CLIP_FROUDE)), both feet
+    /// together, the body thrown up in each flight, the tail swinging up against the legs as
+    /// they swing forward; cut and closed as [`bake_walk_loop`](Self::bake_walk_loop)'s.
+    ///
+    /// ```
+    /// use creature::d3::{generate, Kind, Params};
+    ///
+    /// let biped = generate(7, &Params::DEFAULT.with_kind(Kind::Walker).with_hop_chance(1.0))?;
+    /// let hop = biped.bake_hop_loop()?;
+    /// assert_eq!(hop.name, "hop");
+    /// # Ok::<(), creature::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`Error::NoGait`] for a creature that does not hop (no gait set-up, or one whose
+    /// options do not hop), and the controller's errors as [`Error::Gait`].
+    pub fn bake_hop_loop(&self) -> Result<Clip, Error> {
+        clip::hop_loop(self, &mut clip::AtRest::default())
     }
 
     /// Bakes a walker's `idle` clip: standing still, breathing (one breath: the gait's
@@ -382,8 +405,9 @@ impl Creature {
     /// The clips of the creature's kind, each looping (the turn where that keeps its feet
     /// plausible): walkers `idle`, `walk` (whole strides, see
     /// [`bake_walk_loop`](Self::bake_walk_loop)) and `turn` (a full turn in place, see
-    /// [`bake_turn`](Self::bake_turn)); fliers `hover` and `fly`; swimmers `idle` and `swim`;
-    /// slitherers `idle` and `slither`.
+    /// [`bake_turn`](Self::bake_turn)), and for a hopping biped `hop` (see
+    /// [`bake_hop_loop`](Self::bake_hop_loop)); fliers `hover` and `fly`; swimmers `idle` and
+    /// `swim`; slitherers `idle` and `slither`.
     ///
     /// Fliers' wings beat by `gait::FlapParams` (flapping wings slow, 4 bones with a lagging
     /// tip; buzzing wings at 8 beats per second, the fastest a 30 fps clip shows), the body
@@ -420,11 +444,15 @@ impl Creature {
                 // As `bake_idle`, `bake_walk_loop` and `bake_turn` bake them, sharing what
                 // they measure of the creature at rest.
                 let mut at_rest = clip::AtRest::default();
-                alloc::vec![
+                let mut clips = alloc::vec![
                     self.bake_idle_with(&mut at_rest)?,
                     clip::walk_loop(self, &mut at_rest)?,
                     clip::turn(self, &mut at_rest)?
-                ]
+                ];
+                if self.gait.as_ref().is_some_and(|g| g.options.hop) {
+                    clips.push(clip::hop_loop(self, &mut at_rest)?);
+                }
+                clips
             }
             CreatureKind::Flier => {
                 alloc::vec![

@@ -40,7 +40,9 @@ pub struct GaitSetup {
     /// Gait options: the defaults, with the creature's speed factor as the speed multiplier
     /// and gaits by speed (`creature_gait::GaitSpeeds`): below a Froude number of 2.5 the
     /// pattern walkers always walked in (up to three pairs of legs a trot's two alternating
-    /// groups, from four pairs a three-group wave), a run from 2.5.
+    /// groups, from four pairs a three-group wave), a run from 2.5; a hopping biped
+    /// (`hop` set, see [`Params::hop_chance`](crate::d3::Params::hop_chance)) walks up to
+    /// [`HOP_FROUDE`] and hops from there.
     pub options: GaitOptions,
 }
 
@@ -60,6 +62,17 @@ impl GaitSetup {
     #[must_use]
     pub fn run_speed(&self) -> Option<f32> {
         mean_leg_size(&self.legs).map(|leg| sqrt(RUN_FROUDE * GRAVITY * leg))
+    }
+
+    /// The speed its `hop` clip hops at (m/s) if it hops (its
+    /// [`options`](Self::options)' `hop`): a Froude number of [`HOP_CLIP_FROUDE`] on the legs'
+    /// mean size; else `None`.
+    #[must_use]
+    pub fn hop_speed(&self) -> Option<f32> {
+        if !self.options.hop {
+            return None;
+        }
+        mean_leg_size(&self.legs).map(|leg| sqrt(HOP_CLIP_FROUDE * GRAVITY * leg))
     }
 
     /// A fresh controller for these legs.
@@ -98,8 +111,9 @@ pub(crate) const MAX_WALK_FROUDE: f32 = 1.0;
 /// speed: up to three pairs the trot's (two alternating groups: diagonal pairs, tripods), from
 /// four pairs the walk's (a three-group wave). (`creature_gait`'s walk on four legs, one foot
 /// at a time, swings each foot in a quarter of a stride: at the walkers' speeds, faster than
-/// their joints may turn.)
-pub(crate) fn walker_gaits(legs: &[Leg]) -> GaitSpeeds {
+/// their joints may turn.) A biped that `hops` walks up to [`HOP_FROUDE`] and hops from there
+/// (a biped's walk and trot step alike).
+pub(crate) fn walker_gaits(legs: &[Leg], hops: bool) -> GaitSpeeds {
     let scale = legs.iter().map(|l| l.size).fold(0.0f32, f32::max).max(1e-6);
     let walking = || legs.iter().filter(|l| l.kind == LimbKind::Leg);
     // Pairs as `creature_gait` counts them: the most legs on one side (or the midline).
@@ -107,12 +121,27 @@ pub(crate) fn walker_gaits(legs: &[Leg]) -> GaitSpeeds {
     let right = walking().filter(|l| l.rest.x < -1e-4 * scale).count();
     let centre = walking().count() - left - right;
     let run = GaitSpeeds::DEFAULT.run;
-    if left.max(right).max(centre) > WAVE_PAIRS {
+    if hops && walking_legs(legs) == 2 {
+        GaitSpeeds::DEFAULT.with_thresholds(HOP_FROUDE, run)
+    } else if left.max(right).max(centre) > WAVE_PAIRS {
         GaitSpeeds::DEFAULT.with_thresholds(run, run)
     } else {
         GaitSpeeds::DEFAULT.with_thresholds(0.0, run)
     }
 }
+
+/// How many of `legs` are walking legs (not arms).
+pub(crate) fn walking_legs(legs: &[Leg]) -> usize {
+    legs.iter().filter(|l| l.kind == LimbKind::Leg).count()
+}
+
+/// The Froude number from which a hopping biped hops ([`Params::hop_chance`](crate::d3::Params::hop_chance)):
+/// a little above the fastest walkers walk (1), so its `walk` stays a walk.
+pub const HOP_FROUDE: f32 = 1.2;
+
+/// The Froude number a hopper's `hop` clip hops at: between [`HOP_FROUDE`] and the run's
+/// 2.5, a bounding hop (faster ones, their swings the shortest a leg may take, flutter).
+pub const HOP_CLIP_FROUDE: f32 = 1.75;
 
 /// The most pairs whose walkers trot (two alternating groups) at walking speeds; more walk in
 /// a three-group wave (`creature_gait` derives the same).

@@ -19,7 +19,9 @@ use super::body::{BASE_RADIUS, base_body, centre_of_volume, pill_triangles, volu
 use super::clip::MAX_LEG_TURN_RATE;
 use super::colour::{Colouring, body_surface};
 use super::extremities::Proportions;
-use super::gait::{mean_leg_size, swing_time_for_joints, walk_speed_limit, walker_gaits};
+use super::gait::{
+    mean_leg_size, swing_time_for_joints, walk_speed_limit, walker_gaits, walking_legs,
+};
 use super::head::{self, Shape};
 use super::limbs::{
     Bind, LegChain, LimbNames, LimbStyle, MeshBuilder, Mount, WingSize, add_limb, leg_knees,
@@ -296,11 +298,13 @@ fn generate_kind(rng: &mut Pcg64Mcg, params: &Params, spec: &KindSpec) -> Result
     let mut speed_factor = rigged.speed_factor;
     let gait = if spec.walks {
         let setup;
+        // Drawn for every walker (one order of draws), taken by bipeds.
+        let hops = uniform(&mut colouring.gait_rng()) < params.hop_chance;
         (setup, speed_factor) = gait_setup(
             &limbs.chains,
             Vec3::Y * offset,
             rigged.body_scale,
-            speed_factor,
+            (speed_factor, hops),
         )?;
         Some(setup)
     } else {
@@ -1091,7 +1095,7 @@ fn gait_setup(
     chains: &[(usize, LimbKind, LegChain)],
     shift: Vec3,
     body_scale: f32,
-    speed_factor: f32,
+    (speed_factor, hops): (f32, bool),
 ) -> Result<(GaitSetup, f32), Error> {
     let mut legs = Vec::with_capacity(chains.len());
     let mut limbs = Vec::with_capacity(chains.len());
@@ -1116,7 +1120,8 @@ fn gait_setup(
     });
     let mut options = GaitOptions::DEFAULT
         .with_speed_multiplier(speed_factor)
-        .with_gaits(walker_gaits(&legs));
+        .with_gaits(walker_gaits(&legs, hops));
+    options.hop = hops && walking_legs(&legs) == 2;
     options.min_swing_time = swing_time_for_joints(&legs, &options, MAX_LEG_TURN_RATE);
     let setup = GaitSetup {
         legs,

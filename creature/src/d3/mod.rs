@@ -31,7 +31,7 @@ pub use accessories::{BackKind, BackWeights};
 pub use clip::{ARRIVAL_RADIUS, Animator, CLIP_FPS, Clip, Intent, MAX_STEP, Track};
 pub use colour::{Palette, Pattern, PatternWeights};
 pub use creature::{Creature, Joint, Mesh, Part, Quality, Skeleton};
-pub use gait::{GaitSetup, RUN_FROUDE};
+pub use gait::{GaitSetup, HOP_CLIP_FROUDE, HOP_FROUDE, RUN_FROUDE};
 pub use generate::generate;
 pub use params::{Kind, Params};
 pub use wings::{WingKind, WingWeights};

@@ -167,6 +167,12 @@ pub struct Params {
     /// How likely each body pattern is (stripes, spots, bands, a gradient, plain). Default
     /// [`PatternWeights::DEFAULT`].
     pub patterns: PatternWeights,
+    /// How likely a two-legged walker is to hop (both feet together, a flight each hop, its
+    /// tail swung up against its legs) where others run, from a little above its walking
+    /// speed (a Froude number of [`HOP_FROUDE`](crate::d3::HOP_FROUDE)); its `walk` is a walk
+    /// all the same, and its clips gain a `hop`. Drawn from a generator of its own: the chance
+    /// changes no shape or colour. From 0 to 1. Default 0.5.
+    pub hop_chance: f32,
     /// Bake the kind's animation clips into [`Creature::clips`](crate::d3::Creature::clips)
     /// (see [`Creature::bake_clips`](crate::d3::Creature::bake_clips)). Default `true`; turn off
     /// to generate faster and bake later, or never.
@@ -219,6 +225,7 @@ impl Params {
         saturation: Span::new(0.3, 0.75),
         countershading: Span::new(0.6, 1.0),
         patterns: PatternWeights::DEFAULT,
+        hop_chance: 0.5,
         clips: true,
         in_place: false,
     };
@@ -401,6 +408,13 @@ impl Params {
         self
     }
 
+    /// Sets [`hop_chance`](Self::hop_chance).
+    #[must_use]
+    pub const fn with_hop_chance(mut self, chance: f32) -> Self {
+        self.hop_chance = chance;
+        self
+    }
+
     /// Sets [`saturation`](Self::saturation).
     #[must_use]
     pub const fn with_saturation(mut self, saturation: Span) -> Self {
@@ -517,6 +531,7 @@ impl Params {
         scalar("back_ornament_chance", self.back_ornament_chance, 0.0, 1.0)?;
         self.back_kinds.check("back_kinds")?;
         self.shell_size.check("shell_size", 0.0, 1.0)?;
+        scalar("hop_chance", self.hop_chance, 0.0, 1.0)?;
         self.saturation.check("saturation", 0.0, 1.0)?;
         self.countershading.check("countershading", 0.0, 1.0)?;
         self.patterns.check("patterns")?;

@@ -8,12 +8,12 @@ use alloc::vec::Vec;
 
 use glam::{Affine3A, Mat4, Quat, Vec2, Vec3, Vec3A};
 
-use creature_gait::{Controller, Ground, LegState, LimbKind, Pose, solve_two_bone};
+use creature_gait::{Controller, Gait, Ground, LegState, LimbKind, Pose, solve_two_bone};
 use creature_limbs::CreatureKind;
 
 use super::floor::knee_above;
 use super::kinematics::{Hinge, rotation_arc};
-use super::walk::{MAX_ARM_TURN_RATE, soft_reach, turn_bend_total};
+use super::walk::{MAX_ARM_TURN_RATE, hop_tail_swing, soft_reach, turn_bend_total};
 use super::{CLIP_FPS, Clip};
 use crate::Error;
 use crate::d3::{Creature, GaitSetup};
@@ -164,6 +164,10 @@ pub struct Animator {
     /// The neck's and tail's joints with their bend per unit of the turn's total bend, and
     /// their limit.
     bends: Vec<(usize, f32, f32)>,
+    /// A hopper's joints its tail swings on (see `walk::hop_tail_swing`), and how far the
+    /// tail is swung up (radians over those joints, eased toward the swing its feet ask).
+    swinging: Vec<(usize, f32)>,
+    tail_swing: f32,
     legs: Vec<LiveLeg>,
     /// The `head` joint, which turns to look where the body turns or at a
     /// [`Intent::GoTo`] target.
@@ -424,6 +428,8 @@ impl Animator {
             rest_local,
             rest_position: joints.iter().map(|j| j.position).collect(),
             bends: Vec::new(),
+            swinging: Vec::new(),
+            tail_swing: 0.0,
             legs: Vec::new(),
             head: None,
             leg_at: alloc::vec![None; n],
@@ -472,6 +478,10 @@ impl Animator {
         }
         animator.head = head;
         animator.bends = creature.turn_bend_shares();
+        if setup.options.hop {
+            // (Each a joint of the tail's turn bend too: it turns already.)
+            animator.swinging = creature.swinging_tail();
+        }
         let turns = &mut animator.turns;
         if let Some(head) = head {
             turns[head] = true;
@@ -638,10 +648,32 @@ impl Animator {
         } else {
             MAX_ARM_TURN_RATE * dt
         };
+        let body = self.controller.reacted_pose();
+        if !self.swinging.is_empty() {
+            // A hopper's tail swings against its legs while it hops, and eases back to rest
+            // when it walks.
+            let swing = if self.controller.gait() == Gait::Hop {
+                let unturn = body.rotation.inverse();
+                let feet = self.controller.leg_states().iter();
+                let feet = feet.map(|s| unturn * (s.joints.end - body.translation));
+                hop_tail_swing(self.controller.legs(), feet)
+            } else {
+                0.0
+            };
+            let k = if self.fresh {
+                1.0
+            } else {
+                smoothing(dt, TAIL_SWING_TIME)
+            };
+            self.tail_swing += (swing - self.tail_swing) * k;
+            if self.tail_swing < 1e-6 {
+                // At rest (and no subnormal tail of the easing).
+                self.tail_swing = 0.0;
+            }
+        }
         self.fresh = false;
         (self.position, self.heading, self.lean) = (position, heading, lean);
         self.turn += (turn_rate - self.turn) * self.smoothing(dt).1;
-        let body = self.controller.reacted_pose();
         self.pose_joints(&body, yaw, Some(ground), arm_turn);
         Ok(())
     }
@@ -779,6 +811,7 @@ impl Animator {
             _ => Quat::IDENTITY,
         };
         let look_share = Quat::IDENTITY.slerp(look, 1.0 / neck.max(1) as f32);
+        let swing = self.tail_swing / self.swinging.len().max(1) as f32;
         for &(joint, divisor, limit) in &self.bends {
             let bend = Quat::from_rotation_y(total / divisor);
             let turn = if divisor > 0.0 {
@@ -787,11 +820,16 @@ impl Animator {
                 bend
             };
             let angle = turn.angle_between(Quat::IDENTITY);
-            let turn = if angle > limit {
+            let mut turn = if angle > limit {
                 Quat::IDENTITY.slerp(turn, limit / angle).unit()
             } else {
                 turn
             };
+            if swing != 0.0
+                && let Some(&(_, most)) = self.swinging.iter().find(|s| s.0 == joint)
+            {
+                turn = (turn * Quat::from_rotation_x(swing.min(most))).unit();
+            }
             self.local[joint] = Affine3A::from_rotation_translation(turn, self.rest_local[joint]);
         }
         self.local[self.root] = Affine3A::from_rotation_translation(
@@ -1298,6 +1336,9 @@ fn plane_fit(samples: impl Iterator<Item = (f32, f32, f32)> + Clone) -> Option<(
         (mh - p * mx - q * mz, p, q)
     })
 }
+
+/// How quickly (seconds, a time constant) a hopper's tail eases to the swing its feet ask.
+const TAIL_SWING_TIME: f32 = 0.05;
 
 /// Turn rate (rad/s) per radian a [`Intent::GoTo`] target is off the heading.
 const TURN_GAIN: f32 = 2.0;

@@ -33,7 +33,7 @@ pub(crate) use flight::flight;
 pub(crate) use kinematics::{pose, skinned};
 pub(crate) use live::bake::{live_walk, slither};
 pub(crate) use swim::swim;
-pub(crate) use walk::{AtRest, gait, run_loop, turn, walk_loop};
+pub(crate) use walk::{AtRest, gait, hop_loop, run_loop, turn, walk_loop};
 
 /// How far a spine joint may bend, in radians per unit of its bone length over the body's
 /// half-thickness (see `Creature::bend_limits`): linear-blend skinning over whole-bone blends
@@ -371,7 +371,37 @@ impl Creature {
         };
         spine.iter().take(c).skip(1).rev().copied().collect()
     }
+
+    /// The joints a hopper's tail swings on ([`walk::hop_tail_swing`]), nearest the root
+    /// first, each with the most it swings ([`SWING_STRETCH`] times the most its skin lets it
+    /// bend sideways, on top of a turn's bend): the [`tail_chain`](Self::tail_chain)'s
+    /// joints behind every limb's root (turning one a leg hangs from would move the leg off
+    /// where the gait put its foot).
+    pub(super) fn swinging_tail(&self) -> Vec<(usize, f32)> {
+        let joints = &self.skeleton.joints;
+        let chain = self.tail_chain();
+        // The chain's joints no limb hangs from, nor any joint between it and the root.
+        let carries = |j: usize| {
+            joints
+                .iter()
+                .enumerate()
+                .any(|(i, k)| k.parent == Some(j) && !self.rig.spine.contains(&i))
+        };
+        let free = chain
+            .iter()
+            .rposition(|&j| carries(j))
+            .map_or(0, |last| last + 1);
+        let limits = self.bend_limits();
+        chain[free..]
+            .iter()
+            .map(|&j| (j, SWING_STRETCH * limits[j]))
+            .collect()
+    }
 }
+
+/// How much further than a turn's bend limit (`bend_limits`, cautious: at 1.4 times them the
+/// audit's skin stretch stays within 1.18) a hopper's tail swings up.
+const SWING_STRETCH: f32 = 1.3;
 
 /// A vertex's spine joints: their places on the spine and weights (at most four).
 #[derive(Clone, Copy, Default, PartialEq)]

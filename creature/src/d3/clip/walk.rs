@@ -159,21 +159,30 @@ impl Figures {
 
 /// A looping `walk` (see [`Creature::bake_walk_loop`]).
 pub(crate) fn walk_loop(c: &Creature, at_rest: &mut AtRest) -> Result<Clip, Error> {
-    forward_loop(c, "walk", c.speed, at_rest)
+    forward_loop(c, ("walk", false), c.speed, at_rest)
 }
 
 /// A looping `run` (see [`Creature::bake_run_loop`]).
 pub(crate) fn run_loop(c: &Creature, at_rest: &mut AtRest) -> Result<Clip, Error> {
     let setup = c.gait.as_ref().ok_or(Error::NoGait)?;
     let speed = setup.run_speed().ok_or(Error::NoGait)?;
-    forward_loop(c, "run", speed, at_rest)
+    // A hopper hops at the run's speed.
+    forward_loop(c, ("run", setup.options.hop), speed, at_rest)
+}
+
+/// A looping `hop` (see [`Creature::bake_hop_loop`]).
+pub(crate) fn hop_loop(c: &Creature, at_rest: &mut AtRest) -> Result<Clip, Error> {
+    let setup = c.gait.as_ref().ok_or(Error::NoGait)?;
+    let speed = setup.hop_speed().ok_or(Error::NoGait)?;
+    forward_loop(c, ("hop", true), speed, at_rest)
 }
 
 /// A looping clip named `name` moving forward at `speed`: 4 s of the controller, cut at the
 /// frame from 1 s on closest to the first and closed where that keeps the feet plausible.
+/// With `swing` (a hop), the tail swings against the legs (see [`hop_tail_swing`]).
 fn forward_loop(
     c: &Creature,
-    name: &'static str,
+    (name, swing): (&'static str, bool),
     speed: f32,
     at_rest: &mut AtRest,
 ) -> Result<Clip, Error> {
@@ -183,7 +192,36 @@ fn forward_loop(
     let end = best_cut(&run, first..run.frames(), |_| 0.0);
     let travel = Pose::from_yaw(Vec3::Z * (speed * end as f32 / CLIP_FPS), 0.0);
     let run = c.closed_or_cut(run, end, &travel, &setup.legs);
-    c.clip_from_run(name, &run, 0.0, at_rest, None)
+    let swing = swing.then_some(setup.legs.as_slice());
+    c.clip_from_run(name, &run, (0.0, swing), at_rest, None)
+}
+
+/// Radians a hopper's tail swings up per leg length its feet are ahead of their hips, on
+/// average.
+const HOP_TAIL_GAIN: f32 = 3.0;
+
+/// The most a hopper's tail swings up, over the whole tail (radians).
+const HOP_TAIL_LIMIT: f32 = 0.8;
+
+/// How far a hopper's tail swings up against its legs (radians over the whole tail, about the
+/// body's left axis) with its walking `legs`' feet at `feet` (body space): as the feet swing
+/// forward in a hop's flight, the tail swings up (their turns about the hips in opposite
+/// senses, as a kangaroo's tail balances its legs), and it comes down to rest as the feet pass
+/// back under the body in stance; never below rest (the tail stays off the ground).
+/// [`HOP_TAIL_GAIN`] × the feet's mean lead over their hips along the body, × their legs'
+/// lengths, at most [`HOP_TAIL_LIMIT`].
+pub(super) fn hop_tail_swing(legs: &[Leg], feet: impl Iterator<Item = Vec3>) -> f32 {
+    let (mut lead, mut count) = (0.0f32, 0u32);
+    for (leg, foot) in legs.iter().zip(feet) {
+        if leg.kind == LimbKind::Leg {
+            lead += (foot.z - leg.hip.z) / (leg.upper + leg.lower).max(1e-6);
+            count += 1;
+        }
+    }
+    if count == 0 {
+        return 0.0;
+    }
+    (HOP_TAIL_GAIN * lead / count as f32).clamp(0.0, HOP_TAIL_LIMIT)
 }
 
 /// A full `turn` in place (see [`Creature::bake_turn`]): at the creature's turn rate, or, if
@@ -272,7 +310,7 @@ fn turn_at(c: &Creature, rate: f32, at_rest: &mut AtRest) -> Result<(Clip, f32),
     let run = c.closed_or_cut_among(run, &ends, plain, &Pose::IDENTITY, &setup.legs);
     // Only legs nearer than a tenth of the body length matter.
     let mut overlap = -0.1 * c.length;
-    let clip = c.clip_from_run("turn", &run, rate, at_rest, Some(&mut overlap))?;
+    let clip = c.clip_from_run("turn", &run, (rate, None), at_rest, Some(&mut overlap))?;
     Ok((clip, overlap))
 }
 
@@ -287,7 +325,7 @@ pub(crate) fn gait(
     at_rest: &mut AtRest,
 ) -> Result<Clip, Error> {
     let run = c.simulate_gait(seconds, speed, yaw_rate)?;
-    c.clip_from_run(name, &run, yaw_rate, at_rest, None)
+    c.clip_from_run(name, &run, (yaw_rate, None), at_rest, None)
 }
 
 /// `seconds` if a walker's clip may last that long: at least one frame interval, at most 60 s.
@@ -473,12 +511,13 @@ impl Creature {
     /// body's heading only); the neck and tail bent toward a turn at `yaw_rate`. With
     /// `overlap`, also how deep any two legs are in each other in any frame of the clip (as
     /// capsules of their skin's radii, [`leg_radii`](Self::leg_radii); ≤ 0 where they are
-    /// apart), if deeper than it was.
+    /// apart), if deeper than it was. With `tail_swing`'s legs (a hopper's), the tail swings
+    /// against them ([`hop_tail_swing`]) frame by frame.
     fn clip_from_run(
         &self,
         name: &'static str,
         run: &GaitRun,
-        yaw_rate: f32,
+        (yaw_rate, tail_swing): (f32, Option<&[Leg]>),
         at_rest: &mut AtRest,
         overlap: Option<&mut f32>,
     ) -> Result<Clip, Error> {
@@ -568,6 +607,18 @@ impl Creature {
         let bodies = self.above_the_floor(shape, run, &setup.legs);
         // Each swing's frames spaced by its joints' turn, so they turn at an even rate.
         let feet = even_swings(run, &bodies, &setup.legs, GROUND_CONTACT * self.length);
+        // A hopper's tail swing, frame by frame.
+        let swings: Vec<f32> = match tail_swing {
+            Some(legs) => bodies
+                .iter()
+                .enumerate()
+                .map(|(frame, body)| {
+                    let feet = &feet[frame * run.legs..(frame + 1) * run.legs];
+                    hop_tail_swing(legs, feet.iter().map(|&f| body.inverse_transform_point(f)))
+                })
+                .collect(),
+            None => Vec::new(),
+        };
         for (frame, body) in bodies.iter().enumerate() {
             clip.root_translation
                 .push(body.translation + body.rotation * rest_root);
@@ -720,11 +771,35 @@ impl Creature {
                 });
             }
         }
+        // The tail's share of its swing, each joint no further than its skin allows.
+        let tail = if swings.is_empty() {
+            Vec::new()
+        } else {
+            self.swinging_tail()
+        };
+        let share = 1.0 / tail.len().max(1) as f32;
         for &(joint, q) in &spine_rotations {
+            if tail.iter().any(|t| t.0 == joint) {
+                continue;
+            }
             clip.tracks.push(Track {
                 joint,
                 translations: None,
                 rotations: alloc::vec![q; frames],
+            });
+        }
+        for &(joint, limit) in &tail {
+            let turn = spine_rotations
+                .iter()
+                .find(|s| s.0 == joint)
+                .map_or(Quat::IDENTITY, |s| s.1);
+            clip.tracks.push(Track {
+                joint,
+                translations: None,
+                rotations: swings
+                    .iter()
+                    .map(|&swing| (turn * Quat::from_rotation_x((swing * share).min(limit))).unit())
+                    .collect(),
             });
         }
         if let Some(overlap) = overlap {

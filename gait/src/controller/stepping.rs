@@ -415,7 +415,11 @@ impl Controller {
 
         // 5. A hop's flight: the body rises on the mean of its walking legs' arcs (each
         //    `4 h p (1 − p)` over its step's progress `p`: none at lift-off and landing), and
-        //    the feet in the air with it, so the legs keep their swing's shape.
+        //    the feet in the air with it, so the legs keep their swing's shape. (Only while
+        //    hopping or a hop's step is in the air: every other update skips it.)
+        if self.gait != Gait::Hop && self.hop_rise == 0.0 {
+            return;
+        }
         let mut rise = 0.0f32;
         let mut walking = 0usize;
         for ((leg, state), &height) in self.legs.iter().zip(&self.states).zip(&self.hop_heights) {

@@ -662,6 +662,9 @@ impl Animator {
             };
             let k = if self.fresh {
                 1.0
+            } else if swing == 0.0 && self.tail_swing == 0.0 {
+                // At rest and staying there (walking): nothing to ease.
+                0.0
             } else {
                 smoothing(dt, TAIL_SWING_TIME)
             };

@@ -197,6 +197,17 @@ fn skinning_matrices_pose_the_mesh_as_the_joints_world_transforms() {
     assert!(skinned(&c, &animator).iter().all(|p| p.is_finite()));
 }
 
+/// Terrain from `seed` 40 body lengths of `c` across: hills 0.8 of its length high, a slope of
+/// `slope` degrees, steps `step` high.
+fn hilly(c: &d3::Creature, seed: u64, slope: f32, step: f32) -> creature::gait::HeightField {
+    let params = TerrainParams::DEFAULT
+        .with_extent(40.0 * c.length, 321)
+        .with_hills(0.8 * c.length, 6.0 * c.length)
+        .with_slope(slope)
+        .with_steps(step, 3.0 * c.length);
+    terrain(seed, &params).unwrap()
+}
+
 #[test]
 fn a_walker_crosses_hilly_stepped_terrain_to_a_target_feet_on_the_surface() {
     // Slopes up to 30°, steps up to a quarter of the leg's length.
@@ -208,12 +219,7 @@ fn a_walker_crosses_hilly_stepped_terrain_to_a_target_feet_on_the_surface() {
             .iter()
             .map(|l| l.size)
             .fold(f32::INFINITY, f32::min);
-        let params = TerrainParams::DEFAULT
-            .with_extent(40.0 * c.length, 321)
-            .with_hills(0.8 * c.length, 6.0 * c.length)
-            .with_slope(slope)
-            .with_steps(0.25 * leg, 3.0 * c.length);
-        let ground = terrain(seed, &params).unwrap();
+        let ground = hilly(&c, seed, slope, 0.25 * leg);
         let target = Vec3::new(6.0 * c.length, 0.0, 8.0 * c.length);
         walks_to(&c, &ground, target, &format!("seed {seed}, slope {slope}°"));
     }
@@ -1240,6 +1246,17 @@ fn regression_an_edited_slitherers_speed_is_an_error_or_animates() {
     }
 }
 
+/// The mean size of `c`'s walking legs (a Froude number's length).
+fn setup_leg(c: &d3::Creature) -> f32 {
+    let legs = &c.gait.as_ref().unwrap().legs;
+    let walking: Vec<f32> = legs
+        .iter()
+        .filter(|l| l.kind == creature::gait::LimbKind::Leg)
+        .map(|l| l.size)
+        .collect();
+    walking.iter().sum::<f32>() / walking.len() as f32
+}
+
 /// The height of joint `joint` over the root, in the body's frame (its rotation taken off).
 fn over_root(animator: &Animator, joint: usize, root: usize) -> f32 {
     let world = animator.world_transforms();
@@ -1261,14 +1278,16 @@ fn a_hopper_asked_to_go_faster_hops_its_tail_up_and_walks_again_its_feet_on_the_
         let root = joints.iter().position(|j| j.parent.is_none()).unwrap();
         let rest = over_root(&Animator::new(&c).unwrap(), tail, root);
         let (mut highest, mut last) = (f32::MIN, 0.0);
-        // To its hop speed over 3 s, held 2 s, back to half its walking speed over 3 s, held 2 s.
+        // To its hop speed over 3 s, held 2 s, back to the fastest a walker walks (a Froude
+        // number of 1, above the hop's hysteresis) over 3 s, held 2 s.
+        let fastest = (9.81 * setup_leg(&c)).sqrt();
         let speed = |t: f32| {
             if t < 3.0 {
                 c.speed + (hop - c.speed) * t / 3.0
             } else if t < 5.0 {
                 hop
             } else {
-                hop + (0.5 * c.speed - hop) * ((t - 5.0) / 3.0).min(1.0)
+                hop + (fastest - hop) * ((t - 5.0) / 3.0).min(1.0)
             }
         };
         let tail_up = |animator: &Animator, gait: Gait| {
@@ -1294,5 +1313,60 @@ fn a_hopper_asked_to_go_faster_hops_its_tail_up_and_walks_again_its_feet_on_the_
             last.abs() <= 0.01 * c.length,
             "seed {seed}: the tail stayed {last} up"
         );
+    }
+}
+
+#[test]
+fn a_hopper_hops_over_hilly_stepped_terrain_its_feet_on_the_surface() {
+    use creature::gait::Gait;
+    let params = d3::Params::DEFAULT
+        .with_kind(Kind::Walker)
+        .with_clips(false)
+        .with_hop_chance(1.0);
+    for (seed, slope) in [(7, 12.0), (11, 20.0), (101, 12.0)] {
+        let c = d3::generate(seed, &params).unwrap();
+        let setup = c.gait.as_ref().unwrap();
+        let hop = setup.hop_speed().unwrap();
+        let leg = setup
+            .legs
+            .iter()
+            .map(|l| l.size)
+            .fold(f32::INFINITY, f32::min);
+        let ground = hilly(&c, seed, slope, 0.15 * leg);
+        let feet = foot_vertices(&c);
+        let mut animator = Animator::new(&c).unwrap();
+        let target = Vec3::new(6.0 * c.length, 0.0, 8.0 * c.length);
+        let (mut hopped, mut arrived) = (0, false);
+        for frame in 0..30 * 20 {
+            // Toward the target at its hop speed, turning as a go-to turns.
+            let to = target - animator.position();
+            if Vec3::new(to.x, 0.0, to.z).length() < c.length {
+                arrived = true;
+                break;
+            }
+            let error = (to.x.atan2(to.z) - animator.heading() + core::f32::consts::PI)
+                .rem_euclid(core::f32::consts::TAU)
+                - core::f32::consts::PI;
+            let h = animator.heading();
+            let intent = Intent::Move {
+                velocity: Vec3::new(h.sin(), 0.0, h.cos()) * hop,
+                turn_rate: 2.0 * error,
+            };
+            animator.update(1.0 / 30.0, intent, &ground).unwrap();
+            hopped += usize::from(animator.controller().gait() == Gait::Hop);
+            let posed = skinned(&c, &animator);
+            assert!(posed.iter().all(|p| p.is_finite()));
+            let planted = planted(&c, &animator);
+            for (sole, planted) in soles(&posed, &feet, &ground).into_iter().zip(planted) {
+                foot_on(
+                    sole,
+                    planted,
+                    c.length,
+                    &format!("hopper {seed} frame {frame}"),
+                );
+            }
+        }
+        assert!(arrived, "hopper {seed} did not arrive");
+        assert!(hopped >= 30, "hopper {seed} hopped {hopped} frames");
     }
 }

@@ -1,6 +1,6 @@
-//! Gaits by speed: [`Gait`] (walk, trot, run), the [`GaitSpeeds`] at which a walker changes
-//! between them (Froude numbers, as biomechanics compares animals of different sizes), and
-//! the leg groups each gait steps in.
+//! Gaits by speed: [`Gait`] (walk, trot, run, and a hopper's hop), the [`GaitSpeeds`] at
+//! which a walker changes between them (Froude numbers, as biomechanics compares animals of
+//! different sizes), and the leg groups each gait steps in.
 
 use alloc::vec::Vec;
 
@@ -10,7 +10,8 @@ use crate::leg::{Leg, LimbKind};
 /// A walking pattern. With [`GaitOptions::gaits`](crate::GaitOptions::gaits) set, the
 /// [`Controller`](crate::Controller) chooses one by the body's speed (see [`GaitSpeeds`]);
 /// without, it always walks in [`Gait::Walk`]'s groups as derived before gaits existed (see
-/// [`Gait::Walk`]).
+/// [`Gait::Walk`]), or, a hopper ([`GaitOptions::hop`](crate::GaitOptions::hop)), always
+/// hops.
 ///
 /// Which legs step together, by the walking legs' left/right pairs (back to front):
 ///
@@ -44,15 +45,16 @@ pub enum Gait {
     /// lands, so with two groups for a moment no foot is on the ground (a flight phase).
     Run,
     /// A hopper's gait from the trot's speed up (or at every speed without gaits by speed):
-    /// every walking leg lifts off together once one wants to step, swings over 0.6 of the
-    /// stride (all feet in the air: a flight phase) and lands
-    /// together; they stand until the body has carried them back out of reach.
+    /// every walking leg lifts off together once one wants to step and swings while the body
+    /// travels 1.5 times the way from its foot to its step's target at lift-off (all feet in
+    /// the air: a flight phase), and they land together; they stand until the body has
+    /// carried them back out of reach.
     Hop,
 }
 
-/// The swing's share of a hop's stride (the body's travel while the feet are in the air over
-/// the step's length): the feet are in the air for most of a hop and stand for the rest, as
-/// a hopping kangaroo's do (duty factor about 0.3–0.4 at speed).
+/// A hop's swing: the body's travel while the feet are in the air over the way from a foot to
+/// its step's target at lift-off (a run's is 0.6). The feet are in the air for most of a hop
+/// and stand for the rest, as a hopping kangaroo's do (duty factor about 0.3–0.4 at speed).
 pub(crate) const HOP_SWING_FRACTION: f32 = 1.5;
 
 impl Gait {

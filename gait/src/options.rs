@@ -129,7 +129,8 @@ pub struct GaitOptions {
     pub min_swing_time: f32,
     /// Gaits by speed: `Some` to change between walk, trot and run at these speeds (see
     /// [`Gait`](crate::Gait)), starting (and [reset](crate::Controller::reset)) in the gait
-    /// they give standing still; `None` (default) to walk in one pattern at every speed.
+    /// they give standing still; `None` (default) to walk in one pattern at every speed (a
+    /// hopper, see [`hop`](Self::hop), to hop at every speed).
     pub gaits: Option<GaitSpeeds>,
     /// Hopping: `true` to hop instead of trotting and running, every walking leg in one group
     /// (both feet of a biped together, as a kangaroo or a sparrow), a flight phase each hop

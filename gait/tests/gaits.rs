@@ -363,7 +363,7 @@ fn bad_gait_speeds_are_rejected_with_the_field_named() {
 }
 
 /// The frames of `samples` in which any leg lifted off in turn, and those in which every leg
-/// did.
+/// did (each on the ground, or out of turn, the frame before).
 fn lift_offs<'a>(samples: impl Iterator<Item = &'a Sample>) -> (usize, usize) {
     let (mut any, mut all) = (0, 0);
     let mut last: Option<&Vec<bool>> = None;
@@ -376,7 +376,7 @@ fn lift_offs<'a>(samples: impl Iterator<Item = &'a Sample>) -> (usize, usize) {
                 .collect();
             if lifted.iter().any(|&x| x) {
                 any += 1;
-                all += usize::from(lifted.iter().zip(last).all(|(&l, &was)| l || was));
+                all += usize::from(lifted.iter().all(|&l| l));
             }
         }
         last = Some(&s.stepping);
@@ -442,8 +442,8 @@ fn a_hopper_walks_then_hops_with_its_feet_together_and_its_body_thrown_up() {
             "{label}: {together} of {lifts} lift-offs together"
         );
         // A flight in every hop: a quarter of the time at least with every foot up (a
-        // walk never has one, as a test above shows), the body thrown up 8% of its leg at
-        // least (the feet's lift alone raises it 5.5-6.5%; its flight's arc 9.5-16%).
+        // walk never has one, as a test above shows), the body thrown up 7.5% of its leg at
+        // least (the feet's lift alone raises it 5.5-6.5%; with its flight's arc, 8.6-13.4%).
         let up = hop.iter().filter(|s| s.all_up).count();
         assert!(
             up * 4 >= hop.len(),
@@ -451,7 +451,7 @@ fn a_hopper_walks_then_hops_with_its_feet_together_and_its_body_thrown_up() {
             hop.len()
         );
         let rise = hop.iter().map(|s| s.height).fold(f32::MIN, f32::max) - 0.8 * length;
-        assert!(rise >= 0.08 * length, "{label}: the body rose {rise}");
+        assert!(rise >= 0.075 * length, "{label}: the body rose {rise}");
     }
 }
 

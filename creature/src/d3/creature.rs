@@ -189,8 +189,10 @@ pub struct Creature {
     pub speed: f32,
     /// Walkers' legs and arms registered for `creature-gait`; `None` for fliers and swimmers.
     pub gait: Option<crate::d3::GaitSetup>,
-    /// The kind's baked clips (walkers `idle`, `walk`, `turn`; fliers `hover`, `fly`;
-    /// swimmers `idle`, `swim`), empty when [`Params::clips`](crate::d3::Params::clips) is off.
+    /// The kind's baked clips (walkers `idle`, `walk`, `turn`, and `hop` for a hopper;
+    /// fliers `hover`, `fly`; swimmers `idle`, `swim`; slitherers `idle`, `slither`; see
+    /// [`bake_clips`](Self::bake_clips)), empty when [`Params::clips`](crate::d3::Params::clips)
+    /// is off.
     pub clips: Vec<crate::d3::Clip>,
     /// Body length (the spine's length), in metres.
     pub length: f32,

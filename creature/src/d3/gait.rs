@@ -136,8 +136,9 @@ pub(crate) fn walking_legs(legs: &[Leg]) -> usize {
 }
 
 /// The Froude number from which a hopping biped hops ([`Params::hop_chance`](crate::d3::Params::hop_chance)):
-/// a little above the fastest walkers walk (1), so its `walk` stays a walk.
-pub const HOP_FROUDE: f32 = 1.2;
+/// a little above the fastest walkers walk (1), so its `walk` stays a walk, and it walks
+/// again once it slows below 0.8 of it (the gaits' hysteresis), still above 1.
+pub const HOP_FROUDE: f32 = 1.3;
 
 /// The Froude number a hopper's `hop` clip hops at: between [`HOP_FROUDE`] and the run's
 /// 2.5, a bounding hop (faster ones, their swings the shortest a leg may take, flutter).

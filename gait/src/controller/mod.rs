@@ -233,6 +233,9 @@ pub struct Controller {
     hop_heights: Vec<f32>,
     /// How far the body is risen in a hop's flight this update (see `action`).
     hop_rise: f32,
+    /// How far each foot is raised with the body in a hop's flight this update (the bob,
+    /// which follows the feet's lift, leaves it out: the body rises once).
+    hop_lifts: Vec<f32>,
 
     // Per-update scratch and per-leg invariants, so an update does no allocation and does not
     // recompute what the legs and options fix.
@@ -300,6 +303,7 @@ impl Controller {
         self.reaction = BodyReaction::NEUTRAL;
         self.hop_heights.fill(0.0);
         self.hop_rise = 0.0;
+        self.hop_lifts.fill(0.0);
         self.look_cache = None;
         self.look = Look {
             rotation: Quat::IDENTITY,

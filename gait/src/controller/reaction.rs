@@ -61,17 +61,19 @@ impl Controller {
         if count > 0 {
             centre /= count as f32;
         }
-        for (((leg, state), rest_world), angles) in self
+        for ((((leg, state), rest_world), angles), lift) in self
             .legs
             .iter()
             .zip(&self.states)
             .zip(&self.rest_world)
             .zip(&self.angles)
+            .zip(&self.hop_lifts)
         {
             if leg.kind != LimbKind::Leg || !state.grounded {
                 continue;
             }
-            let e = state.foot.y - rest_world.y;
+            // (A hop's rise, which the body takes whole, left out.)
+            let e = state.foot.y - lift - rest_world.y;
             height += e;
             yaw += angles;
             let rest = leg.rest;

@@ -48,8 +48,8 @@ impl Controller {
         &self.layout.groups
     }
 
-    /// The gait the legs step in now (always [`Gait::Walk`] without
-    /// [`GaitOptions::gaits`]).
+    /// The gait the legs step in now (without [`GaitOptions::gaits`], always [`Gait::Walk`],
+    /// or [`Gait::Hop`] for a hopper).
     #[must_use]
     pub const fn gait(&self) -> Gait {
         self.gait

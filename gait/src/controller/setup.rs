@@ -170,6 +170,7 @@ impl Controller {
             motion: alloc::vec![Vec3::ZERO; legs.len()],
             hop_heights: alloc::vec![0.0; legs.len()],
             hop_rise: 0.0,
+            hop_lifts: alloc::vec![0.0; legs.len()],
             rest_world: legs.iter().map(|l| l.rest).collect(),
             hip_pairs,
             has_arms: legs.iter().any(|l| l.kind == LimbKind::Arm),

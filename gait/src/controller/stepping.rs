@@ -415,8 +415,9 @@ impl Controller {
 
         // 5. A hop's flight: the body rises on the mean of its walking legs' arcs (each
         //    `4 h p (1 − p)` over its step's progress `p`: none at lift-off and landing), and
-        //    the feet in the air with it, so the legs keep their swing's shape. (Only while
-        //    hopping or a hop's step is in the air: every other update skips it.)
+        //    the feet in the air with it, so the legs keep their swing's shape (the reaction's
+        //    bob leaves that rise out: see `hop_lifts`). (Only while hopping or a hop's step
+        //    is in the air: every other update skips it.)
         if self.gait != Gait::Hop && self.hop_rise == 0.0 {
             return;
         }
@@ -426,24 +427,38 @@ impl Controller {
             if leg.kind == LimbKind::Leg {
                 walking += 1;
                 if state.stepping && height > 0.0 {
-                    let p = state.progress;
-                    rise += 4.0 * height * p * (1.0 - p);
+                    rise += arc(height, state.progress);
                 }
             }
         }
-        self.hop_rise = if rise > 0.0 {
+        let rise = if rise > 0.0 {
             rise / walking as f32
         } else {
             0.0
         };
-        if self.hop_rise > 0.0 {
-            for (state, &height) in self.states.iter_mut().zip(&self.hop_heights) {
-                if state.stepping && height > 0.0 {
-                    state.foot.y += self.hop_rise;
-                }
-            }
+        self.hop_rise = rise;
+        // Each foot rises with the body, no higher than its own arc (a foot lifting off or
+        // landing out of step with the others does not jump).
+        for ((state, &height), lift) in self
+            .states
+            .iter_mut()
+            .zip(&self.hop_heights)
+            .zip(&mut self.hop_lifts)
+        {
+            *lift = if state.stepping && height > 0.0 {
+                rise.min(arc(height, state.progress))
+            } else {
+                0.0
+            };
+            state.foot.y += *lift;
         }
     }
+}
+
+/// A hop's arc `height` high at progress `p` of its step: `4 h p (1 − p)`.
+#[inline(always)]
+fn arc(height: f32, p: f32) -> f32 {
+    4.0 * height * p * (1.0 - p)
 }
 
 /// The most a hop's body rises in its flight, × the leg's size.

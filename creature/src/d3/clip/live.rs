@@ -44,7 +44,8 @@ pub enum Intent {
     /// creature's [`speed`](Creature::speed) (a walker's
     /// [`run_speed`](crate::d3::GaitSetup::run_speed) if that is more) is lowered to that, a
     /// turn rate faster than the animator's [`max_turn_rate`](Animator::max_turn_rate) to
-    /// that. A walker changes gait with its speed: it runs past a Froude number of 2.5 (see
+    /// that. A walker changes gait with its speed: it runs past a Froude number of 2.5, or, a
+    /// hopper, hops past [`HOP_FROUDE`](crate::d3::HOP_FROUDE) (see
     /// [`GaitSetup::options`](crate::d3::GaitSetup::options)).
     Move {
         /// Velocity over the ground, m/s.

@@ -2,8 +2,8 @@
 //! baker shares (frame counts, empty clips, loop errors, the root's rest position, the tail
 //! chain). The bakers and their helpers are in the submodules:
 //!
-//! - `walk`: walkers' gait-driven `walk`, `turn` and `idle` (the controller run, the loop cut
-//!   and closed, legs by two-bone IK);
+//! - `walk`: walkers' gait-driven `walk`, `turn`, `idle`, `run` and `hop` (the controller
+//!   run, the loop cut and closed, legs by two-bone IK; a hopper's tail swing);
 //! - `gait_run`: a recorded controller run, its mismatch, best cut, loop closing and overreach;
 //! - `floor`: keeping the body and knees above the floor;
 //! - `flight`: fliers' `hover` and `fly` (flapping wings, damped chains);

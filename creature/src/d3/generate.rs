@@ -164,10 +164,13 @@ pub(crate) const KINDS: [KindSpec; 4] = [
 /// swimmers, as it always has (a seed's random creature stays the one it was).
 const RANDOM_KINDS: usize = 3;
 
-/// A slitherer's rings along its body per ring of [`Params::rings`], and its spine bones per
-/// bone of [`Params::bone_length`] (and of the most of [`Params::spine_bones`], up to
-/// [`MAX_CRAWLER_BONES`]): it bends all along, each joint a little.
+/// A slitherer's rings along its body per ring of [`Params::rings`].
 const CRAWLER_RINGS: u32 = 2;
+
+/// A slitherer's spine bones per bone of [`Params::bone_length`] (and of the most of
+/// [`Params::spine_bones`], up to [`MAX_CRAWLER_BONES`]): it bends all along, each joint a
+/// little.
+const CRAWLER_BONES: u32 = 2;
 
 /// The most spine bones a slitherer's doubling gives (the most [`Params::spine_bones`]
 /// allows).
@@ -201,13 +204,13 @@ fn generate_kind(rng: &mut Pcg64Mcg, params: &Params, spec: &KindSpec) -> Result
     let params = if spec.crawls {
         crawler = Params {
             rings: params.rings.saturating_mul(CRAWLER_RINGS),
-            bone_length: params.bone_length / CRAWLER_RINGS as f32,
+            bone_length: params.bone_length / CRAWLER_BONES as f32,
             spine_bones: crate::span::IntSpan::new(
                 params.spine_bones.min,
                 params
                     .spine_bones
                     .max
-                    .saturating_mul(CRAWLER_RINGS)
+                    .saturating_mul(CRAWLER_BONES)
                     .min(MAX_CRAWLER_BONES)
                     .max(params.spine_bones.max),
             ),

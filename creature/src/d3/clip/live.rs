@@ -1288,16 +1288,7 @@ fn fit_sole<G: Ground + ?Sized>(
     let normal =
         (Vec3::Y - slope(samples[0], samples[1]) - slope(samples[2], samples[3])).unit_or(Vec3::Y);
     // At most the steepest tilt: the normal's horizontal part scaled down.
-    let (sin, cos) = (
-        crate::math::sin(MAX_SOLE_TILT),
-        crate::math::cos(MAX_SOLE_TILT),
-    );
-    let normal = if normal.y >= cos {
-        normal
-    } else {
-        let flat = Vec3::new(normal.x, 0.0, normal.z).unit_or(Vec3::X);
-        flat * sin + Vec3::Y * cos
-    };
+    let normal = tilted(normal, MAX_SOLE_TILT);
     let mean = samples.iter().map(|s| s.1).sum::<f32>() / RIM_SAMPLES as f32;
     let highest = samples.iter().map(|s| s.1).fold(f32::NEG_INFINITY, max_f);
     // The plane through the ground under the rim (least squares; heights over the joint).
@@ -1339,6 +1330,22 @@ fn plane_fit(samples: impl Iterator<Item = (f32, f32, f32)> + Clone) -> Option<(
         let (p, q) = ((xh * zz - zh * xz) / det, (zh * xx - xh * xz) / det);
         (mh - p * mx - q * mz, p, q)
     })
+}
+
+/// `x` less its whole part (for non-negative phases).
+fn fract(x: f32) -> f32 {
+    x - crate::math::floor_f(x)
+}
+
+/// `normal` (a unit vector) tilted from straight up by at most `most` radians: where it leans
+/// further, its horizontal part scaled down to that.
+fn tilted(normal: Vec3, most: f32) -> Vec3 {
+    let cos = crate::math::cos(most);
+    if normal.y >= cos {
+        return normal;
+    }
+    let level = Vec3::new(normal.x, 0.0, normal.z).unit_or(Vec3::X);
+    level * crate::math::sin(most) + Vec3::Y * cos
 }
 
 /// How quickly (seconds, a time constant) a hopper's tail eases to the swing its feet ask.

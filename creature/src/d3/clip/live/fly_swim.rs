@@ -15,7 +15,7 @@ use super::super::flight::{
 };
 use super::super::swim::{Motion, bend_scale, fin_joints, fin_rotation, swim, swim_spine};
 use super::super::walk::turn_bend_total;
-use super::{Animator, Drive};
+use super::{Animator, Drive, fract};
 use crate::Error;
 use crate::d3::Creature;
 use crate::math::Roots;
@@ -150,11 +150,6 @@ struct Steer {
     /// update.
     turn: f32,
     share: f32,
-}
-
-/// `x` less its whole part (for non-negative phases).
-fn fract(x: f32) -> f32 {
-    x - crate::math::floor_f(x)
 }
 
 /// Per joint, how far below it its skin reaches at rest (metres): down to the lowest vertex

@@ -14,7 +14,7 @@ use glam::{Affine3A, Mat3A, Quat, Vec2, Vec3};
 use creature_gait::Ground;
 
 use super::super::swim::swim_spine;
-use super::Animator;
+use super::{Animator, fract, tilted};
 use crate::Error;
 use crate::d3::Creature;
 use crate::math::Roots;
@@ -369,8 +369,8 @@ impl Animator {
         let still = 1.0 - (2.0 * relative).min(1.0);
 
         let head = s.head(heading);
-        // Each joint on the ground under its place on the path (its rest height above it,
-        // along the ground's normal).
+        // Each joint on the ground under its place on the path, straight above it by its rest
+        // height over the ground's normal (`rise / normal.y`).
         let reach = RAY_REACH * self.length;
         let fresh_height = self.position.y;
         // Each joint its bone's length from the one before: as far along the path as the bone
@@ -483,7 +483,10 @@ impl Animator {
         for i in 0..last {
             let to = Vec3::from(self.world[s.spine[i + 1]].translation);
             let along = (to - at).unit_or(back);
-            let normal = tilted((s.ground[i].1 + s.ground[i + 1].1).unit_or(Vec3::Y));
+            let normal = tilted(
+                (s.ground[i].1 + s.ground[i + 1].1).unit_or(Vec3::Y),
+                MAX_TILT,
+            );
             let world = crate::math::quat_from_mat3a(&(frame(along, normal) * s.rest_frames[i]));
             let joint = s.spine[i];
             self.local[joint] = if i == 0 {
@@ -524,21 +527,6 @@ const PLANAR_GAP: f32 = 0.01;
 /// The most a slitherer's body rolls or pitches with the ground's normal under it (radians):
 /// a step's face tilts the normal far more than the ground the body lies on.
 const MAX_TILT: f32 = 0.35;
-
-/// `normal` (a unit vector, up) tilted from +Y by at most [`MAX_TILT`].
-fn tilted(normal: Vec3) -> Vec3 {
-    let cos = crate::math::cos(MAX_TILT);
-    if normal.y >= cos {
-        return normal;
-    }
-    let level = Vec3::new(normal.x, 0.0, normal.z).unit_or(Vec3::X);
-    level * crate::math::sin(MAX_TILT) + Vec3::Y * cos
-}
-
-/// `x` less its whole part (for non-negative phases).
-fn fract(x: f32) -> f32 {
-    x - crate::math::floor_f(x)
-}
 
 /// The rotation whose columns are the side, the up (`up` square to `along`, a unit vector)
 /// and `along`.

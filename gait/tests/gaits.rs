@@ -68,6 +68,53 @@ impl Drive {
         (at, away)
     }
 
+    /// Asserts each change after the first gait came at its threshold in `thresholds` (the
+    /// first `rising` speeding up, the rest slowing down), or up to 0.15 of a Froude number
+    /// later, on legs `length` long.
+    fn changes_at(&self, thresholds: &[f32], rising: usize, length: f32, label: &str) {
+        let changes = self.changes();
+        for (k, (&(speed, gait), &threshold)) in changes[1..].iter().zip(thresholds).enumerate() {
+            let f = speed * speed / (G * length);
+            let late = if k < rising {
+                f - threshold
+            } else {
+                threshold - f
+            };
+            assert!(
+                (0.0..=0.15).contains(&late),
+                "{label}: {gait:?} at Froude {f}, threshold {threshold}"
+            );
+        }
+    }
+
+    /// Asserts no joint turned more than 45° a frame, nor 1.5 times as fast within half a
+    /// second of a change as elsewhere; no skate or overstretch on legs `length` long; at most
+    /// a tenth of the steps out of turn.
+    fn smooth(&self, length: f32, label: &str) {
+        let turn = self.max_joint_turn.to_degrees();
+        assert!(turn <= 45.0, "{label}: a joint turned {turn}° in a frame");
+        let (near, away) = self.turns_near_changes_and_elsewhere(30);
+        assert!(
+            near <= 1.5 * away,
+            "{label}: {near} rad a frame near a change, {away} elsewhere"
+        );
+        assert!(
+            self.max_skate <= 1e-4 * length,
+            "{label}: skate {}",
+            self.max_skate
+        );
+        assert!(
+            self.max_overstretch <= 1e-5 * length,
+            "{label}: overstretch"
+        );
+        assert!(
+            self.escapes * 10 <= self.steps,
+            "{label}: {} of {} steps escaped",
+            self.escapes,
+            self.steps
+        );
+    }
+
     /// The samples while in `gait`, after its first second (a steady state).
     fn steady(&self, gait: Gait) -> impl Iterator<Item = &Sample> {
         self.samples
@@ -160,7 +207,6 @@ fn speeding_up_and_slowing_down_walks_trots_runs_and_back_at_the_documented_frou
                 low + (top - low) * (1.0 - (t / 12.0 - 1.0).abs())
             });
             let label = format!("{pairs} pairs of {length} m legs");
-            let froude = |v: f32| v * v / (G * length);
             let changes = d.changes();
             let gaits: Vec<Gait> = changes.iter().map(|c| c.1).collect();
             use Gait::{Run, Trot, Walk};
@@ -168,40 +214,15 @@ fn speeding_up_and_slowing_down_walks_trots_runs_and_back_at_the_documented_frou
             // Each change at its threshold, or up to a stride later (it waits for a handover
             // between groups): within 0.15 of a Froude number on this ramp.
             let expected = [s.trot, s.run, s.run * s.hysteresis, s.trot * s.hysteresis];
-            for (k, (&(speed, gait), threshold)) in changes[1..].iter().zip(expected).enumerate() {
-                let f = froude(speed);
-                let late = if k < 2 { f - threshold } else { threshold - f };
-                assert!(
-                    (0.0..=0.15).contains(&late),
-                    "{label}: {gait:?} at Froude {f}, threshold {threshold}"
-                );
-            }
+            d.changes_at(&expected, 2, length, &label);
             // No joint jumps: the steps under way finish as they began. Within half a second
             // of a change, no joint turns much faster than anywhere else on the ramp (at
             // speeds up to a Froude number of 3.5): a foot carried across its step in a frame
             // would be several times as fast. The worst measured is 1.38 times (four 0.3 m
             // legs, the trot's first strides after a bound: a foot that had just landed waits
-            // for its diagonal group's next turn and then steps the further).
-            let turn = d.max_joint_turn.to_degrees();
-            assert!(turn <= 45.0, "{label}: a joint turned {turn}° in a frame");
-            let (near, away) = d.turns_near_changes_and_elsewhere(30);
-            assert!(
-                near <= 1.5 * away,
-                "{label}: {near} rad a frame near a change, {away} elsewhere"
-            );
-            assert!(
-                d.max_skate <= 1e-4 * length,
-                "{label}: skate {}",
-                d.max_skate
-            );
-            assert!(d.max_overstretch <= 1e-5 * length, "{label}: overstretch");
-            // Out-of-turn steps stay rare.
-            assert!(
-                d.escapes * 10 <= d.steps,
-                "{label}: {} of {} steps escaped",
-                d.escapes,
-                d.steps
-            );
+            // for its diagonal group's next turn and then steps the further). Out-of-turn
+            // steps stay rare.
+            d.smooth(length, &label);
         }
     }
 }
@@ -397,42 +418,12 @@ fn a_hopper_walks_then_hops_with_its_feet_together_and_its_body_thrown_up() {
             low + (top - low) * (1.0 - (t / 12.0 - 1.0).abs())
         });
         let label = format!("{pairs} pairs of {length} m legs");
-        let froude = |v: f32| v * v / (G * length);
         let changes = d.changes();
         let gaits: Vec<Gait> = changes.iter().map(|c| c.1).collect();
         assert_eq!(gaits, [Gait::Walk, Gait::Hop, Gait::Walk], "{label}");
         // Hopping from the trot's threshold, walking again below its hysteresis.
-        for (k, (&(speed, gait), threshold)) in changes[1..]
-            .iter()
-            .zip([s.trot, s.trot * s.hysteresis])
-            .enumerate()
-        {
-            let f = froude(speed);
-            let late = if k == 0 { f - threshold } else { threshold - f };
-            assert!(
-                (0.0..=0.15).contains(&late),
-                "{label}: {gait:?} at Froude {f}, threshold {threshold}"
-            );
-        }
-        let turn = d.max_joint_turn.to_degrees();
-        assert!(turn <= 45.0, "{label}: a joint turned {turn}° in a frame");
-        let (near, away) = d.turns_near_changes_and_elsewhere(30);
-        assert!(
-            near <= 1.5 * away,
-            "{label}: {near} rad a frame near a change, {away} elsewhere"
-        );
-        assert!(
-            d.max_skate <= 1e-4 * length,
-            "{label}: skate {}",
-            d.max_skate
-        );
-        assert!(d.max_overstretch <= 1e-5 * length, "{label}: overstretch");
-        assert!(
-            d.escapes * 10 <= d.steps,
-            "{label}: {} of {} steps escaped",
-            d.escapes,
-            d.steps
-        );
+        d.changes_at(&[s.trot, s.trot * s.hysteresis], 1, length, &label);
+        d.smooth(length, &label);
         // Every foot lifts off together: in nine of ten lift-offs (the rest, a foot that
         // escaped out of turn catching up).
         let hop: Vec<&Sample> = d.samples.iter().filter(|s| s.gait == Gait::Hop).collect();

@@ -22,16 +22,8 @@ fn glb_3d_is_a_well_formed_skinned_container() {
             let c = generate(seed, &d3::Params::DEFAULT.with_kind(kind)).unwrap();
             let clips = c.clips.clone();
             assert_eq!(clips, c.bake_clips().unwrap());
-            // Walkers' idle, walk and turn (and a hopper's hop); the others' two.
-            let hops = usize::from(c.gait.as_ref().is_some_and(|g| g.options.hop));
-            assert_eq!(
-                clips.len(),
-                if kind == d3::Kind::Walker {
-                    3 + hops
-                } else {
-                    2
-                }
-            );
+            // Walkers' idle, walk, turn and run (a hopper's hop); the others' two.
+            assert_eq!(clips.len(), if kind == d3::Kind::Walker { 4 } else { 2 });
             let glb = export::glb_3d(&c, &clips).unwrap();
             assert_eq!(&glb[0..4], b"glTF");
             assert_eq!(u32_at(&glb, 8) as usize, glb.len());

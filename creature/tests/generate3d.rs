@@ -283,9 +283,14 @@ fn every_kind_bakes_two_clips_that_loop() {
             let c = generate(seed, &d3::Params::DEFAULT.with_kind(kind)).unwrap();
             let clips = &c.clips;
             let got: Vec<&str> = clips.iter().map(|c| c.name).collect();
-            // A hopper hops too.
+            // A hopper hops too; the other walkers run.
             let hops = c.gait.as_ref().is_some_and(|g| g.options.hop);
-            let expected = [names(kind), if hops { vec!["hop"] } else { vec![] }].concat();
+            let fast = match kind {
+                d3::Kind::Walker if hops => vec!["hop"],
+                d3::Kind::Walker => vec!["run"],
+                _ => vec![],
+            };
+            let expected = [names(kind), fast].concat();
             assert_eq!(got, expected);
             for clip in clips {
                 assert!(clip.frames >= 2);
@@ -857,13 +862,19 @@ fn hoppers_are_the_bipeds_drawn_to_hop_with_their_clips_and_a_hop() {
         let names = |c: &d3::Creature| c.clips.iter().map(|k| k.name).collect::<Vec<_>>();
         if legs == 2 {
             bipeds += 1;
-            // A hopper's idle, walk and turn are the ones it had as a walker, and it hops.
+            // A hopper's idle, walk and turn are the ones it had as a walker, and it hops
+            // where it ran.
             assert_eq!(
                 names(&always),
                 ["idle", "walk", "turn", "hop"],
                 "seed {seed}"
             );
-            assert_eq!(always.clips[..3], never.clips[..], "seed {seed}");
+            assert_eq!(
+                names(&never),
+                ["idle", "walk", "turn", "run"],
+                "seed {seed}"
+            );
+            assert_eq!(always.clips[..3], never.clips[..3], "seed {seed}");
             let controller = setup.controller().unwrap();
             assert_eq!(controller.gait(), Gait::Walk);
             hoppers += usize::from(drawn.gait.as_ref().unwrap().options.hop);

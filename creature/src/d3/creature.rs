@@ -189,7 +189,7 @@ pub struct Creature {
     pub speed: f32,
     /// Walkers' legs and arms registered for `creature-gait`; `None` for fliers and swimmers.
     pub gait: Option<crate::d3::GaitSetup>,
-    /// The kind's baked clips (walkers `idle`, `walk`, `turn`, and `hop` for a hopper;
+    /// The kind's baked clips (walkers `idle`, `walk`, `turn`, and `run`, or `hop` for a hopper;
     /// fliers `hover`, `fly`; swimmers `idle`, `swim`; slitherers `idle`, `slither`; see
     /// [`bake_clips`](Self::bake_clips)), empty when [`Params::clips`](crate::d3::Params::clips)
     /// is off.
@@ -271,11 +271,12 @@ impl Creature {
     /// overlap, on two and four legs almost always a moment with no foot on the ground. A
     /// hopper ([`bake_hop_loop`](Self::bake_hop_loop)) hops at that speed instead.
     ///
-    /// Of the first 10,000 walkers' runs, every one holds the audit of delivered creatures but
-    /// two (seeds 1714 and 6651: small walkers whose run takes five frames a stride at 30 fps,
-    /// a hip or foot turning 21.5 and 20.3 rad/s as it lands, past the 20 the audit allows);
-    /// so it is not yet among [`bake_clips`](Self::bake_clips). On two and four legs, all but 3
-    /// of 9,901 have frames with every foot off the ground.
+    /// A run whose walking legs would turn a joint faster than 18 rad/s between two frames (a
+    /// small walker, whose strides take five frames at 30 fps) is baked again, up to twice,
+    /// with its shortest swing (`GaitOptions::min_swing_time`) longer by as much and a tenth,
+    /// and the slowest kept (the live animator runs with the set-up's swings). Every run of
+    /// the first 10,000 walkers holds the audit of delivered creatures; on two and four legs,
+    /// all but 3 of 9,901 have frames with every foot off the ground.
     ///
     /// ```
     /// use creature::d3::{generate, Kind, Params};
@@ -406,9 +407,10 @@ impl Creature {
 
     /// The clips of the creature's kind, each looping (the turn where that keeps its feet
     /// plausible): walkers `idle`, `walk` (whole strides, see
-    /// [`bake_walk_loop`](Self::bake_walk_loop)) and `turn` (a full turn in place, see
-    /// [`bake_turn`](Self::bake_turn)), and for a hopping biped `hop` (see
-    /// [`bake_hop_loop`](Self::bake_hop_loop)); fliers `hover` and `fly`; swimmers `idle` and
+    /// [`bake_walk_loop`](Self::bake_walk_loop)), `turn` (a full turn in place, see
+    /// [`bake_turn`](Self::bake_turn)) and `run` (see [`bake_run_loop`](Self::bake_run_loop);
+    /// for a hopping biped `hop` instead, see [`bake_hop_loop`](Self::bake_hop_loop), and
+    /// nothing for a walker on arms alone); fliers `hover` and `fly`; swimmers `idle` and
     /// `swim`; slitherers `idle` and `slither`.
     ///
     /// Fliers' wings beat by `gait::FlapParams` (flapping wings slow, 4 bones with a lagging
@@ -443,16 +445,21 @@ impl Creature {
     pub fn bake_clips(&self) -> Result<Vec<Clip>, Error> {
         Ok(match self.kind {
             CreatureKind::Walker => {
-                // As `bake_idle`, `bake_walk_loop` and `bake_turn` bake them, sharing what
-                // they measure of the creature at rest.
+                // As `bake_idle`, `bake_walk_loop`, `bake_turn` and `bake_run_loop` (or
+                // `bake_hop_loop`) bake them, sharing what they measure of the creature at
+                // rest.
                 let mut at_rest = clip::AtRest::default();
                 let mut clips = alloc::vec![
                     self.bake_idle_with(&mut at_rest)?,
                     clip::walk_loop(self, &mut at_rest)?,
                     clip::turn(self, &mut at_rest)?
                 ];
-                if self.gait.as_ref().is_some_and(|g| g.options.hop) {
-                    clips.push(clip::hop_loop(self, &mut at_rest)?);
+                match &self.gait {
+                    Some(g) if g.options.hop => clips.push(clip::hop_loop(self, &mut at_rest)?),
+                    Some(g) if g.run_speed().is_some() => {
+                        clips.push(clip::run_loop(self, &mut at_rest)?);
+                    }
+                    _ => {}
                 }
                 clips
             }

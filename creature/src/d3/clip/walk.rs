@@ -8,7 +8,7 @@ use alloc::vec::Vec;
 
 use glam::{Affine3A, Quat, Vec3};
 
-use creature_gait::{Leg, LimbKind, Plane, Pose, solve_two_bone_joints};
+use creature_gait::{GaitOptions, Leg, LimbKind, Plane, Pose, solve_two_bone_joints};
 
 use super::floor::knee_above;
 use super::gait_run::{GaitRun, best_cut, heading, ranked_cuts};
@@ -159,35 +159,85 @@ impl Figures {
 
 /// A looping `walk` (see [`Creature::bake_walk_loop`]).
 pub(crate) fn walk_loop(c: &Creature, at_rest: &mut AtRest) -> Result<Clip, Error> {
-    forward_loop(c, ("walk", false), c.speed, at_rest)
+    let setup = c.gait.as_ref().ok_or(Error::NoGait)?;
+    forward_loop(c, ("walk", false), c.speed, &setup.options, at_rest)
 }
 
-/// A looping `run` (see [`Creature::bake_run_loop`]).
+/// How many times a run whose legs turn too fast is baked again with longer swings.
+const RUN_RETRIES: usize = 2;
+
+/// A looping `run` (see [`Creature::bake_run_loop`]). A run whose walking legs turn a joint
+/// faster than [`MAX_LEG_TURN_RATE`] between two frames (a small walker, whose strides take
+/// five frames) is baked again (up to [`RUN_RETRIES`] times) with its shortest swing
+/// (`GaitOptions::min_swing_time`) longer by as much, and a tenth: the slowest is kept.
 pub(crate) fn run_loop(c: &Creature, at_rest: &mut AtRest) -> Result<Clip, Error> {
     let setup = c.gait.as_ref().ok_or(Error::NoGait)?;
     let speed = setup.run_speed().ok_or(Error::NoGait)?;
-    // A hopper hops at the run's speed.
-    forward_loop(c, ("run", setup.options.hop), speed, at_rest)
+    let mut options = setup.options;
+    if options.hop {
+        // A hopper hops at the run's speed.
+        return forward_loop(c, ("run", true), speed, &options, at_rest);
+    }
+    let legs: Vec<usize> = setup
+        .legs
+        .iter()
+        .zip(&setup.hip_joints)
+        .filter(|(leg, _)| leg.kind == LimbKind::Leg)
+        .flat_map(|(_, &hip)| [hip, hip + 1, hip + 2])
+        .collect();
+    let limit = MAX_LEG_TURN_RATE * (1.0 + 1e-3);
+    let mut best = forward_loop(c, ("run", false), speed, &options, at_rest)?;
+    let mut best_rate = fastest_turn(&best, &legs);
+    let mut rate = best_rate;
+    for _ in 0..RUN_RETRIES {
+        if rate <= limit {
+            break;
+        }
+        options.min_swing_time =
+            (options.min_swing_time * 1.1 * rate / MAX_LEG_TURN_RATE).min(MAX_SWING_TIME);
+        let clip = forward_loop(c, ("run", false), speed, &options, at_rest)?;
+        rate = fastest_turn(&clip, &legs);
+        if rate < best_rate {
+            (best, best_rate) = (clip, rate);
+        }
+    }
+    Ok(best)
+}
+
+/// The longest `GaitOptions::min_swing_time` may be (seconds).
+const MAX_SWING_TIME: f32 = 10.0;
+
+/// The fastest any of `joints`' tracks in `clip` turns between two frames (radians per
+/// second).
+fn fastest_turn(clip: &Clip, joints: &[usize]) -> f32 {
+    clip.tracks
+        .iter()
+        .filter(|t| joints.contains(&t.joint))
+        .flat_map(|t| t.rotations.windows(2).map(|w| w[0].angle_between(w[1])))
+        .fold(0.0, f32::max)
+        * clip.fps
 }
 
 /// A looping `hop` (see [`Creature::bake_hop_loop`]).
 pub(crate) fn hop_loop(c: &Creature, at_rest: &mut AtRest) -> Result<Clip, Error> {
     let setup = c.gait.as_ref().ok_or(Error::NoGait)?;
     let speed = setup.hop_speed().ok_or(Error::NoGait)?;
-    forward_loop(c, ("hop", true), speed, at_rest)
+    forward_loop(c, ("hop", true), speed, &setup.options, at_rest)
 }
 
-/// A looping clip named `name` moving forward at `speed`: 4 s of the controller, cut at the
-/// frame from 1 s on closest to the first and closed where that keeps the feet plausible.
-/// With `swing` (a hop), the tail swings against the legs (see [`hop_tail_swing`]).
+/// A looping clip named `name` moving forward at `speed`: 4 s of the controller (with
+/// `options`), cut at the frame from 1 s on closest to the first and closed where that keeps
+/// the feet plausible. With `swing` (a hop), the tail swings against the legs (see
+/// [`hop_tail_swing`]).
 fn forward_loop(
     c: &Creature,
     (name, swing): (&'static str, bool),
     speed: f32,
+    options: &GaitOptions,
     at_rest: &mut AtRest,
 ) -> Result<Clip, Error> {
     let setup = c.gait.as_ref().ok_or(Error::NoGait)?;
-    let run = c.simulate_gait(4.0, speed, 0.0)?;
+    let run = c.simulate_gait_with(options, 4.0, speed, 0.0)?;
     let first = CLIP_FPS as usize;
     let end = best_cut(&run, first..run.frames(), |_| 0.0);
     let travel = Pose::from_yaw(Vec3::Z * (speed * end as f32 / CLIP_FPS), 0.0);
@@ -449,9 +499,22 @@ impl Creature {
     /// warm-up, moving forward at `speed` and turning at `yaw_rate`; records the reacted body
     /// pose and the feet per frame, relative to the clip's starting place and heading.
     fn simulate_gait(&self, seconds: f32, speed: f32, yaw_rate: f32) -> Result<GaitRun, Error> {
+        let setup = self.gait.as_ref().ok_or(Error::NoGait)?;
+        self.simulate_gait_with(&setup.options, seconds, speed, yaw_rate)
+    }
+
+    /// [`simulate_gait`](Self::simulate_gait) with the controller's `options` in place of the
+    /// set-up's.
+    fn simulate_gait_with(
+        &self,
+        options: &GaitOptions,
+        seconds: f32,
+        speed: f32,
+        yaw_rate: f32,
+    ) -> Result<GaitRun, Error> {
         clip_seconds(seconds)?;
         let setup = self.gait.as_ref().ok_or(Error::NoGait)?;
-        let mut controller = setup.controller()?;
+        let mut controller = creature_gait::Controller::new(&setup.legs, options)?;
         let ground = Plane::horizontal(0.0);
         let dt = 1.0 / CLIP_FPS;
         let velocity = Vec3::Z * speed;

@@ -110,10 +110,19 @@ impl Slithering {
         heading + self.amplitude * crate::math::sin(core::f32::consts::TAU * phase)
     }
 
-    /// The ring's index `k` points older than the newest.
+    /// The ring's index `k` points older than the newest (`k` less than the ring's length).
     fn older(&self, k: usize) -> usize {
-        let n = self.path.len();
-        (self.newest + n - k % n) % n
+        debug_assert!(
+            k < self.path.len(),
+            "{k} points back in a ring of {}",
+            self.path.len()
+        );
+        // (No division: this is in the pose's innermost loop.)
+        if k <= self.newest {
+            self.newest - k
+        } else {
+            self.newest + self.path.len() - k
+        }
     }
 
     /// A path as if the head had always crawled straight along `heading` to `head`, the wave

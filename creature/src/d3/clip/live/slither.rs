@@ -9,7 +9,7 @@
 
 use alloc::vec::Vec;
 
-use glam::{Affine3A, Mat3A, Quat, Vec2, Vec3};
+use glam::{Affine3A, Mat3A, Quat, Vec2, Vec3, Vec3A};
 
 use creature_gait::Ground;
 
@@ -383,66 +383,86 @@ impl Animator {
         let reach = RAY_REACH * self.length;
         let fresh_height = self.position.y;
         // Each joint its bone's length from the one before: as far along the path as the bone
-        // reaches level, less where the ground climbs or falls that way (its slope under the
-        // joint before, at most 45°), so the bones reach their places on a hill too.
-        // (The path's way from the joint before is taken as its way from the one before that:
-        // for the first bone, the path's way at the head.)
-        let mut behind = 0.0;
-        let mut before = head;
-        // (A point a step ahead of the head on the path's line there.)
-        let mut previous = 2.0 * head - s.point(s.step, head);
-        let bob = 0.75 + 0.25 * crate::math::sin(core::f32::consts::TAU * s.idle);
-        for i in 0..s.spine.len() {
-            if i > 0 {
-                let level = s.arc[i] - s.arc[i - 1];
-                let ahead = before - previous;
+        // reaches level, less where the ground climbs or falls that way (its slope in the last
+        // update under the joint before, at most 45°, along the bone before that; for the
+        // first bone, along the path at the head), so the bones reach their places on a hill
+        // too. Each bone's share of the path is found first, then every place along it, then
+        // the ground under each (nothing waits on a ray): afresh, twice, the second time with
+        // the slopes and the bones the first found.
+        let n = s.spine.len();
+        for _ in 0..1 + usize::from(self.fresh) {
+            // Per bone (its end joint `i`), how far along the path it reaches (scratch).
+            for i in 1..n {
+                let ahead = if i == 1 {
+                    s.point(s.step, head) - head
+                } else {
+                    let a = Vec3::from(
+                        self.world[s.spine[i - 1]].translation
+                            - self.world[s.spine[i - 2]].translation,
+                    );
+                    Vec2::new(a.x, a.z)
+                };
                 let normal = s.ground[i - 1].1;
-                let slope = if normal.y > 0.0 {
-                    ((normal.x * ahead.x + normal.z * ahead.y)
-                        / (normal.y * ahead.norm().max(1e-9)))
-                    .clamp(-1.0, 1.0)
+                // The slope's square (at most 1), without a root: (n · a)² / (n_y² |a|²).
+                let rise = normal.x * ahead.x + normal.z * ahead.y;
+                let run = normal.y * normal.y * ahead.length_squared().max(1e-18);
+                let slope2 = if normal.y > 0.0 {
+                    (rise * rise / run).min(1.0)
                 } else {
                     0.0
                 };
-                behind += level / crate::math::sqrt(1.0 + slope * slope);
+                s.raise[i] = (s.arc[i] - s.arc[i - 1]) / crate::math::sqrt(1.0 + slope2);
             }
-            let at = s.point(behind, head);
-            if i > 0 {
-                previous = before;
+            let mut behind = 0.0;
+            let bob = 0.75 + 0.25 * crate::math::sin(core::f32::consts::TAU * s.idle);
+            for i in 0..n {
+                if i > 0 {
+                    behind += s.raise[i];
+                }
+                let at = s.point(behind, head);
+                let mut lift = 0.0;
+                let lifted = behind / (IDLE_LIFT_REACH * self.length);
+                if still > 0.0 && lifted < 1.0 {
+                    lift = still * bob * IDLE_LIFT * self.length * (1.0 - lifted) * (1.0 - lifted);
+                }
+                // Kept in the scratch of its world transform: the place (x, z) and its lift.
+                self.world[s.spine[i]].translation = Vec3::new(at.x, lift, at.y).into();
             }
-            before = at;
-            let mut lift = 0.0;
-            let lifted = behind / (IDLE_LIFT_REACH * self.length);
-            if still > 0.0 && lifted < 1.0 {
-                lift = still * bob * IDLE_LIFT * self.length * (1.0 - lifted) * (1.0 - lifted);
+            for i in 0..s.spine.len() {
+                let placed = Vec3::from(self.world[s.spine[i]].translation);
+                let (at, lift) = (Vec2::new(placed.x, placed.z), placed.y);
+                let last = if self.fresh {
+                    fresh_height
+                } else {
+                    s.ground[i].0
+                };
+                let cast = |origin: Vec3, (above, below): (f32, f32)| {
+                    ground
+                        .cast_down(origin + Vec3::Y * above, above + below)
+                        .filter(creature_gait::RayHit::is_valid)
+                };
+                let origin = Vec3::new(at.x, last, at.y);
+                let hit = if self.fresh {
+                    super::put_down(origin, (reach, reach), |h| h.point.y, cast)
+                } else {
+                    cast(origin, (reach, reach))
+                };
+                s.ground[i] = match hit {
+                    // (A unit normal, as a ground's should be, is taken as it is.)
+                    Some(hit) if (hit.normal.length_squared() - 1.0).abs() <= 1e-6 => {
+                        (hit.point.y, hit.normal)
+                    }
+                    Some(hit) => (hit.point.y, hit.normal.unit_or(Vec3::Y)),
+                    None => (last, Vec3::Y),
+                };
+                // The joint's place, kept in the same scratch: straight above the ground, as
+                // high as its rest height along the normal puts it on a plane (at most twice as
+                // high, on a step's face).
+                let (height, normal) = s.ground[i];
+                let up = (s.rise[i] + lift) / normal.y.max(0.5);
+                let joint = Vec3::new(at.x, height + up, at.y);
+                self.world[s.spine[i]].translation = joint.into();
             }
-            let last = if self.fresh {
-                fresh_height
-            } else {
-                s.ground[i].0
-            };
-            let cast = |origin: Vec3, (above, below): (f32, f32)| {
-                ground
-                    .cast_down(origin + Vec3::Y * above, above + below)
-                    .filter(creature_gait::RayHit::is_valid)
-            };
-            let origin = Vec3::new(at.x, last, at.y);
-            let hit = if self.fresh {
-                super::put_down(origin, (reach, reach), |h| h.point.y, cast)
-            } else {
-                cast(origin, (reach, reach))
-            };
-            s.ground[i] = match hit {
-                Some(hit) => (hit.point.y, hit.normal.unit_or(Vec3::Y)),
-                None => (last, Vec3::Y),
-            };
-            // The joint's place, kept in the scratch of its world transform: straight above the
-            // ground, as high as its rest height along the normal puts it on a plane (at most
-            // twice as high, on a step's face).
-            let (height, normal) = s.ground[i];
-            let up = (s.rise[i] + lift) / normal.y.max(0.5);
-            let joint = Vec3::new(at.x, height + up, at.y);
-            self.world[s.spine[i]].translation = joint.into();
         }
         // Each bone clear of the ground under its middle (a crest or a step's edge between two
         // joints): both its joints raised as far as its middle is short of its height there.
@@ -479,39 +499,53 @@ impl Animator {
             let after = if i < last { s.raise[i] } else { 0.0 };
             self.world[s.spine[i]].translation.y += before.max(after);
         }
-        // Each bone along the path, its up the ground's normal. (Turns as unit quaternions: a
-        // product of matrices would grow its rounding down the chain.)
+        // Each bone along the path, its up the ground's normal: its turn made afresh from the
+        // two frames (orthonormal), so no rounding grows down the chain.
         // Where the joint is as posed so far (a bone is as long as it is, so its end may miss
         // its place a little: the next one aims at its own place from there), and the turn of
         // the bone before. Each joint's world transform is set here (its local one too): the
         // spine's forward kinematics, done as it is posed.
-        let mut at = Vec3::from(self.world[s.spine[0]].translation);
-        let mut parent = Quat::IDENTITY;
+        let mut at = self.world[s.spine[0]].translation;
+        let mut parent = Mat3A::IDENTITY;
         let back = -Vec3::new(forward.x, 0.0, forward.y);
         let last = s.spine.len() - 1;
+        let cos_tilt2 = crate::math::cos(MAX_TILT) * crate::math::cos(MAX_TILT);
         for i in 0..last {
-            let to = Vec3::from(self.world[s.spine[i + 1]].translation);
-            let along = (to - at).unit_or(back);
-            let normal = tilted(
-                (s.ground[i].1 + s.ground[i + 1].1).unit_or(Vec3::Y),
-                MAX_TILT,
-            );
-            let world = crate::math::quat_from_mat3a(&(frame(along, normal) * s.rest_frames[i]));
+            let to = self.world[s.spine[i + 1]].translation;
+            let along = Vec3::from(to - at).unit_or(back);
+            // The normals' mean, tilted at most `MAX_TILT` (unscaled where it is within: `frame`
+            // takes any length).
+            let sum = s.ground[i].1 + s.ground[i + 1].1;
+            let normal = if sum.y > 0.0 && sum.y * sum.y >= cos_tilt2 * sum.length_squared() {
+                sum
+            } else {
+                tilted(sum.unit_or(Vec3::Y), MAX_TILT)
+            };
+            let turn = frame(along, normal) * s.rest_frames[i];
             let joint = s.spine[i];
             self.local[joint] = if i == 0 {
-                Affine3A::from_rotation_translation(world, at)
+                Affine3A {
+                    matrix3: turn,
+                    translation: at,
+                }
             } else {
-                Affine3A::from_rotation_translation(
-                    parent.conjugate() * world,
-                    self.rest_local[joint],
-                )
+                Affine3A {
+                    matrix3: parent.transpose() * turn,
+                    translation: self.rest_local[joint].into(),
+                }
             };
-            self.world[joint] = Affine3A::from_rotation_translation(world, at);
-            parent = world;
-            at += world * self.rest_local[s.spine[i + 1]];
+            self.world[joint] = Affine3A {
+                matrix3: turn,
+                translation: at,
+            };
+            parent = turn;
+            at += turn * Vec3A::from(self.rest_local[s.spine[i + 1]]);
         }
         // The tail's tip: where its bone ends, turned as it.
-        self.world[s.spine[last]] = Affine3A::from_rotation_translation(parent, at);
+        self.world[s.spine[last]] = Affine3A {
+            matrix3: parent,
+            translation: at,
+        };
         let (height, _) = s.ground[0];
         self.position = Vec3::new(head.x - root_offset.x, height, head.y - root_offset.z);
         self.heading = heading;

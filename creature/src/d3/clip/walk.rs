@@ -1,8 +1,8 @@
-//! Walkers' clips from the gait controller: the looping `walk` (cut and closed into a loop),
-//! `turn` (a full turn in place, its rate retried to complete at the cut) and `idle`; the
-//! controller run at [`CLIP_FPS`] on flat ground, and the clip from a run (the root's motion,
-//! the legs by two-bone IK, the neck and tail bent toward a turn). The plain `walk` is the
-//! live animator's (`live/bake.rs`).
+//! Walkers' clips from the gait controller: the looping `walk`, `run` and `hop` (cut and
+//! closed into a loop), `turn` (a full turn in place, its rate retried to complete at the cut)
+//! and `idle`; the controller run at [`CLIP_FPS`] on flat ground, and the clip from a run (the
+//! root's motion, the legs by two-bone IK, the neck and tail bent toward a turn). The plain
+//! `walk` is the live animator's (`live/bake.rs`).
 
 use alloc::vec::Vec;
 
@@ -169,7 +169,8 @@ const RUN_RETRIES: usize = 2;
 /// A looping `run` (see [`Creature::bake_run_loop`]). A run whose walking legs turn a joint
 /// faster than [`MAX_LEG_TURN_RATE`] between two frames (a small walker, whose strides take
 /// five frames) is baked again (up to [`RUN_RETRIES`] times) with its shortest swing
-/// (`GaitOptions::min_swing_time`) longer by as much, and a tenth: the slowest is kept.
+/// (`GaitOptions::min_swing_time`) longer by as much, and a tenth: the slowest is kept (a
+/// retry the controller rejects ends the retries, the best so far kept).
 pub(crate) fn run_loop(c: &Creature, at_rest: &mut AtRest) -> Result<Clip, Error> {
     let setup = c.gait.as_ref().ok_or(Error::NoGait)?;
     let speed = setup.run_speed().ok_or(Error::NoGait)?;
@@ -195,7 +196,9 @@ pub(crate) fn run_loop(c: &Creature, at_rest: &mut AtRest) -> Result<Clip, Error
         }
         options.min_swing_time =
             (options.min_swing_time * 1.1 * rate / MAX_LEG_TURN_RATE).min(MAX_SWING_TIME);
-        let clip = forward_loop(c, ("run", false), speed, &options, at_rest)?;
+        let Ok(clip) = forward_loop(c, ("run", false), speed, &options, at_rest) else {
+            break;
+        };
         rate = fastest_turn(&clip, &legs);
         if rate < best_rate {
             (best, best_rate) = (clip, rate);
@@ -204,7 +207,7 @@ pub(crate) fn run_loop(c: &Creature, at_rest: &mut AtRest) -> Result<Clip, Error
     Ok(best)
 }
 
-/// The longest `GaitOptions::min_swing_time` may be (seconds).
+/// The longest `GaitOptions::min_swing_time` may be (seconds; the controller's range).
 const MAX_SWING_TIME: f32 = 10.0;
 
 /// The fastest any of `joints`' tracks in `clip` turns between two frames (radians per

@@ -87,7 +87,8 @@ pub(in crate::d3::clip) struct Slithering {
     frequency: f32,
     /// Per spine joint, the ground under it in the last update: height and normal.
     ground: Vec<(f32, Vec3)>,
-    /// Per spine bone, how far its joints rise for it to clear the ground (scratch).
+    /// Scratch per spine bone: first how far along the path it reaches (indexed by its end
+    /// joint), then how far its joints rise for it to clear the ground (by its first joint).
     raise: Vec<f32>,
     /// Whether the spine is every joint of the skeleton (none to pose by forward kinematics).
     whole: bool,

@@ -155,6 +155,9 @@ pub const RUN_FROUDE: f32 = 2.75;
 /// Standard gravity, m/s².
 const GRAVITY: f32 = 9.81;
 
+/// The longest a swing may be made to take (seconds): `GaitOptions::min_swing_time`'s range.
+pub(crate) const MAX_SWING_TIME: f32 = 10.0;
+
 /// The shortest swing (seconds, before the controller's `√size` scaling of small legs, see
 /// [`GaitOptions::min_swing_time`]) in which no joint of `legs` need turn faster than
 /// `max_rate` (radians per second), `options` sizing the steps: a leg's hip and knee turn
@@ -185,9 +188,9 @@ pub(crate) fn swing_time_for_joints(legs: &[Leg], options: &GaitOptions, max_rat
         least = least.max(time / sqrt(size.min(1.0)));
     }
     if least.is_finite() {
-        least.min(10.0)
+        least.min(MAX_SWING_TIME)
     } else {
-        10.0
+        MAX_SWING_TIME
     }
 }
 

@@ -17,6 +17,7 @@ use super::swing::even_swings;
 use super::{CLIP_FPS, Clip, Track, loop_error};
 use crate::Error;
 use crate::d3::Creature;
+use crate::d3::gait::MAX_SWING_TIME;
 use crate::math::Roots;
 
 /// Seconds the controller runs before a clip's first frame, so the gait is in its steady
@@ -206,9 +207,6 @@ pub(crate) fn run_loop(c: &Creature, at_rest: &mut AtRest) -> Result<Clip, Error
     }
     Ok(best)
 }
-
-/// The longest `GaitOptions::min_swing_time` may be (seconds; the controller's range).
-const MAX_SWING_TIME: f32 = 10.0;
 
 /// The fastest any of `joints`' tracks in `clip` turns between two frames (radians per
 /// second).

@@ -170,8 +170,17 @@ impl GaitRun {
             // the last frame.
             let across = Vec3::new(delta.x, 0.0, delta.z);
             let lift_off = (0..keep).rev().find(|&f| self.planted(f, leg)).unwrap_or(0);
+            // Per swing frame, the lift of the frames from it to its swing's end.
+            let mut ahead = alloc::vec![0.0f32; keep + 1];
+            for f in (1..keep).rev() {
+                if lift[f] > 0.0 {
+                    ahead[f] = lift[f] + ahead[f + 1];
+                }
+            }
             let mut done = 0.0f32;
             let mut offset = Vec3::ZERO;
+            // The heading the correction is turned by, as last made.
+            let mut angle: Option<f32> = None;
             for (f, &up) in lift.iter().enumerate().skip(1) {
                 if !(swings > 0.0) {
                     offset = across * (f as f32 / last as f32);
@@ -179,8 +188,18 @@ impl GaitRun {
                     done += up;
                     let s = (done / swings).min(1.0);
                     // Turned by the heading only: the body's lean would tip the correction
-                    // up or down.
-                    offset = Quat::from_rotation_y((1.0 - s) * turned[f]) * across * s;
+                    // up or down. The body turned on over the stance before this swing, while
+                    // the correction was held: the turn catches up over the swing by its
+                    // frames' lift, none of it at once as the foot leaves the ground (a
+                    // correction swung across by the stance's turn as the foot lifted off
+                    // slid it along the ground).
+                    let want = (1.0 - s) * turned[f];
+                    let turn = match angle {
+                        Some(a) => a + (want - a) * (up / ahead[f]).min(1.0),
+                        None => want,
+                    };
+                    angle = Some(turn);
+                    offset = Quat::from_rotation_y(turn) * across * s;
                 }
                 let rise = if f > lift_off {
                     delta.y * (f - lift_off) as f32 / (last - lift_off) as f32
@@ -413,6 +432,43 @@ mod tests {
             contacts: heights.iter().map(|&y| y == 0.0).collect(),
             legs: 1,
         }
+    }
+
+    #[test]
+    fn regression_a_closing_foot_lifting_off_after_a_turning_stance_does_not_slide() {
+        // The body turns 0.2 rad a frame, through the stance (frames 4 to 6) too. The
+        // correction, held while the foot stood, was turned afresh by the heading still to
+        // come at the next swing's first frame: it swung across by the stance's turn as the
+        // foot lifted off 0.1 over the ground, sliding it 0.35 at frame 7, where its share of
+        // the correction (1.89 across) is 0.13. It now turns on over the swing by its frames'
+        // lift.
+        let before = one_leg_run();
+        let mut run = before.clone();
+        // The loop's motion: the body's whole turn, so the closing leaves the turn as it is.
+        let motion = Pose {
+            translation: Vec3::ZERO,
+            rotation: Quat::from_rotation_y(2.0),
+        };
+        run.close_loop(10, &motion, false, 0.0);
+        let moved = |f: usize| {
+            let d = run.foot(f, 0) - before.foot(f, 0);
+            Vec3::new(d.x, 0.0, d.z)
+        };
+        let delta = motion.transform_point(before.foot(0, 0)) - before.foot(10, 0);
+        let across = Vec3::new(delta.x, 0.0, delta.z).length();
+        // Frame 7's share of the lift of every swing frame (1 to 3 and 7 to 10).
+        let share = 0.1 / 1.5;
+        let jump = (moved(7) - moved(6)).length();
+        assert!(
+            jump <= 1.5 * share * across,
+            "{jump} vs {} ({} then {})",
+            share * across,
+            moved(6),
+            moved(7)
+        );
+        // And the loop still closes: the last frame's foot is the first's, moved on.
+        let closed = motion.transform_point(run.foot(0, 0));
+        assert!((run.foot(10, 0) - closed).length() < 1e-5);
     }
 
     #[test]

@@ -235,17 +235,30 @@ impl Creature {
         clip::live_walk(self, seconds)
     }
 
-    /// Bakes a looping `walk`: 4 s are simulated by the gait controller on flat ground
-    /// (forward at the creature's speed, after a second's warm-up; not yet through the
-    /// animator, as [`bake_walk`](Self::bake_walk) is), then
-    /// cut at the frame from 1 s on that comes closest to the first (the same feet planted,
-    /// the feet nearest their first places relative to the body), so the clip lasts whole
-    /// strides; the loop is then closed exactly (see [`Clip::loop_error`]): the small mismatch
-    /// of the body's pose is spread over the clip, and each foot's over its swings only, so a
-    /// planted foot never moves. The root travels forward (root motion): its forward
-    /// translation does not come back. If closing would stretch a planted leg beyond its reach
-    /// (a nearly straight leg; 68 walkers in 10,000 with the default params), the clip is only
-    /// cut, and its `loop_error` says how far it is from looping.
+    /// Bakes a looping `walk`: the walker's [`Animator`](crate::d3::Animator) is driven on
+    /// flat ground as [`bake_walk`](Self::bake_walk) drives it (forward at the creature's
+    /// speed, after a second's warm-up) for 4 s; its gait (the feet and the body) is cut at
+    /// the frame from 1 s on that comes closest to the first (the same feet planted, the feet
+    /// nearest their first places relative to the body), so the clip lasts whole strides, and
+    /// the loop is closed exactly (see [`Clip::loop_error`]): the small mismatch of the body's
+    /// pose is spread over the clip, and each foot's over its swings only, so a planted foot
+    /// never moves. The animator, driven again, poses each frame with that closing: the clip is
+    /// the live animator's frames, each moved by the closing alone (the first not at all), but
+    /// for the slowing and limiting below. The
+    /// root travels forward (root motion): its forward translation does not come back. If
+    /// closing would stretch a planted leg beyond its reach (a nearly straight leg), a foot
+    /// across the body or slide a foot that is low over the ground, the clip is only cut, and
+    /// its `loop_error` says how far it is from looping.
+    ///
+    /// A clip whose walking legs turn a joint faster than 18 rad/s between two frames (a small
+    /// or very fast walker, whose swings take three or four frames) is baked again, up to
+    /// twice, with its shortest swing (`GaitOptions::min_swing_time`) longer by as much and a
+    /// tenth, and the slowest kept; if that still turns faster than 20 rad/s, its legs' joints
+    /// are limited to 18 rad/s wherever the foot is off the ground (in a swing, or planted
+    /// where the leg cannot reach), none lowering its foot near the ground. The live animator
+    /// does neither: it runs with the set-up's swings and cannot see the frames to come.
+    /// `turn` is baked the same way, and `run` with up to four retries. Every looping clip of
+    /// the first 10,000 walkers holds the audit of delivered creatures.
     ///
     /// ```
     /// use creature::d3::{generate, Kind, Params};
@@ -261,7 +274,7 @@ impl Creature {
     /// [`Error::NoGait`] for a creature without a gait set-up (fliers and swimmers), and the
     /// controller's errors as [`Error::Gait`].
     pub fn bake_walk_loop(&self) -> Result<Clip, Error> {
-        clip::walk_loop(self, &mut clip::AtRest::default())
+        clip::walk_loop(self)
     }
 
     /// Bakes a looping `run`, as [`bake_walk_loop`](Self::bake_walk_loop) bakes the walk, at
@@ -271,12 +284,11 @@ impl Creature {
     /// overlap, on two and four legs almost always a moment with no foot on the ground. A
     /// hopper ([`bake_hop_loop`](Self::bake_hop_loop)) hops at that speed instead.
     ///
-    /// A run whose walking legs would turn a joint faster than 18 rad/s between two frames (a
-    /// small walker, whose strides take five frames at 30 fps) is baked again, up to twice,
-    /// with its shortest swing (`GaitOptions::min_swing_time`) longer by as much and a tenth,
-    /// and the slowest kept (the live animator runs with the set-up's swings). Every run of
-    /// the first 10,000 walkers holds the audit of delivered creatures; on two and four legs,
-    /// all but 3 of 9,901 have frames with every foot off the ground.
+    /// A run whose legs turn too fast is baked again with longer swings (up to four times) and
+    /// then limited, as the walk is (a small walker's strides take five frames at 30 fps); a
+    /// hopper's hop at this speed too. Every run of the
+    /// first 10,000 walkers holds the audit of delivered creatures; on two and four legs, all
+    /// but 3 of 9,901 have frames with every foot off the ground.
     ///
     /// ```
     /// use creature::d3::{generate, Kind, Params};
@@ -291,7 +303,7 @@ impl Creature {
     /// [`Error::NoGait`] for a creature without a gait set-up (fliers and swimmers) or without
     /// legs, and the controller's errors as [`Error::Gait`].
     pub fn bake_run_loop(&self) -> Result<Clip, Error> {
-        clip::run_loop(self, &mut clip::AtRest::default())
+        clip::run_loop(self)
     }
 
     /// Bakes a hopping biped's looping `hop` (see [`Params::hop_chance`](crate::d3::Params::hop_chance)):
@@ -313,34 +325,32 @@ impl Creature {
     /// [`Error::NoGait`] for a creature that does not hop (no gait set-up, or one whose
     /// options do not hop), and the controller's errors as [`Error::Gait`].
     pub fn bake_hop_loop(&self) -> Result<Clip, Error> {
-        clip::hop_loop(self, &mut clip::AtRest::default())
+        clip::hop_loop(self)
     }
 
     /// Bakes a walker's `idle` clip: standing still, breathing (one breath: the gait's
-    /// breathing rate), arms bobbing; it loops.
+    /// breathing rate), arms bobbing; it loops. It is the frames of the walker's
+    /// [`Animator`](crate::d3::Animator) standing on flat ground after a second's warm-up, as
+    /// a game standing it there shows them.
     ///
     /// # Errors
     /// [`Error::NoGait`] for a creature without a gait set-up (fliers and swimmers), and the
     /// controller's errors as [`Error::Gait`].
     pub fn bake_idle(&self) -> Result<Clip, Error> {
-        self.bake_idle_with(&mut clip::AtRest::default())
-    }
-
-    /// [`bake_idle`](Self::bake_idle) with what the clips baked together share.
-    fn bake_idle_with(&self, at_rest: &mut clip::AtRest) -> Result<Clip, Error> {
         let rate = self
             .gait
             .as_ref()
             .map_or(0.25, |g| g.options.breathe_rate)
             .max(1.0 / 60.0);
-        clip::gait(self, "idle", 1.0 / rate, 0.0, 0.0, at_rest)
+        clip::gait(self, "idle", 1.0 / rate, 0.0, 0.0)
     }
 
     /// Bakes a walker's `turn` clip: turning in place to its left at about a quarter turn per
     /// second, slower for a long walker whose farthest foot would sweep round faster than it
     /// walks (one turn in 12 s at the slowest), one full turn, the legs stepping with the
     /// rotation and the neck and tail bent toward the turn (0.35 rad over each, shared by its
-    /// bones). It is cut, like [`bake_walk_loop`](Self::bake_walk_loop), at the frame within
+    /// bones): the walker's [`Animator`](crate::d3::Animator) turned on flat ground. It is cut,
+    /// like [`bake_walk_loop`](Self::bake_walk_loop), at the frame within
     /// half a second of the full turn with the same feet planted as the first that best
     /// completes the turn; the rate is then retried
     /// (up to twice) so that the turn completes exactly at the cut, and the best try kept.
@@ -364,7 +374,7 @@ impl Creature {
     /// [`Error::NoGait`] for a creature without a gait set-up (fliers and swimmers), and the
     /// controller's errors as [`Error::Gait`].
     pub fn bake_turn(&self) -> Result<Clip, Error> {
-        clip::turn(self, &mut clip::AtRest::default())
+        clip::turn(self)
     }
 
     /// The joints' model-space transforms at frame `frame` of `clip` (clamped to its last
@@ -446,18 +456,13 @@ impl Creature {
         Ok(match self.kind {
             CreatureKind::Walker => {
                 // As `bake_idle`, `bake_walk_loop`, `bake_turn` and `bake_run_loop` (or
-                // `bake_hop_loop`) bake them, sharing what they measure of the creature at
-                // rest.
-                let mut at_rest = clip::AtRest::default();
-                let mut clips = alloc::vec![
-                    self.bake_idle_with(&mut at_rest)?,
-                    clip::walk_loop(self, &mut at_rest)?,
-                    clip::turn(self, &mut at_rest)?
-                ];
+                // `bake_hop_loop`) bake them.
+                let mut clips =
+                    alloc::vec![self.bake_idle()?, clip::walk_loop(self)?, clip::turn(self)?];
                 match &self.gait {
-                    Some(g) if g.options.hop => clips.push(clip::hop_loop(self, &mut at_rest)?),
+                    Some(g) if g.options.hop => clips.push(clip::hop_loop(self)?),
                     Some(g) if g.run_speed().is_some() => {
-                        clips.push(clip::run_loop(self, &mut at_rest)?);
+                        clips.push(clip::run_loop(self)?);
                     }
                     _ => {}
                 }

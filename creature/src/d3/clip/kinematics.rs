@@ -171,12 +171,6 @@ fn bend_frame((upper, lower): (Vec3, Vec3), pole: Vec3) -> Mat3 {
     Mat3::from_cols(upper, normal, upper.cross(normal))
 }
 
-/// The angle (radians) between unit vectors `a` and `b`, accurate for small angles too:
-/// `|a − b| = 2 sin(θ / 2)`.
-pub(super) fn angle_between_vectors(a: Vec3, b: Vec3) -> f32 {
-    2.0 * crate::math::asin((0.5 * (a - b).norm()).min(1.0))
-}
-
 /// The shortest rotation from unit vector `from` to unit vector `to`. Unlike
 /// `Quat::from_rotation_arc`, which returns the identity below about 5e-4 rad (1.7 mm at the
 /// foot of a 3.4 m leg), it is exact for small angles: (from × to, 1 + from · to) normalised.

@@ -184,6 +184,9 @@ pub struct Animator {
     smoothing: (f32, f32, f32),
     /// Whether the next update starts afresh (feet put under the body where it stands).
     fresh: bool,
+    /// How far a walker's body (its mesh skinned to spine joints only) stands off the ground
+    /// at rest (infinite for other kinds): its bob and breathing dip it no further.
+    clearance: f32,
     local: Vec<Affine3A>,
     world: Vec<Affine3A>,
     skinning: Vec<Mat4>,
@@ -200,6 +203,28 @@ enum Drive {
     Swim(alloc::boxed::Box<fly_swim::Swimming>),
     /// A slitherer: its body wave and the path it crawls along.
     Slither(alloc::boxed::Box<slither::Slithering>),
+}
+
+/// How a walker's update poses it.
+#[derive(Debug, Clone, Copy)]
+pub(super) enum Posing<'a> {
+    /// As the controller has it (live).
+    Live,
+    /// Not at all: only the controller's feet and body are wanted (a baked loop's first run).
+    Skip,
+    /// With a baked loop's closing of the frame.
+    Closed(Closing<'a>),
+}
+
+/// A baked loop's closing of one frame (see `bake::posed_loop`): the reacted body as the
+/// closed loop has it, and per leg (the controller's order) how far its foot moves (world),
+/// whether it is planted and how far its sole turns about +Y (radians).
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Closing<'a> {
+    pub(super) body: Pose,
+    pub(super) feet: &'a [Vec3],
+    pub(super) planted: &'a [bool],
+    pub(super) soles: &'a [f32],
 }
 
 /// One leg's (or arm's) posing: its joints, its knee hinge and how far its knee's ring of
@@ -437,6 +462,7 @@ impl Animator {
             turns: alloc::vec![false; n],
             smoothing: (0.0, 0.0, 0.0),
             fresh: true,
+            clearance: f32::INFINITY,
             world: local.clone(),
             local,
             skinning: alloc::vec![Mat4::IDENTITY; n],
@@ -458,6 +484,24 @@ impl Animator {
             Drive::Walk,
         )?;
         let n = joints.len();
+        // How high the body (the mesh skinned to spine joints only) is off the ground at rest.
+        let spine = |j: u16| {
+            joints
+                .get(usize::from(j))
+                .is_some_and(|j| j.part == crate::d3::Part::Spine)
+        };
+        let mesh = &creature.mesh;
+        animator.clearance = mesh
+            .positions
+            .iter()
+            .zip(mesh.joints.iter().zip(&mesh.weights))
+            .filter(|(_, (js, ws))| {
+                js.iter()
+                    .zip(ws.iter())
+                    .all(|(&j, &w)| w == 0.0 || spine(j))
+            })
+            .map(|(p, _)| p.y)
+            .fold(f32::INFINITY, f32::min);
         let parents = &animator.parents;
         let rest = |j: usize| joints.get(j).map_or(Vec3::ZERO, |j| j.position);
         if setup.hip_joints.len() != setup.legs.len() {
@@ -526,6 +570,7 @@ impl Animator {
             Quat::IDENTITY,
             None::<&creature_gait::Plane>,
             f32::INFINITY,
+            None,
         );
         Ok(animator)
     }
@@ -586,8 +631,20 @@ impl Animator {
         &mut self,
         dt: f32,
         intent: Intent,
+        motion: (Vec3, f32),
+        ground: &G,
+    ) -> Result<(), Error> {
+        self.walk_posed(dt, intent, motion, ground, Posing::Live)
+    }
+
+    /// [`walk`](Self::walk), posed as `posing` says.
+    pub(super) fn walk_posed<G: Ground + ?Sized>(
+        &mut self,
+        dt: f32,
+        intent: Intent,
         (velocity, turn_rate): (Vec3, f32),
         ground: &G,
+        posing: Posing<'_>,
     ) -> Result<(), Error> {
         let heading = wrap(self.heading + turn_rate * dt);
         let mut position = self.position + velocity * dt;
@@ -640,6 +697,20 @@ impl Animator {
             _ => None,
         };
         self.controller.set_look_target(look)?;
+        if matches!(posing, Posing::Skip) {
+            // Only the feet and the body are wanted: no pose.
+            self.controller.update_feet_and_body(
+                dt,
+                pose,
+                velocity,
+                Vec3::Y * turn_rate,
+                ground,
+            )?;
+            self.fresh = false;
+            (self.position, self.heading, self.lean) = (position, heading, lean);
+            self.turn += (turn_rate - self.turn) * self.smoothing(dt).1;
+            return Ok(());
+        }
         self.controller
             .update(dt, pose, velocity, Vec3::Y * turn_rate, ground)?;
         // Arms hang free, damped: no joint of theirs turns faster than the baked clips' do
@@ -649,14 +720,29 @@ impl Animator {
         } else {
             MAX_ARM_TURN_RATE * dt
         };
-        let body = self.controller.reacted_pose();
+        let reacted = self.controller.reacted_pose();
+        let closing = match posing {
+            Posing::Closed(closing) => Some(closing),
+            _ => None,
+        };
+        let mut body = closing.map_or(reacted, |c| c.body);
+        // The body's bob and breathing dip it no further than it stands off the ground at
+        // rest: a body resting on the ground is not pushed into it (a 35 cm walker's belly
+        // went 0.45 mm under the floor as it breathed).
+        let floor = position.y - self.clearance;
+        if body.translation.y < floor {
+            body.translation.y = floor;
+        }
         if !self.swinging.is_empty() {
             // A hopper's tail swings against its legs while it hops, and eases back to rest
             // when it walks.
             let swing = if self.controller.gait() == Gait::Hop {
                 let unturn = body.rotation.inverse();
-                let feet = self.controller.leg_states().iter();
-                let feet = feet.map(|s| unturn * (s.joints.end - body.translation));
+                let feet = self.controller.leg_states().iter().enumerate();
+                let feet = feet.map(|(i, s)| {
+                    let moved = closing.map_or(Vec3::ZERO, |c| c.feet[i]);
+                    unturn * (s.joints.end + moved - body.translation)
+                });
                 hop_tail_swing(self.controller.legs(), feet)
             } else {
                 0.0
@@ -678,7 +764,13 @@ impl Animator {
         self.fresh = false;
         (self.position, self.heading, self.lean) = (position, heading, lean);
         self.turn += (turn_rate - self.turn) * self.smoothing(dt).1;
-        self.pose_joints(&body, yaw, Some(ground), arm_turn);
+        self.pose_joints(
+            &body,
+            yaw,
+            Some(ground),
+            arm_turn,
+            closing.map(|c| (reacted, c)),
+        );
         Ok(())
     }
 
@@ -796,12 +888,17 @@ impl Animator {
     /// pose) with its legs as the controller solved them, their knees above `ground` (none:
     /// nothing to keep them above), their feet level with `heading` and tilted to the ground
     /// under them.
+    ///
+    /// With `closing` (the controller's reacted body and a baked loop's closing of this frame,
+    /// `body` the closed body), each leg's hip stays where it is on the body, and its foot is
+    /// moved by the closing and planted as it says.
     fn pose_joints<G: Ground + ?Sized>(
         &mut self,
         body: &Pose,
         heading: Quat,
         ground: Option<&G>,
         arm_turn: f32,
+        closing: Option<(Pose, Closing<'_>)>,
     ) {
         // Neck and tail bent toward the turn, as the baked clips bend them; the neck turned on
         // toward the look, its rest shared among the neck's joints, none past what its skin
@@ -848,8 +945,30 @@ impl Animator {
             let parent = self.parents[j].map(|p| self.world[p]);
             if let Some(i) = self.leg_at[j] {
                 // A leg's hip: its chain solved from the hip to the foot in body space.
-                let (leg, state) = (&setup[i], &states[i]);
-                let yaw = self.legs[i].turn_sole(leg.kind, state, heading, arm_turn);
+                let leg = &setup[i];
+                // A closed loop's leg: its hip where it is on the body, its foot moved and
+                // planted as the closing has it, its knee solved again.
+                let closed;
+                let state = match &closing {
+                    Some((reacted, closing)) => {
+                        let mut s = states[i];
+                        let root = reacted.inverse_transform_point(s.joints.root);
+                        s.joints.root = body.transform_point(root);
+                        s.joints.end += closing.feet[i];
+                        s.foot += closing.feet[i];
+                        s.planted = closing.planted[i];
+                        let end = unturn * (s.joints.end - body.translation);
+                        let middle = solve_two_bone(root, end, leg.upper, leg.lower, leg.pole);
+                        s.joints.middle = body.transform_point(middle.middle);
+                        closed = s;
+                        &closed
+                    }
+                    None => &states[i],
+                };
+                let mut yaw = self.legs[i].turn_sole(leg.kind, state, heading, arm_turn);
+                if let Some((_, closing)) = &closing {
+                    yaw = (Quat::from_rotation_y(closing.soles[i]) * yaw).unit();
+                }
                 // The controller's two-bone solution (world, the knee toward the pole), in
                 // body space.
                 let solved = &state.joints;

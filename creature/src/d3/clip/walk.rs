@@ -1,20 +1,18 @@
-//! Walkers' clips from the gait controller: the looping `walk`, `run` and `hop` (cut and
-//! closed into a loop), `turn` (a full turn in place, its rate retried to complete at the cut)
-//! and `idle`; the controller run at [`CLIP_FPS`] on flat ground, and the clip from a run (the
-//! root's motion, the legs by two-bone IK, the neck and tail bent toward a turn). The plain
-//! `walk` is the live animator's (`live/bake.rs`).
+//! Walkers' looping clips, each baked by the live animator on flat ground at [`CLIP_FPS`]
+//! (`live/bake.rs`): `walk`, `run` and `hop` (cut at whole strides and closed into a loop),
+//! `turn` (a full turn in place, its rate retried to complete at the cut) and `idle`. A loop's
+//! cut and closing are chosen on the animator's gait (the feet and the body, not posed), and
+//! the animator, driven again, poses each frame with the closing.
 
 use alloc::vec::Vec;
 
-use glam::{Affine3A, Quat, Vec3};
+use glam::{Affine3A, Vec3};
 
-use creature_gait::{GaitOptions, Leg, LimbKind, Plane, Pose, solve_two_bone_joints};
+use creature_gait::{GaitOptions, Leg, LimbKind, Pose};
 
-use super::floor::knee_above;
-use super::gait_run::{GaitRun, best_cut, heading, ranked_cuts};
-use super::kinematics::{Hinge, forward_kinematics};
-use super::swing::even_swings;
-use super::{CLIP_FPS, Clip, Track, loop_error};
+use super::gait_run::{GaitRun, best_cut, ranked_cuts};
+use super::live::bake::{gait_run, posed_loop, record};
+use super::{CLIP_FPS, Clip};
 use crate::Error;
 use crate::d3::Creature;
 use crate::d3::gait::MAX_SWING_TIME;
@@ -31,62 +29,13 @@ const MAX_ARM_TURN_PER_FRAME: f32 = 0.4;
 /// [`MAX_ARM_TURN_PER_FRAME`] in radians per second: the live animator's arms turn no faster.
 pub(crate) const MAX_ARM_TURN_RATE: f32 = MAX_ARM_TURN_PER_FRAME * CLIP_FPS;
 
-/// Each rotation turned no further than `max` radians from the one before it, following the
-/// track as closely as that allows.
-fn limit_turn_rate(rotations: &mut [Quat], max: f32) {
-    for f in 1..rotations.len() {
-        let (before, now) = (rotations[f - 1], rotations[f]);
-        let angle = before.angle_between(now);
-        if angle > max {
-            rotations[f] = before.slerp(now, max / angle).unit();
-        }
-    }
-}
-
 /// The most a leg's joint turns from one frame to the next while its foot is in the air, in
 /// radians (18 rad/s at [`CLIP_FPS`]; the audit of delivered creatures allows 20).
-const MAX_LEG_TURN_PER_FRAME: f32 = 0.6;
+pub(super) const MAX_LEG_TURN_PER_FRAME: f32 = 0.6;
 
 /// [`MAX_LEG_TURN_PER_FRAME`] in radians per second: the gait's swings are made long enough for
 /// it (see `swing_time_for_joints`).
 pub(crate) const MAX_LEG_TURN_RATE: f32 = MAX_LEG_TURN_PER_FRAME * CLIP_FPS;
-
-/// Each rotation whose frame is `free` turned no further than `max` radians from its
-/// neighbours, the others kept: forward, backward and forward again, each frame moved toward
-/// the one before (after), so a limited stretch leaves and rejoins the kept frames within the
-/// limit where the limit allows.
-fn limit_free_turn_rate(rotations: &mut [Quat], free: &[bool], max: f32) {
-    let n = rotations.len().min(free.len());
-    // Most tracks turn slower everywhere: two unit quaternions are within `max` of each other
-    // when their dot product's size is at least cos(max / 2).
-    let near = crate::math::cos(0.5 * max);
-    if (1..n).all(|k| !(free[k] || free[k - 1]) || rotations[k].dot(rotations[k - 1]).abs() >= near)
-    {
-        return;
-    }
-    let toward = |from: Quat, to: Quat| {
-        let angle = from.angle_between(to);
-        if angle > max {
-            Some(from.slerp(to, max / angle).unit())
-        } else {
-            None
-        }
-    };
-    for pass in 0..3 {
-        for k in 1..n {
-            let (f, near) = if pass == 1 {
-                (n - 1 - k, n - k)
-            } else {
-                (k, k - 1)
-            };
-            if free[f]
-                && let Some(q) = toward(rotations[near], rotations[f])
-            {
-                rotations[f] = q;
-            }
-        }
-    }
-}
 
 /// Where a foot off the ground reaching `to` from `hip` goes on a leg `length` long: short of
 /// the target, softly, once it is beyond [`SOFT_REACH`] of the length, so the leg never
@@ -121,7 +70,7 @@ const SOFT_SPAN: f32 = 0.08;
 
 /// How near the ground (× body length) a foot counts as on it, and how far a planted foot may
 /// slide, as the audit of delivered creatures counts them.
-const GROUND_CONTACT: f32 = 0.005;
+pub(super) const GROUND_CONTACT: f32 = 0.005;
 
 /// The longest a `turn` takes to turn once (seconds), however long the walker.
 const MAX_TURN_SECONDS: f32 = 12.0;
@@ -158,28 +107,57 @@ impl Figures {
     }
 }
 
-/// A looping `walk` (see [`Creature::bake_walk_loop`]).
-pub(crate) fn walk_loop(c: &Creature, at_rest: &mut AtRest) -> Result<Clip, Error> {
+/// A looping `walk` (see [`Creature::bake_walk_loop`]), its swings slowed if need be
+/// ([`slow_enough`]).
+pub(crate) fn walk_loop(c: &Creature) -> Result<Clip, Error> {
     let setup = c.gait.as_ref().ok_or(Error::NoGait)?;
-    forward_loop(c, ("walk", false), c.speed, &setup.options, at_rest)
+    slow_enough(c, &setup.options, SLOW_RETRIES, |options, limit| {
+        forward_loop(c, "walk", c.speed, options, limit)
+    })
 }
 
-/// How many times a run whose legs turn too fast is baked again with longer swings.
-const RUN_RETRIES: usize = 2;
+/// How fast (radians per second) a walking leg's joint may turn in a clip still too fast
+/// after its retries before its swings are limited (see [`slow_enough`]): what the audit of
+/// delivered creatures allows.
+const FLICK_RATE: f32 = 20.0;
 
-/// A looping `run` (see [`Creature::bake_run_loop`]). A run whose walking legs turn a joint
-/// faster than [`MAX_LEG_TURN_RATE`] between two frames (a small walker, whose strides take
-/// five frames) is baked again (up to [`RUN_RETRIES`] times) with its shortest swing
-/// (`GaitOptions::min_swing_time`) longer by as much, and a tenth: the slowest is kept (a
-/// retry the controller rejects ends the retries, the best so far kept).
-pub(crate) fn run_loop(c: &Creature, at_rest: &mut AtRest) -> Result<Clip, Error> {
+/// How many times a clip whose legs turn too fast is baked again with longer swings (more
+/// often, a walk's feet were seen to come down beside each other).
+const SLOW_RETRIES: usize = 2;
+
+/// [`SLOW_RETRIES`] for a run, whose swings are the quickest: its joints' speed comes down
+/// unevenly with longer swings.
+const RUN_RETRIES: usize = 4;
+
+/// A looping `run` (see [`Creature::bake_run_loop`]), its swings slowed if need be
+/// ([`slow_enough`]; a small walker's strides take five frames).
+pub(crate) fn run_loop(c: &Creature) -> Result<Clip, Error> {
     let setup = c.gait.as_ref().ok_or(Error::NoGait)?;
     let speed = setup.run_speed().ok_or(Error::NoGait)?;
-    let mut options = setup.options;
-    if options.hop {
-        // A hopper hops at the run's speed.
-        return forward_loop(c, ("run", true), speed, &options, at_rest);
-    }
+    // A hopper hops at the run's speed, slowed and limited as a run is.
+    slow_enough(c, &setup.options, RUN_RETRIES, |options, limit| {
+        forward_loop(c, "run", speed, options, limit)
+    })
+}
+
+/// The clip `bake` bakes with the gait `options` (and no limit, `false`); if its walking legs
+/// turn a joint faster than [`MAX_LEG_TURN_RATE`] between two frames (a quick swing's joints
+/// are not all slowed by `swing_time_for_joints`, which takes them to turn evenly), baked
+/// again (up to `retries` times) with its shortest swing
+/// (`GaitOptions::min_swing_time`) longer by as much, and a tenth, the slowest kept (a retry
+/// the controller rejects ends the retries); if even that turns faster than [`FLICK_RATE`],
+/// baked once more with
+/// the slowest one's options and its legs' joints limited in their swings (`true`, see
+/// `posed_loop`), kept if it turns slower. The live animator runs with the set-up's options
+/// and no limit.
+fn slow_enough(
+    c: &Creature,
+    options: &GaitOptions,
+    retries: usize,
+    mut bake: impl FnMut(&GaitOptions, bool) -> Result<Clip, Error>,
+) -> Result<Clip, Error> {
+    let setup = c.gait.as_ref().ok_or(Error::NoGait)?;
+    let mut options = *options;
     let legs: Vec<usize> = setup
         .legs
         .iter()
@@ -188,22 +166,32 @@ pub(crate) fn run_loop(c: &Creature, at_rest: &mut AtRest) -> Result<Clip, Error
         .flat_map(|(_, &hip)| [hip, hip + 1, hip + 2])
         .collect();
     let limit = MAX_LEG_TURN_RATE * (1.0 + 1e-3);
-    let mut best = forward_loop(c, ("run", false), speed, &options, at_rest)?;
+    let mut best = bake(&options, false)?;
     let mut best_rate = fastest_turn(&best, &legs);
+    let mut best_options = options;
     let mut rate = best_rate;
-    for _ in 0..RUN_RETRIES {
+    for _ in 0..retries {
         if rate <= limit {
             break;
         }
-        options.min_swing_time =
-            (options.min_swing_time * 1.1 * rate / MAX_LEG_TURN_RATE).min(MAX_SWING_TIME);
-        let Ok(clip) = forward_loop(c, ("run", false), speed, &options, at_rest) else {
+        let longer = (options.min_swing_time * 1.1 * rate / MAX_LEG_TURN_RATE).min(MAX_SWING_TIME);
+        if !(longer > options.min_swing_time) {
+            break;
+        }
+        options.min_swing_time = longer;
+        let Ok(clip) = bake(&options, false) else {
             break;
         };
         rate = fastest_turn(&clip, &legs);
         if rate < best_rate {
-            (best, best_rate) = (clip, rate);
+            (best, best_rate, best_options) = (clip, rate, options);
         }
+    }
+    if best_rate > FLICK_RATE
+        && let Ok(clip) = bake(&best_options, true)
+        && fastest_turn(&clip, &legs) < best_rate
+    {
+        best = clip;
     }
     Ok(best)
 }
@@ -220,31 +208,38 @@ fn fastest_turn(clip: &Clip, joints: &[usize]) -> f32 {
 }
 
 /// A looping `hop` (see [`Creature::bake_hop_loop`]).
-pub(crate) fn hop_loop(c: &Creature, at_rest: &mut AtRest) -> Result<Clip, Error> {
+pub(crate) fn hop_loop(c: &Creature) -> Result<Clip, Error> {
     let setup = c.gait.as_ref().ok_or(Error::NoGait)?;
     let speed = setup.hop_speed().ok_or(Error::NoGait)?;
-    forward_loop(c, ("hop", true), speed, &setup.options, at_rest)
+    forward_loop(c, "hop", speed, &setup.options, false)
 }
 
-/// A looping clip named `name` moving forward at `speed`: 4 s of the controller (with
-/// `options`), cut at the frame from 1 s on closest to the first and closed where that keeps
-/// the feet plausible. With `swing` (a hop), the tail swings against the legs (see
-/// [`hop_tail_swing`]).
+/// A looping clip named `name` moving forward at `speed`: 4 s of the animator (with the gait
+/// `options`) on flat ground, cut at the frame from 1 s on closest to the first and closed
+/// where that keeps the feet plausible (a hopper's tail swinging against its legs as it hops,
+/// as live); with `limit`, its legs' joints limited in their swings (see `posed_loop`).
 fn forward_loop(
     c: &Creature,
-    (name, swing): (&'static str, bool),
+    name: &'static str,
     speed: f32,
     options: &GaitOptions,
-    at_rest: &mut AtRest,
+    limit: bool,
 ) -> Result<Clip, Error> {
     let setup = c.gait.as_ref().ok_or(Error::NoGait)?;
-    let run = c.simulate_gait_with(options, 4.0, speed, 0.0)?;
+    let run = gait_run(c, options, 4.0, (speed, 0.0))?;
     let first = CLIP_FPS as usize;
     let end = best_cut(&run, first..run.frames(), |_| 0.0);
     let travel = Pose::from_yaw(Vec3::Z * (speed * end as f32 / CLIP_FPS), 0.0);
-    let run = c.closed_or_cut(run, end, &travel, &setup.legs);
-    let swing = swing.then_some(setup.legs.as_slice());
-    c.clip_from_run(name, &run, (0.0, swing), at_rest, None)
+    let closed = c.closed_or_cut(run.clone(), end, &travel, &setup.legs);
+    posed_loop(
+        c,
+        options,
+        name,
+        (speed, 0.0),
+        (&run, &closed),
+        limit,
+        |_| {},
+    )
 }
 
 /// Radians a hopper's tail swings up per leg length its feet are ahead of their hips, on
@@ -280,19 +275,28 @@ pub(super) fn hop_tail_swing(legs: &[Leg], feet: impl Iterator<Item = Vec3>) -> 
 /// of delivered creatures measures them), at up to [`TURN_SLOWDOWNS`] slower rates, each
 /// [`TURN_SLOWDOWN`] of the one before, until they do not: the turn with the legs least
 /// deep in each other.
-pub(crate) fn turn(c: &Creature, at_rest: &mut AtRest) -> Result<Clip, Error> {
+pub(crate) fn turn(c: &Creature) -> Result<Clip, Error> {
     let setup = c.gait.as_ref().ok_or(Error::NoGait)?;
+    slow_enough(c, &setup.options, SLOW_RETRIES, |options, limit| {
+        turn_with(c, options, limit)
+    })
+}
+
+/// [`turn`] with the gait `options`.
+fn turn_with(c: &Creature, options: &GaitOptions, limit: bool) -> Result<Clip, Error> {
+    let setup = c.gait.as_ref().ok_or(Error::NoGait)?;
+    let radii = c.leg_radii(&setup.hip_joints);
     let mut rate = c.turn_rate(&setup.legs);
     // Legs nearer each other than this (× body length) count as touching: what is measured
     // here and on the exported file differs by float rounding.
     let touching = -1e-4 * c.length;
-    let mut best = turn_at(c, rate, at_rest)?;
+    let mut best = turn_at(c, (options, limit), rate, &radii)?;
     for _ in 0..TURN_SLOWDOWNS {
         if best.1 <= touching {
             break;
         }
         rate *= TURN_SLOWDOWN;
-        let slower = turn_at(c, rate, at_rest)?;
+        let slower = turn_at(c, (options, limit), rate, &radii)?;
         if slower.1 < best.1 {
             best = slower;
         }
@@ -301,8 +305,14 @@ pub(crate) fn turn(c: &Creature, at_rest: &mut AtRest) -> Result<Clip, Error> {
 }
 
 /// A full `turn` in place at `rate` (rad/s, about), with how deep its legs overlap (as
-/// [`Creature::clip_from_run`] measures it; −0.1 × the body length where no two come nearer).
-fn turn_at(c: &Creature, rate: f32, at_rest: &mut AtRest) -> Result<(Clip, f32), Error> {
+/// [`deepest_overlap`] measures it on the posed frames; −0.1 × the body length where no two
+/// come nearer); with `limit`, its legs' joints limited in their swings (see `posed_loop`).
+fn turn_at(
+    c: &Creature,
+    (options, limit): (&GaitOptions, bool),
+    rate: f32,
+    radii: &[[f32; 2]],
+) -> Result<(Clip, f32), Error> {
     let setup = c.gait.as_ref().ok_or(Error::NoGait)?;
     let full = core::f32::consts::TAU;
     let mut rate = rate;
@@ -322,7 +332,7 @@ fn turn_at(c: &Creature, rate: f32, at_rest: &mut AtRest) -> Result<(Clip, f32),
     // A try at `rate`: its score, run, cut and the rate that completes the turn at the cut.
     let attempt = |rate: f32| -> Result<(f32, GaitRun, usize, f32), Error> {
         // Up to the window's last frame: no later frame is cut at or looked at.
-        let run = c.simulate_gait(seconds + 0.5 + 1.0 / CLIP_FPS, 0.0, rate)?;
+        let run = gait_run(c, options, seconds + 0.5 + 1.0 / CLIP_FPS, (0.0, rate))?;
         let shortfall = |f: usize| radius * (f as f32 / CLIP_FPS * rate - full).abs();
         let end = best_cut(&run, window.clone(), shortfall);
         let score = run.mismatch(end) + shortfall(end);
@@ -358,10 +368,36 @@ fn turn_at(c: &Creature, rate: f32, at_rest: &mut AtRest) -> Result<(Clip, f32),
         .filter(|&f| f < run.frames())
         .min_by(|&a, &b| shortfall(a).total_cmp(&shortfall(b)))
         .unwrap_or(end);
-    let run = c.closed_or_cut_among(run, &ends, plain, &Pose::IDENTITY, &setup.legs);
+    let closed = c.closed_or_cut_among(run.clone(), &ends, plain, &Pose::IDENTITY, &setup.legs);
+    // Each walking leg's hip, knee and foot per frame, in the body's frame.
+    let walking: Vec<usize> = (0..setup.legs.len())
+        .filter(|&i| setup.legs[i].kind == LimbKind::Leg)
+        .collect();
+    let mut segments: Vec<(usize, Vec<[Vec3; 3]>)> = walking
+        .iter()
+        .map(|&i| (i, Vec::with_capacity(closed.frames())))
+        .collect();
+    let root = c.skeleton.joints.iter().position(|j| j.parent.is_none());
+    let clip = posed_loop(
+        c,
+        options,
+        "turn",
+        (0.0, rate),
+        (&run, &closed),
+        limit,
+        |animator| {
+            let world = animator.world_transforms();
+            let body = root.map_or(Affine3A::IDENTITY, |r| world[r].inverse());
+            for (i, points) in &mut segments {
+                let hip = setup.hip_joints[*i];
+                points.push(core::array::from_fn(|k| {
+                    body.transform_point3(Vec3::from(world[hip + k].translation))
+                }));
+            }
+        },
+    )?;
     // Only legs nearer than a tenth of the body length matter.
-    let mut overlap = -0.1 * c.length;
-    let clip = c.clip_from_run("turn", &run, (rate, None), at_rest, Some(&mut overlap))?;
+    let overlap = deepest_overlap(&segments, radii, closed.frames(), -0.1 * c.length);
     Ok((clip, overlap))
 }
 
@@ -373,10 +409,8 @@ pub(crate) fn gait(
     seconds: f32,
     speed: f32,
     yaw_rate: f32,
-    at_rest: &mut AtRest,
 ) -> Result<Clip, Error> {
-    let run = c.simulate_gait(seconds, speed, yaw_rate)?;
-    c.clip_from_run(name, &run, (yaw_rate, None), at_rest, None)
+    record(c, name, seconds, speed, yaw_rate)
 }
 
 /// `seconds` if a walker's clip may last that long: at least one frame interval, at most 60 s.
@@ -395,22 +429,6 @@ pub(super) fn clip_seconds(seconds: f32) -> Result<f32, Error> {
             max,
         })
     }
-}
-
-/// What baking a walker's clips measures of the creature at rest, the same for every clip:
-/// measured by the first clip that needs it and kept for the others baked with it
-/// ([`Creature::bake_clips`]).
-#[derive(Debug, Default)]
-pub(crate) struct AtRest {
-    /// Per skeleton joint, how far the vertices it moves reach from it
-    /// ([`Creature::joint_reach`]: for a knee or a foot, the radius of its ring).
-    reach: Option<Vec<f32>>,
-    /// The body's vertices (those skinned to spine joints only) with the spine unbent, as a
-    /// clip that does not turn holds it ([`Creature::body_shape`]).
-    unbent_body: Option<Vec<Vec3>>,
-    /// Per leg of the gait set-up, the radii of its upper and lower segments' skin
-    /// ([`Creature::leg_radii`]).
-    leg_radii: Option<Vec<[f32; 2]>>,
 }
 
 impl Creature {
@@ -456,7 +474,7 @@ impl Creature {
     ) -> Option<GaitRun> {
         // The plain cut's figures: those of the run's frames up to `end`.
         let ground = GROUND_CONTACT * self.length;
-        let plain = Figures::of(run, end + 1, legs, ground);
+        let plain = Figures::of(run, end + 1, legs, 2.0 * ground);
         [false, true]
             .into_iter()
             .find_map(|hold_seam| self.closed_well(run, &plain, end, motion, legs, hold_seam))
@@ -477,7 +495,7 @@ impl Creature {
         let ground = GROUND_CONTACT * self.length;
         let planted_shift = closed.close_loop(end, motion, hold_seam, ground);
         let tolerance = 1e-4 * self.length;
-        let now = Figures::of(&closed, closed.frames(), legs, ground);
+        let now = Figures::of(&closed, closed.frames(), legs, 2.0 * ground);
         // Closing must not bring a foot nearer the midline than the plain cut does, past it, or
         // nearer than half its margin.
         let side_kept = now.midline >= (0.5 * cut.midline).min(cut.midline - tolerance);
@@ -494,386 +512,6 @@ impl Creature {
             && slide_kept
             && now.overreach <= cut.overreach + tolerance)
             .then_some(closed)
-    }
-
-    /// Runs the gait controller at [`CLIP_FPS`] over flat ground for `seconds` after the
-    /// warm-up, moving forward at `speed` and turning at `yaw_rate`; records the reacted body
-    /// pose and the feet per frame, relative to the clip's starting place and heading.
-    fn simulate_gait(&self, seconds: f32, speed: f32, yaw_rate: f32) -> Result<GaitRun, Error> {
-        let setup = self.gait.as_ref().ok_or(Error::NoGait)?;
-        self.simulate_gait_with(&setup.options, seconds, speed, yaw_rate)
-    }
-
-    /// [`simulate_gait`](Self::simulate_gait) with the controller's `options` in place of the
-    /// set-up's.
-    fn simulate_gait_with(
-        &self,
-        options: &GaitOptions,
-        seconds: f32,
-        speed: f32,
-        yaw_rate: f32,
-    ) -> Result<GaitRun, Error> {
-        clip_seconds(seconds)?;
-        let setup = self.gait.as_ref().ok_or(Error::NoGait)?;
-        let mut controller = creature_gait::Controller::new(&setup.legs, options)?;
-        let ground = Plane::horizontal(0.0);
-        let dt = 1.0 / CLIP_FPS;
-        let velocity = Vec3::Z * speed;
-        let spin = Vec3::Y * yaw_rate;
-        let warm_up = (WARM_UP * CLIP_FPS) as usize;
-        let frames = (seconds * CLIP_FPS + 0.5) as usize + 1;
-        let legs = setup.legs.len();
-        let mut run = GaitRun {
-            bodies: Vec::with_capacity(frames),
-            feet: Vec::with_capacity(frames * legs),
-            contacts: Vec::with_capacity(frames * legs),
-            legs,
-        };
-        // The clip starts at the rest pose's place and heading: the warm-up's travel is
-        // taken off.
-        let start = Pose::from_yaw(
-            Vec3::Z * (warm_up as f32 * dt * speed),
-            warm_up as f32 * dt * yaw_rate,
-        );
-        let unstart = start.rotation.inverse();
-        let relative = |p: Vec3| unstart * (p - start.translation);
-        for step in 0..warm_up + frames {
-            let time = step as f32 * dt;
-            // Only the feet and the reacted body are recorded (the legs are solved from them).
-            controller.update_feet_and_body(
-                dt,
-                Pose::from_yaw(Vec3::Z * (time * speed), time * yaw_rate),
-                velocity,
-                spin,
-                &ground,
-            )?;
-            if step < warm_up {
-                continue;
-            }
-            let body = controller.reacted_pose();
-            run.bodies.push(Pose {
-                translation: relative(body.translation),
-                rotation: (unstart * body.rotation).unit(),
-            });
-            let states = controller.leg_states();
-            // One state per leg (the controller's order): the run's frames hold `legs` each.
-            debug_assert_eq!(states.len(), legs, "one leg state per leg");
-            if states.len() != legs {
-                return Err(Error::Degenerate {
-                    what: "gait controller's leg states",
-                });
-            }
-            run.contacts.extend(states.iter().map(|s| s.planted));
-            run.feet.extend(states.iter().map(|s| relative(s.foot)));
-        }
-        Ok(run)
-    }
-
-    /// A clip from a recorded gait run: the root's motion, each leg's hip translation, hip
-    /// and knee rotations by two-bone IK from the hip to the recorded foot (the leg's pole
-    /// bending the knee), and a foot rotation that keeps the sole level (turned with the
-    /// body's heading only); the neck and tail bent toward a turn at `yaw_rate`. With
-    /// `overlap`, also how deep any two legs are in each other in any frame of the clip (as
-    /// capsules of their skin's radii, [`leg_radii`](Self::leg_radii); ≤ 0 where they are
-    /// apart), if deeper than it was. With `tail_swing`'s legs (a hopper's), the tail swings
-    /// against them ([`hop_tail_swing`]) frame by frame.
-    fn clip_from_run(
-        &self,
-        name: &'static str,
-        run: &GaitRun,
-        (yaw_rate, tail_swing): (f32, Option<&[Leg]>),
-        at_rest: &mut AtRest,
-        overlap: Option<&mut f32>,
-    ) -> Result<Clip, Error> {
-        let setup = self.gait.as_ref().ok_or(Error::NoGait)?;
-        let frames = run.frames();
-        let joints = &self.skeleton.joints;
-        let rest_root = self.rest_root();
-        let rest = |j: usize| joints.get(j).map_or(Vec3::ZERO, |j| j.position);
-
-        // Turning: the neck and tail bend toward the turn (constant over the clip).
-        let spine_rotations = self.turn_bend(yaw_rate);
-        let mut local: Vec<Affine3A> = self
-            .skeleton
-            .rest_translations()
-            .iter()
-            .map(|&t| Affine3A::from_translation(t))
-            .collect();
-        for &(j, q) in &spine_rotations {
-            let t = local
-                .get(j)
-                .map_or(Vec3::ZERO, |l| Vec3::from(l.translation));
-            if let Some(l) = local.get_mut(j) {
-                *l = Affine3A::from_rotation_translation(q, t);
-            }
-        }
-        let body_global = forward_kinematics(joints, &local);
-
-        let mut clip = Clip {
-            name,
-            fps: CLIP_FPS,
-            frames,
-            root_translation: Vec::with_capacity(frames),
-            root_rotation: Vec::with_capacity(frames),
-            tracks: Vec::with_capacity(3 * run.legs + spine_rotations.len()),
-            contacts: (0..run.frames())
-                .map(|f| run.frame_contacts(f).to_vec())
-                .collect(),
-            loop_error: 0.0,
-        };
-        // Per leg: the hip's parent (a spine joint, maybe bent) in body space, the rest
-        // directions of the leg's two segments, and its three tracks.
-        let reach: &[f32] = at_rest.reach.get_or_insert_with(|| self.joint_reach());
-        let ring_radius = |joint: usize| reach.get(joint).copied().unwrap_or(0.0);
-        let mut legs: Vec<LegTracks<'_>> = setup
-            .legs
-            .iter()
-            .zip(&setup.hip_joints)
-            .map(|(leg, &hip)| {
-                let parent = joints
-                    .get(hip)
-                    .and_then(|j| j.parent)
-                    .and_then(|p| body_global.get(p).copied())
-                    .unwrap_or(Affine3A::IDENTITY);
-                let rest_upper = (rest(hip + 1) - rest(hip)).unit_or(Vec3::NEG_Y);
-                let rest_lower = (rest(hip + 2) - rest(hip + 1)).unit_or(Vec3::NEG_Y);
-                LegTracks {
-                    leg,
-                    hip,
-                    parent,
-                    unparent: parent.inverse(),
-                    parent_rotation: crate::math::quat_from_mat3a(&parent.matrix3).unit(),
-                    rest_upper,
-                    rest_lower,
-                    hinge: Hinge::new((rest_upper, rest_lower), leg.pole),
-                    knee_radius: ring_radius(hip + 1),
-                    translations: Vec::with_capacity(frames),
-                    rotations: core::array::from_fn(|_| Vec::with_capacity(frames)),
-                }
-            })
-            .collect();
-        // Nothing under the floor: a frame whose body would dip below it (its lean, bob or
-        // breathing, on a body that reaches down to the ground) leans less and, if need be,
-        // rises, before the legs are solved, so the feet stay planted.
-        // The body as this clip bends it (a clip that does not turn: unbent, as measured once).
-        let shape = if spine_rotations.is_empty() {
-            match &at_rest.unbent_body {
-                Some(shape) => shape.clone(),
-                None => {
-                    let shape = self.body_shape(&body_global)?;
-                    at_rest.unbent_body = Some(shape.clone());
-                    shape
-                }
-            }
-        } else {
-            self.body_shape(&body_global)?
-        };
-        let bodies = self.above_the_floor(shape, run, &setup.legs);
-        // Each swing's frames spaced by its joints' turn, so they turn at an even rate.
-        let feet = even_swings(run, &bodies, &setup.legs, GROUND_CONTACT * self.length);
-        // A hopper's tail swing, frame by frame.
-        let swings: Vec<f32> = match tail_swing {
-            Some(legs) => bodies
-                .iter()
-                .enumerate()
-                .map(|(frame, body)| {
-                    let feet = &feet[frame * run.legs..(frame + 1) * run.legs];
-                    hop_tail_swing(legs, feet.iter().map(|&f| body.inverse_transform_point(f)))
-                })
-                .collect(),
-            None => Vec::new(),
-        };
-        for (frame, body) in bodies.iter().enumerate() {
-            clip.root_translation
-                .push(body.translation + body.rotation * rest_root);
-            clip.root_rotation.push(body.rotation);
-            let heading = heading(body.rotation);
-            let up = body.rotation.inverse() * Vec3::Y;
-            for (i, tracks) in legs.iter_mut().enumerate() {
-                let (leg, unparent) = (tracks.leg, tracks.unparent);
-                let (rest_upper, rest_lower) = (tracks.rest_upper, tracks.rest_lower);
-                let mut foot = body.inverse_transform_point(feet[frame * run.legs + i]);
-                if !run.planted(frame, i) {
-                    foot = soft_reach(leg.hip, foot, leg.upper + leg.lower, up);
-                }
-                let [root, middle, end] =
-                    solve_two_bone_joints(leg.hip, foot, leg.upper, leg.lower, leg.pole);
-                let floor = tracks.knee_radius - body.translation.y;
-                let middle = knee_above(root, middle, end, up, floor);
-                let upper = (middle - root).unit_or(rest_upper);
-                let lower = (end - middle).unit_or(rest_lower);
-                let (hip_rotation, knee_rotation) = tracks.hinge.rotations((upper, lower));
-                let parent_rotation = tracks.parent_rotation;
-                tracks.translations.push(unparent.transform_point3(root));
-                let [hip, knee, foot] = &mut tracks.rotations;
-                hip.push((parent_rotation.inverse() * hip_rotation).unit());
-                knee.push(knee_rotation.unit());
-                // The foot stays level (its sole flat on the ground), turned with the body's
-                // heading only: its world rotation is the heading's yaw.
-                foot.push(
-                    ((body.rotation * hip_rotation * knee_rotation).inverse() * heading).unit(),
-                );
-            }
-        }
-        // Each leg's hip, knee and foot tracks, then the neck and tail bent toward a turn.
-        let ground = GROUND_CONTACT * self.length;
-        // With `overlap`: each walking leg's hip, knee and foot per frame, in body space.
-        let mut segments: Vec<(usize, Vec<[Vec3; 3]>)> = Vec::new();
-        for (i, tracks) in legs.into_iter().enumerate() {
-            let [mut hip, mut knee, mut foot] = tracks.rotations.clone();
-            if tracks.leg.kind == LimbKind::Leg {
-                // A quick swing's joints turn no faster than a leg's may: limited only while
-                // the foot is off the ground, so it lifts, lands and stands exactly where the
-                // gait puts it.
-                let free: Vec<bool> = (0..frames)
-                    .map(|f| !run.planted(f, i) && run.foot(f, i).y > ground)
-                    .collect();
-                for rotations in [&mut hip, &mut knee] {
-                    limit_free_turn_rate(rotations, &free, MAX_LEG_TURN_PER_FRAME);
-                }
-                // The foot of a limited frame turned level again, then limited too.
-                let parent = tracks.parent_rotation;
-                let [hip_0, knee_0, foot_0] = &tracks.rotations;
-                let limited = |f: usize, hip: &[Quat], knee: &[Quat]| {
-                    free[f] && (hip[f] != hip_0[f] || knee[f] != knee_0[f])
-                };
-                for f in (0..frames).filter(|&f| limited(f, &hip, &knee)) {
-                    let body = &bodies[f];
-                    foot[f] = ((body.rotation * parent * hip[f] * knee[f]).inverse()
-                        * heading(body.rotation))
-                    .unit();
-                }
-                limit_free_turn_rate(&mut foot, &free, MAX_LEG_TURN_PER_FRAME);
-                // Unless that lowers the foot (its sole, tilted or not) to within `ground` of the
-                // ground or brings it across the body's midline: that frame goes back toward the gait's pose,
-                // only as far as it must (the gait's pose itself is safe), so it jumps as
-                // little as it can from its limited neighbours.
-                let mut foot_radius = None;
-                for f in 0..frames {
-                    if !(limited(f, &hip, &knee) || foot[f] != foot_0[f]) {
-                        continue;
-                    }
-                    let body = &bodies[f];
-                    let unlimited = tracks.foot_at(f, hip_0, knee_0);
-                    let side = tracks.leg.rest.x;
-                    let foot_radius =
-                        *foot_radius.get_or_insert_with(|| ring_radius(tracks.hip + 2));
-                    let safe = |h: Quat, k: Quat, o: Quat| {
-                        let at = tracks.foot_at_with(f, h, k);
-                        let kept_side = side == 0.0
-                            || at.x * side.signum() >= (unlimited.x * side.signum()).min(0.0);
-                        let up = (body.rotation * parent * h * k * o) * Vec3::Y;
-                        let tilt = up.cross(Vec3::Y).norm();
-                        let sole = body.transform_point(at).y - foot_radius * tilt;
-                        // Clear of the ground (a foot near it counts as on it, and would be
-                        // seen to slide to where it lands).
-                        sole > ground && kept_side
-                    };
-                    let limited_pose = (hip[f], knee[f], foot[f]);
-                    let toward = |t: f32| {
-                        (
-                            limited_pose.0.slerp(hip_0[f], t).unit(),
-                            limited_pose.1.slerp(knee_0[f], t).unit(),
-                            limited_pose.2.slerp(foot_0[f], t).unit(),
-                        )
-                    };
-                    if safe(limited_pose.0, limited_pose.1, limited_pose.2) {
-                        continue;
-                    }
-                    // Bisect the blend: `hi` is safe (the gait's pose at 1), `lo` is not.
-                    let (mut lo, mut hi) = (0.0f32, 1.0f32);
-                    for _ in 0..10 {
-                        let t = 0.5 * (lo + hi);
-                        let (h, k, o) = toward(t);
-                        if safe(h, k, o) {
-                            hi = t;
-                        } else {
-                            lo = t;
-                        }
-                    }
-                    if hi < 1.0 {
-                        (hip[f], knee[f], foot[f]) = toward(hi);
-                    } else {
-                        hip[f] = hip_0[f];
-                        knee[f] = knee_0[f];
-                        foot[f] = foot_0[f];
-                    }
-                }
-            }
-            if tracks.leg.kind == LimbKind::Arm {
-                // Arms hang free: damped, no joint turns faster than the limit (the two-bone
-                // solution can flip an elbow between two frames as the hand passes its pole).
-                for rotations in [&mut hip, &mut knee, &mut foot] {
-                    limit_turn_rate(rotations, MAX_ARM_TURN_PER_FRAME);
-                }
-            }
-            if overlap.is_some() && tracks.leg.kind == LimbKind::Leg {
-                let (upper, lower) = (
-                    rest(tracks.hip + 1) - rest(tracks.hip),
-                    rest(tracks.hip + 2) - rest(tracks.hip + 1),
-                );
-                let points = (0..frames)
-                    .map(|f| {
-                        let root = tracks.parent.transform_point3(tracks.translations[f]);
-                        let turn = tracks.parent_rotation * hip[f];
-                        let knee_at = root + turn * upper;
-                        [root, knee_at, knee_at + turn * knee[f] * lower]
-                    })
-                    .collect();
-                segments.push((i, points));
-            }
-            clip.tracks.push(Track {
-                joint: tracks.hip,
-                translations: Some(tracks.translations),
-                rotations: hip,
-            });
-            for (joint, rotations) in [(tracks.hip + 1, knee), (tracks.hip + 2, foot)] {
-                clip.tracks.push(Track {
-                    joint,
-                    translations: None,
-                    rotations,
-                });
-            }
-        }
-        // The tail's share of its swing, each joint no further than its skin allows.
-        let tail = if swings.is_empty() {
-            Vec::new()
-        } else {
-            self.swinging_tail()
-        };
-        let share = 1.0 / tail.len().max(1) as f32;
-        for &(joint, q) in &spine_rotations {
-            if tail.iter().any(|t| t.0 == joint) {
-                continue;
-            }
-            clip.tracks.push(Track {
-                joint,
-                translations: None,
-                rotations: alloc::vec![q; frames],
-            });
-        }
-        for &(joint, limit) in &tail {
-            let turn = spine_rotations
-                .iter()
-                .find(|s| s.0 == joint)
-                .map_or(Quat::IDENTITY, |s| s.1);
-            clip.tracks.push(Track {
-                joint,
-                translations: None,
-                rotations: swings
-                    .iter()
-                    .map(|&swing| (turn * Quat::from_rotation_x((swing * share).min(limit))).unit())
-                    .collect(),
-            });
-        }
-        if let Some(overlap) = overlap {
-            let radii: &[[f32; 2]] = at_rest
-                .leg_radii
-                .get_or_insert_with(|| self.leg_radii(&setup.hip_joints));
-            *overlap = deepest_overlap(&segments, radii, frames, *overlap);
-        }
-        clip.loop_error = loop_error(&clip);
-        Ok(clip)
     }
 
     /// For each of the legs whose hip joints are `hips` (the knee and the foot the next two
@@ -913,23 +551,6 @@ impl Creature {
         });
         sums.iter()
             .map(|s| s.map(|(sum, n)| if n == 0 { 0.0 } else { sum / n as f32 }))
-            .collect()
-    }
-
-    /// Local rotations of the neck and tail joints bending toward a turn at `yaw_rate`.
-    fn turn_bend(&self, yaw_rate: f32) -> Vec<(usize, Quat)> {
-        if yaw_rate == 0.0 {
-            return Vec::new();
-        }
-        let total = turn_bend_total(yaw_rate);
-        self.turn_bend_shares()
-            .into_iter()
-            .map(|(j, divisor, limit)| {
-                (
-                    j,
-                    Quat::from_rotation_y((total / divisor).clamp(-limit, limit)),
-                )
-            })
             .collect()
     }
 
@@ -1055,45 +676,6 @@ fn segment_distance(p0: Vec3, p1: Vec3, q0: Vec3, q1: Vec3) -> f32 {
     (p0 + d1 * s).distance(q0 + d2 * t)
 }
 
-/// One leg of a walking clip being baked: what solving it needs, and its tracks' values.
-struct LegTracks<'a> {
-    leg: &'a Leg,
-    /// The hip joint; the knee and the foot are the next two.
-    hip: usize,
-    /// The hip's parent (a spine joint, maybe bent) in body space, and its rotation.
-    parent: Affine3A,
-    /// `parent`'s inverse: body space into the hip's parent's frame.
-    unparent: Affine3A,
-    parent_rotation: Quat,
-    /// The rest directions of the leg's upper and lower segments.
-    rest_upper: Vec3,
-    rest_lower: Vec3,
-    /// The knee's hinge, from those and the leg's pole.
-    hinge: Hinge,
-    /// How far the knee's ring of vertices reaches (it stays this far above the floor).
-    knee_radius: f32,
-    /// The hip's translation per frame.
-    translations: Vec<Vec3>,
-    /// The hip's, the knee's and the foot's rotations per frame.
-    rotations: [Vec<Quat>; 3],
-}
-
-impl LegTracks<'_> {
-    /// The foot (the lower segment's end) in body space at frame `frame` with the hip and knee
-    /// rotations `hip` and `knee` (tracks as [`rotations`](Self::rotations) holds them).
-    fn foot_at(&self, frame: usize, hip: &[Quat], knee: &[Quat]) -> Vec3 {
-        self.foot_at_with(frame, hip[frame], knee[frame])
-    }
-
-    /// [`foot_at`](Self::foot_at) with frame `frame`'s hip and knee rotations given.
-    fn foot_at_with(&self, frame: usize, hip: Quat, knee: Quat) -> Vec3 {
-        let root = self.parent.transform_point3(self.translations[frame]);
-        let turn = self.parent_rotation * hip;
-        root + turn * (self.rest_upper * self.leg.upper)
-            + turn * (knee * (self.rest_lower * self.leg.lower))
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -1180,20 +762,5 @@ mod tests {
         assert!((deepest_overlap(&legs, &radii, 2, -0.1) - 0.2).abs() < 1e-6);
         assert_eq!(deepest_overlap(&legs, &radii, 1, -0.1), -0.1);
         assert_eq!(deepest_overlap(&legs[..1], &radii, 2, floor), floor);
-    }
-
-    #[test]
-    fn free_frames_turn_within_the_limit_and_kept_frames_stay() {
-        // Kept at 0 and 1 rad about X, with three free frames between that jump straight to
-        // the end: limited to 0.3 rad a frame, they leave and rejoin the kept frames.
-        let angles = [0.0, 0.0, 1.0, 1.0, 1.0];
-        let mut track: Vec<Quat> = angles.iter().map(|&a| Quat::from_rotation_x(a)).collect();
-        let free = [false, true, true, true, false];
-        limit_free_turn_rate(&mut track, &free, 0.3);
-        assert_eq!(track[0], Quat::from_rotation_x(0.0));
-        assert_eq!(track[4], Quat::from_rotation_x(1.0));
-        for pair in track.windows(2) {
-            assert!(pair[0].angle_between(pair[1]) <= 0.3 + 1e-5, "{track:?}");
-        }
     }
 }

@@ -17,6 +17,7 @@ pub mod export;
 mod image;
 mod math;
 mod rng;
+mod sort;
 mod span;
 #[cfg(feature = "proptest")]
 #[cfg_attr(docsrs, doc(cfg(feature = "proptest")))]

@@ -7,6 +7,7 @@ use glam::{Quat, Vec3};
 
 use crate::error::{GaitError, finite3, positive};
 use crate::gaits::{self, Gait, Sides};
+use crate::sort::sort_by;
 
 /// What a limb does with the ground.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
@@ -374,13 +375,13 @@ pub(crate) fn layout(legs: &[Leg], by_speed: bool) -> Result<Layout, GaitError> 
         }
     }
     // Back to front (ascending Z), ties by index: deterministic.
-    let by_z = |a: &usize, b: &usize| {
+    let mut by_z = |a: &usize, b: &usize| {
         let (za, zb) = (legs[*a].rest.z, legs[*b].rest.z);
         za.total_cmp(&zb).then(a.cmp(b))
     };
-    left.sort_by(by_z);
-    right.sort_by(by_z);
-    centre.sort_by(by_z);
+    sort_by(&mut left, &mut by_z);
+    sort_by(&mut right, &mut by_z);
+    sort_by(&mut centre, &mut by_z);
 
     let mut partner = alloc::vec![None; n];
     let mut opposite = alloc::vec![None; n];
@@ -410,7 +411,7 @@ pub(crate) fn layout(legs: &[Leg], by_speed: bool) -> Result<Layout, GaitError> 
         }
         // Renumber to consecutive groups in ascending order of the caller's labels.
         let mut labels: Vec<u8> = groups.clone();
-        labels.sort_unstable();
+        sort_by(&mut labels, &mut Ord::cmp);
         labels.dedup();
         let groups: Vec<u8> = groups
             .iter()

@@ -6,7 +6,6 @@ use alloc::vec::Vec;
 use glam::Vec2;
 
 use crate::math::sqrt;
-use crate::sort::sort_unstable_by;
 
 /// Figures of the last [`Controller::update`](crate::Controller::update), for tests and for
 /// users tuning a creature, measured by [`Controller::metrics`](crate::Controller::metrics)
@@ -54,10 +53,16 @@ pub fn support_margin(points: &mut Vec<Vec2>, scratch: &mut Vec<Vec2>, point: Ve
 
 /// Sorts and deduplicates `points`, then writes their convex hull into `hull`.
 fn support_hull(points: &mut Vec<Vec2>, hull: &mut Vec<Vec2>) {
-    // Lexicographic order (a few points: insertion sort, no allocation).
-    sort_unstable_by(points, &mut |a, b| {
-        a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y))
-    });
+    // Lexicographic order, by an insertion sort (a few points, one per planted foot; no
+    // allocation). Points equal in this order are equal bit for bit: any sort gives this one.
+    let after = |a: Vec2, b: Vec2| a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)).is_gt();
+    for k in 1..points.len() {
+        let mut j = k;
+        while j > 0 && after(points[j - 1], points[j]) {
+            points.swap(j - 1, j);
+            j -= 1;
+        }
+    }
     points.dedup();
     convex_hull(points, hull);
 }

@@ -62,10 +62,10 @@ pub fn from_contributions(
     if totals.is_empty() {
         return Err(SkinError::ZeroContribution);
     }
-    let order = |a: &(u16, f64), b: &(u16, f64)| b.1.total_cmp(&a.1).then(a.0.cmp(&b.0));
+    let mut order = |a: &(u16, f64), b: &(u16, f64)| b.1.total_cmp(&a.1).then(a.0.cmp(&b.0));
     // Often sorted already (the top shares of a field come largest first).
     if !totals.windows(2).all(|w| order(&w[0], &w[1]).is_le()) {
-        totals.sort_by(order);
+        crate::sort::sort_by(&mut totals, &mut order);
     }
     totals.truncate(k);
     let sum: f64 = totals.iter().map(|&(_, t)| t).sum();

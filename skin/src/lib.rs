@@ -19,6 +19,7 @@ mod influences;
 mod math;
 mod nearest;
 mod report;
+mod sort;
 #[cfg(feature = "proptest")]
 #[cfg_attr(docsrs, doc(cfg(feature = "proptest")))]
 pub mod strategies;

@@ -160,7 +160,7 @@ fn build_with_seed(skeleton: &Skeleton, params: &Params, seed: u64) -> Result<Cr
         return Err(Error::Detached { components: outer });
     }
     // Outer ring first, holes after (a hole's parent is then 0).
-    rings.sort_by_key(|r| r.hole);
+    crate::sort::sort_by(&mut rings, &mut |a, b| a.hole.cmp(&b.hole));
     for r in &mut rings {
         if r.hole {
             r.parent = Some(0);

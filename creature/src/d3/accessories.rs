@@ -420,7 +420,7 @@ fn add_shell(
     }
     // The rim: a dark band from the outer edge down to the inner one, facing out.
     let mut sorted = edges.clone();
-    sorted.sort_unstable();
+    crate::sort::sort_by(&mut sorted, &mut Ord::cmp);
     for &(a, b) in &edges {
         if sorted.binary_search(&(b, a)).is_ok() {
             continue;

@@ -406,7 +406,9 @@ pub(crate) fn leg_knees(plan: &creature_limbs::Plan, mounts: &[Mount]) -> Vec<Op
     let (behind, ahead) = (reach.evaluate(-1.0), reach.evaluate(1.0));
     let mut crowded = false;
     for legs in &mut sides {
-        legs.sort_by(|a, b| b.hip.total_cmp(&a.hip).then(a.index.cmp(&b.index)));
+        crate::sort::sort_by(legs, &mut |a, b| {
+            b.hip.total_cmp(&a.hip).then(a.index.cmp(&b.index))
+        });
         for pair in legs.windows(2) {
             let [front, rear] = pair else { continue };
             let bent = if toward_front { rear } else { front };

@@ -200,7 +200,10 @@ impl Footprints {
                 wood: b.texture_weights.x,
             });
         }
-        out.centres.sort_unstable_by_key(|c| (c.row, c.column));
+        // Centres in one texel are kept in any order (their coverages combine by `max`).
+        crate::sort::sort_by(&mut out.centres, &mut |a, b| {
+            (a.row, a.column).cmp(&(b.row, b.column))
+        });
         out
     }
 }

@@ -399,7 +399,9 @@ pub(super) fn ranked_cuts(
             )
         })
         .collect();
-    scored.sort_by(|a, b| a.0.cmp(&b.0).then(a.1.total_cmp(&b.1)).then(a.2.cmp(&b.2)));
+    crate::sort::sort_by(&mut scored, &mut |a, b| {
+        a.0.cmp(&b.0).then(a.1.total_cmp(&b.1)).then(a.2.cmp(&b.2))
+    });
     scored.into_iter().take(count).map(|(_, _, f)| f).collect()
 }
 

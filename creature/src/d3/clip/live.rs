@@ -1299,7 +1299,7 @@ fn sole_points(creature: &Creature, foot: usize) -> Vec<Vec3A> {
     let band = 0.25 * creature.ring_radius(foot);
     points.retain(|p| p.y - bottom <= band);
     // Lowest first (the order `plane_lift` stops early in), each position once.
-    points.sort_by(|a, b| {
+    crate::sort::sort_by(&mut points, &mut |a, b| {
         a.y.total_cmp(&b.y)
             .then(a.x.total_cmp(&b.x))
             .then(a.z.total_cmp(&b.z))
@@ -1521,7 +1521,7 @@ fn parents_first(parents: &[Option<usize>]) -> Result<Vec<usize>, Error> {
         }
     }
     let mut order: Vec<usize> = (0..n).collect();
-    order.sort_by_key(|&j| depth[j]);
+    crate::sort::sort_by(&mut order, &mut |&a, &b| depth[a].cmp(&depth[b]));
     Ok(order)
 }
 

@@ -341,6 +341,60 @@ proptest! {
         prop_assert!(yaws.iter().all(|y| y.is_finite() && y.abs() <= p.max_yaw() + 1e-5));
     }
 
+    /// `Ground::height_bounds` keeps its promise on the height field (smooth, and stepped with
+    /// flat patches, whose bounds are exact) and the horizontal plane: every downward hit over
+    /// the square lies within the bounds, and a ray from at or above the highest that reaches
+    /// the lowest hits.
+    #[test]
+    fn height_bounds_hold_every_downward_hit(
+        field in strategies::height_field(0.5),
+        steps in prop::collection::vec(-4i32..4, 16),
+        centre in (-22.0f32..22.0, -22.0f32..22.0),
+        half in 0.0f32..1.5,
+        points in prop::collection::vec((-1.0f32..=1.0, -1.0f32..=1.0, 0.0f32..2.0, -1.0f32..3.0), 8),
+    ) {
+        let stepped = HeightField::from_fn(Vec2::splat(-20.0), 0.5, 81, 81, |x, z| {
+            let i = (((x + 20.0) / 10.0) as usize).min(3);
+            let j = (((z + 20.0) / 10.0) as usize).min(3);
+            0.25 * steps[j * 4 + i] as f32
+        })
+        .map_err(|e| TestCaseError::fail(format!("{e}")))?;
+        let centre = Vec2::new(centre.0, centre.1);
+        let plane = Plane::horizontal(0.3);
+        let grounds: [&dyn Ground; 3] = [&field, &stepped, &plane];
+        for ground in grounds {
+            let Some((low, high)) = ground.height_bounds(centre, half) else {
+                continue;
+            };
+            prop_assert!(low <= high);
+            for &(u, v, above, spare) in &points {
+                let (x, z) = (centre.x + u * half, centre.y + v * half);
+                // Any downward ray's hit lies within the bounds.
+                let origin = Vec3::new(x, low + spare, z);
+                for hit in [
+                    ground.cast_down_point(origin, 2.0).map(|p| p.y),
+                    ground.cast_down(origin, 2.0).map(|h| h.point.y),
+                ]
+                .into_iter()
+                .flatten()
+                {
+                    prop_assert!(low <= hit && hit <= high, "{hit} outside {low}..{high}");
+                }
+                // One from above the highest that reaches the lowest hits.
+                let origin = Vec3::new(x, high + above, z);
+                let reach = origin.y - low;
+                let hit = ground.cast_down_point(origin, reach);
+                prop_assert!(hit.is_some_and(|p| low <= p.y && p.y <= high), "{hit:?} for {low}..{high}");
+            }
+        }
+        // A flat patch is bounded exactly.
+        if let Some((low, high)) = stepped.height_bounds(Vec2::new(-15.0, -15.0), 0.5) {
+            prop_assert_eq!(low, high);
+        } else {
+            prop_assert!(false, "a square inside the grid has bounds");
+        }
+    }
+
     /// `Ground::cast_down` (the controller's only query) returns what `cast_ray` straight down
     /// does, for the height field's override and the trait's default alike.
     #[test]

@@ -353,6 +353,62 @@ impl HeightField {
     }
 }
 
+impl HeightField {
+    /// [`Ground::height_bounds`]: the lowest and highest samples at the corners of the cells
+    /// the square covers (a bilinear patch lies between its corners), widened by the rounding
+    /// of a lookup unless they are equal (a flat patch's lookups are exact); `None` for a
+    /// square not inside the grid, a negative or non-finite `half`, or one over more than
+    /// [`BOUNDED_CELLS`] cells (casting is then as cheap).
+    fn bounds(&self, centre: Vec2, half: f32) -> Option<(f32, f32)> {
+        if !(half >= 0.0) {
+            return None;
+        }
+        // The cells of the square's corners, as a lookup finds them (grid coordinates are
+        // monotonic in world ones: every point of the square is in a cell between them).
+        let (i0, j0, _, _) = self.locate(centre.x - half, centre.y - half)?;
+        let (i1, j1, _, _) = self.locate(centre.x + half, centre.y + half)?;
+        // Their corners: `across` samples in each of `rows` rows, `columns` apart.
+        let (across, rows) = (i1 - i0 + 2, j1 - j0 + 2);
+        if (across - 1) * (rows - 1) > BOUNDED_CELLS {
+            return None;
+        }
+        let c = self.columns;
+        let first = j0 * c + i0;
+        // Inside the grid (both corners were located): one bounds check for the block.
+        let block = self.heights.get(first..first + (rows - 1) * c + across)?;
+        // The heights are finite: plain comparisons (no NaN handling) find the extremes.
+        let (mut lowest, mut highest) = (block[0], block[0]);
+        for row in 0..rows {
+            for &h in &block[row * c..row * c + across] {
+                if h < lowest {
+                    lowest = h;
+                }
+                if h > highest {
+                    highest = h;
+                }
+            }
+        }
+        Some(pad(lowest, highest))
+    }
+}
+
+/// Bounds on a lookup's height among samples from `lowest` to `highest`: the same where they
+/// are equal (a flat patch's lookups are exact), else widened by the rounding of a lookup
+/// `a + b u + c v + d u v` (each of its corner differences and terms rounded: well within 64
+/// units of roundoff of the largest height).
+#[inline]
+fn pad(lowest: f32, highest: f32) -> (f32, f32) {
+    if lowest == highest {
+        return (lowest, highest);
+    }
+    let pad = 64.0 * f32::EPSILON * abs(lowest).max(abs(highest)) + f32::MIN_POSITIVE;
+    (lowest - pad, highest + pad)
+}
+
+/// The most cells [`HeightField`]'s [`Ground::height_bounds`] scans (a square over more says
+/// nothing).
+const BOUNDED_CELLS: usize = 16;
+
 impl Ground for HeightField {
     /// One bilinear lookup (no march): the same hit as `cast_ray` straight down.
     ///
@@ -379,6 +435,14 @@ impl Ground for HeightField {
         distance
             .is_finite()
             .then(|| Vec3::new(origin.x, h, origin.z))
+    }
+
+    /// The lowest and highest heights at the corners of the cells under the square (see
+    /// [`Ground::height_bounds`]); exact where they are equal. `None` where the square is not
+    /// inside the grid or covers more than 16 cells.
+    #[inline]
+    fn height_bounds(&self, centre: Vec2, half: f32) -> Option<(f32, f32)> {
+        self.bounds(centre, half)
     }
 
     fn cast_ray(&self, origin: Vec3, direction: Vec3, max_distance: f32) -> Option<RayHit> {

@@ -1,7 +1,7 @@
 //! Grounds the feet stand on: the [`Ground`] trait (a ray cast) and its implementations
 //! [`Plane`], [`HeightField`] and [`FnGround`] (any closure).
 
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 
 use crate::error::{GaitError, finite3};
 
@@ -91,6 +91,40 @@ pub trait Ground {
             .filter(RayHit::is_valid)
             .map(|hit| hit.point)
     }
+
+    /// Bounds `(lowest, highest)` on the ground's height under the horizontal square of
+    /// half-side `half` (`>= 0`) centred on `centre` (world x and z), or `None` (the default)
+    /// where the ground cannot tell cheaply. A caller can then skip casts whose answer the
+    /// bounds settle: a foot well above the ground, or every hit on flat ground (where
+    /// `lowest == highest`, the height of every hit).
+    ///
+    /// An implementation that returns bounds promises, for every ray cast straight down
+    /// ([`cast_down`](Self::cast_down) or [`cast_down_point`](Self::cast_down_point)) from a
+    /// finite origin whose x and z lie in the square, with a finite `max_distance`:
+    /// - a hit's height is within the bounds;
+    /// - the ray hits when it starts at or above `highest` and reaches `lowest`
+    ///   (`origin.y - lowest <= max_distance`, in `f32`).
+    ///
+    /// [`Plane`] bounds a horizontal plane exactly (its height twice) and [`HeightField`] the
+    /// squares inside its grid; closures ([`FnGround`]) and tilted planes say nothing.
+    ///
+    /// ```
+    /// use creature_gait::{Ground, HeightField, Plane, glam::{Vec2, Vec3}};
+    ///
+    /// assert_eq!(Plane::horizontal(0.5).height_bounds(Vec2::new(3.0, 4.0), 1.0), Some((0.5, 0.5)));
+    /// let field = HeightField::new(Vec2::ZERO, 1.0, 3, 2, vec![0.0, 1.0, 2.0, 0.0, 1.0, 2.0])?;
+    /// let (low, high) = field.height_bounds(Vec2::new(0.5, 0.5), 0.25).unwrap();
+    /// let hit = field.cast_down_point(Vec3::new(0.7, 5.0, 0.6), 10.0).unwrap();
+    /// assert!(low <= hit.y && hit.y <= high && high < 1.1);
+    /// // Off the grid, a ray may find nothing: no bounds.
+    /// assert_eq!(field.height_bounds(Vec2::new(1.9, 0.5), 0.25), None);
+    /// # Ok::<(), creature_gait::GaitError>(())
+    /// ```
+    #[inline]
+    fn height_bounds(&self, centre: Vec2, half: f32) -> Option<(f32, f32)> {
+        let _ = (centre, half);
+        None
+    }
 }
 
 impl<G: Ground + ?Sized> Ground for &G {
@@ -107,6 +141,11 @@ impl<G: Ground + ?Sized> Ground for &G {
     #[inline]
     fn cast_down_point(&self, origin: Vec3, max_distance: f32) -> Option<Vec3> {
         (**self).cast_down_point(origin, max_distance)
+    }
+
+    #[inline]
+    fn height_bounds(&self, centre: Vec2, half: f32) -> Option<(f32, f32)> {
+        (**self).height_bounds(centre, half)
     }
 }
 
@@ -269,6 +308,13 @@ impl Ground for Plane {
         let point = origin + Vec3::NEG_Y * distance;
         let point = Vec3::new(point.x, self.point.y, point.z);
         (point.is_finite() && distance.is_finite()).then_some(point)
+    }
+
+    /// A horizontal plane's height, twice (every hit is at its height, and a finite ray that
+    /// reaches it hits it); `None` for a tilted plane.
+    #[inline]
+    fn height_bounds(&self, _centre: Vec2, _half: f32) -> Option<(f32, f32)> {
+        (self.normal == Vec3::Y).then_some((self.point.y, self.point.y))
     }
 }
 

@@ -8,7 +8,7 @@ use alloc::vec::Vec;
 
 use glam::{Affine3A, Mat4, Quat, Vec2, Vec3, Vec3A};
 
-use creature_gait::{Controller, Gait, Ground, LegState, LimbKind, Pose, solve_two_bone};
+use creature_gait::{Controller, Gait, Ground, LegState, LimbKind, Pose, solve_two_bone_joints};
 use creature_limbs::CreatureKind;
 
 use super::floor::knee_above;
@@ -258,6 +258,60 @@ struct LiveLeg {
     landing: Option<(Vec3, Quat, f32)>,
     /// The progress of the step the foot was in at the last update (none if it was in none).
     stepped: Option<f32>,
+    /// The farthest any of `sole`'s offsets reaches from the joint (a little more: it bounds
+    /// them turned, rounding included): the half-side of the square round the joint whose
+    /// height bounds the fits ask.
+    rim_reach: f32,
+    /// When to ask the ground for height bounds under the sole (its swinging fit's, then its
+    /// landing fit's).
+    asking: [Asking; 2],
+    /// The lowest of `sole`'s heights over the foot's lowest vertex.
+    rim_low: f32,
+    /// Their mean.
+    rim_mean: f32,
+    /// The last [`sole_rotation`](Self::sole_rotation): the normal and yaw it was made for,
+    /// and the rotation.
+    sole_turn: Option<(Vec3, Quat, Quat)>,
+}
+
+/// When a fit asks the ground for its [height bounds](Ground::height_bounds): every time while
+/// they spare it its rays (flat ground, a foot high in a step), less and less often while they
+/// do not (hills, whose bounds under a sole are rarely flat or low enough), down to one time in
+/// eight. Either way the fit is the same: the bounds only skip rays whose answer they settle.
+#[derive(Debug, Clone, Copy)]
+struct Asking {
+    /// Fits to make without asking before asking again.
+    wait: u8,
+    /// The wait after the next answer that spares nothing.
+    backoff: u8,
+}
+
+impl Asking {
+    const EVERY_TIME: Self = Self {
+        wait: 0,
+        backoff: 1,
+    };
+
+    /// `bounds()` if it is time to ask, else `None`; then whether they spared the fit rays
+    /// (`spared(bounds)`) sets when to ask next.
+    fn ask(
+        &mut self,
+        bounds: impl FnOnce() -> Option<(f32, f32)>,
+        spared: impl FnOnce(Option<(f32, f32)>) -> bool,
+    ) -> Option<(f32, f32)> {
+        if self.wait > 0 {
+            self.wait -= 1;
+            return None;
+        }
+        let bounds = bounds();
+        if spared(bounds) {
+            self.backoff = 1;
+        } else {
+            self.wait = self.backoff;
+            self.backoff = (2 * self.backoff).min(7);
+        }
+        bounds
+    }
 }
 
 impl LiveLeg {
@@ -305,6 +359,34 @@ impl LiveLeg {
         self.yaw
     }
 
+    /// Whether the sole with its joint at `foot` is certainly high above ground of height
+    /// `bounds` (see [`Ground::height_bounds`]), its rays `reach` long each way: every ray of
+    /// its fit ([`fit_sole`]) hits, the rim's mean height over the ground is at least twice
+    /// the sole's radius (a swinging foot is level there) and its lowest point's more than
+    /// the radius (no lift), with a margin for the fit's rounding.
+    fn high_above(&self, foot: Vec3, reach: f32, (low, high): (f32, f32)) -> bool {
+        let top = foot.y + reach;
+        let margin = 1e-4 * (self.foot_radius + foot.y.abs() + high.abs() + reach);
+        self.foot_radius > 0.0
+            && top >= high
+            && top - low <= 2.0 * reach
+            && foot.y + self.rim_mean - high >= 2.0 * self.foot_radius + margin
+            && foot.y + self.rim_low - high >= self.foot_radius + margin
+    }
+
+    /// The sole's world rotation: level, turned to `yaw`, tilted to the ground's `normal`;
+    /// made again only when either changes (a planted foot's stay).
+    fn sole_rotation(&mut self, normal: Vec3, yaw: Quat) -> Quat {
+        match self.sole_turn {
+            Some((n, y, sole)) if n == normal && y == yaw => sole,
+            _ => {
+                let sole = rotation_arc(Vec3::Y, normal) * yaw;
+                self.sole_turn = Some((normal, yaw, sole));
+                sole
+            }
+        }
+    }
+
     /// [`fit`](Self::fit), made once where a foot stands planted (the ground under a planted
     /// foot is taken not to change, as the gait controller takes it).
     fn fitted_sole<G: Ground + ?Sized>(
@@ -340,25 +422,43 @@ impl LiveLeg {
         (heading, yaw): (Quat, Quat),
     ) -> Option<(Vec3, f32)> {
         let solved = &state.joints;
-        let fit = fit_sole(ground, solved.end, yaw, &self.sole, leg.size)?;
-        // A swinging foot levels off as it rises from the ground.
-        let level = if state.planted {
-            1.0
-        } else {
-            (1.0 - fit.height / (2.0 * self.foot_radius)).clamp(0.0, 1.0)
-        };
-        let normal = Vec3::Y.lerp(fit.normal, level).unit_or(Vec3::Y);
-        // Every sole vertex tested (on the ground's plane where the ground under the rim is
-        // flat, else where it is), unless the rim stands clear of the ground by more than the
-        // sole's radius (a foot high in a step).
         let flat = FLAT_SOLE * self.foot_radius;
-        let sole = rotation_arc(Vec3::Y, normal) * yaw;
-        let mut lift = if fit.clearance > self.foot_radius {
-            0.0
-        } else if fit.off_plane <= flat {
-            fit.plane_lift(sole, &self.sole_points, self.sole_reach)
+        let end = solved.end;
+        // A swinging foot certainly high above the ground under it (see `high_above`).
+        let high = |b| !state.planted && self.high_above(end, leg.size, b);
+        let mut asking = self.asking[0];
+        let bounds = asking.ask(
+            || ground.height_bounds(Vec2::new(end.x, end.z), self.rim_reach),
+            |b| b.is_some_and(|b| b.0 == b.1 || high(b)),
+        );
+        let high = bounds.is_some_and(high);
+        self.asking[0] = asking;
+        let mut lift = 0.0;
+        let normal = if high {
+            // High in a step over ground the bounds settle: level (see below), and the rim
+            // clear of the ground by more than the sole's radius. What the fit would give,
+            // without its rays.
+            Vec3::Y
         } else {
-            sole_lift(ground, solved.end, sole, &self.sole_points, leg.size)
+            let fit = fit_sole(ground, solved.end, yaw, &self.sole, leg.size, bounds)?;
+            // A swinging foot levels off as it rises from the ground.
+            let level = if state.planted {
+                1.0
+            } else {
+                (1.0 - fit.height / (2.0 * self.foot_radius)).clamp(0.0, 1.0)
+            };
+            let normal = Vec3::Y.lerp(fit.normal, level).unit_or(Vec3::Y);
+            // Every sole vertex tested (on the ground's plane where the ground under the rim
+            // is flat, else where it is), unless the rim stands clear of the ground by more
+            // than the sole's radius (a foot high in a step).
+            let sole = rotation_arc(Vec3::Y, normal) * yaw;
+            if fit.clearance > self.foot_radius {
+            } else if let Some(plane) = fit.plane_within(flat) {
+                lift = plane.plane_lift(sole, &self.sole_points, self.sole_reach);
+            } else {
+                lift = sole_lift(ground, solved.end, sole, &self.sole_points, leg.size);
+            }
+            normal
         };
         // A stepping foot comes down onto where its sole will rest at the step's target (on a
         // step's crest under a toe, not the ground under its joint), turned with the body as
@@ -371,10 +471,18 @@ impl LiveLeg {
                 // The same target and heading as the last frame's (the target stays put over
                 // the step's end; the heading, walking straight).
                 Some((at, turned, rest)) if at == target && turned == heading => Some(rest),
-                _ => fit_sole(ground, target, heading, &self.sole, leg.size).map(|fit| {
+                _ => {
+                    let reach = self.rim_reach;
+                    let bounds = self.asking[1].ask(
+                        || ground.height_bounds(Vec2::new(target.x, target.z), reach),
+                        |b| b.is_some_and(|(low, high)| low == high),
+                    );
+                    fit_sole(ground, target, heading, &self.sole, leg.size, bounds)
+                }
+                .map(|fit| {
                     let sole = rotation_arc(Vec3::Y, fit.normal) * heading;
-                    let rest = if fit.off_plane <= flat {
-                        fit.plane_lift(sole, &self.sole_points, self.sole_reach)
+                    let rest = if let Some(plane) = fit.plane_within(flat) {
+                        plane.plane_lift(sole, &self.sole_points, self.sole_reach)
                     } else {
                         sole_lift(ground, target, sole, &self.sole_points, leg.size)
                     };
@@ -545,13 +653,18 @@ impl Animator {
                 let rest_upper = (rest(hip + 1) - rest(hip)).unit_or(Vec3::NEG_Y);
                 let rest_lower = (rest(hip + 2) - rest(hip + 1)).unit_or(Vec3::NEG_Y);
                 let sole = sole_points(creature, hip + 2);
+                let rim = sole_rim(&sole);
                 LiveLeg {
+                    rim_reach: rim.iter().map(|d| d.norm()).fold(0.0, f32::max) * (1.0 + 1e-5),
+                    asking: [Asking::EVERY_TIME; 2],
+                    rim_low: rim.iter().map(|d| d.y).fold(f32::INFINITY, f32::min),
+                    rim_mean: rim.iter().map(|d| d.y).sum::<f32>() / RIM_SAMPLES as f32,
                     rest_upper,
                     rest_lower,
                     hinge: Hinge::new((rest_upper, rest_lower), leg.pole),
                     knee_radius: creature.ring_radius(hip + 1),
                     foot_radius: creature.ring_radius(hip + 2),
-                    sole: sole_rim(&sole),
+                    sole: rim,
                     sole_reach: sole
                         .iter()
                         .map(|p| Vec3A::new(p.x, 0.0, p.z).norm())
@@ -561,6 +674,7 @@ impl Animator {
                     lifted: Quat::IDENTITY,
                     fitted: None,
                     landing: None,
+                    sole_turn: None,
                     stepped: None,
                 }
             })
@@ -913,14 +1027,24 @@ impl Animator {
         };
         let look_share = Quat::IDENTITY.slerp(look, 1.0 / neck.max(1) as f32);
         let swing = self.tail_swing / self.swinging.len().max(1) as f32;
+        // The neck's joints share one bend, the tail's another (each listed together): each
+        // turned and measured once.
+        let mut shared: Option<(f32, Quat, f32)> = None;
         for &(joint, divisor, limit) in &self.bends {
-            let bend = Quat::from_rotation_y(total / divisor);
-            let turn = if divisor > 0.0 {
-                (bend * look_share).unit()
-            } else {
-                bend
+            let (turn, angle) = match shared {
+                Some((of, turn, angle)) if of == divisor => (turn, angle),
+                _ => {
+                    let bend = Quat::from_rotation_y(total / divisor);
+                    let turn = if divisor > 0.0 {
+                        (bend * look_share).unit()
+                    } else {
+                        bend
+                    };
+                    let angle = turn.angle_between(Quat::IDENTITY);
+                    shared = Some((divisor, turn, angle));
+                    (turn, angle)
+                }
             };
-            let angle = turn.angle_between(Quat::IDENTITY);
             let mut turn = if angle > limit {
                 Quat::IDENTITY.slerp(turn, limit / angle).unit()
             } else {
@@ -943,6 +1067,8 @@ impl Animator {
         let setup = self.controller.legs();
         for &j in &self.order {
             let parent = self.parents[j].map(|p| self.world[p]);
+            // A leg's hip's world transform where its solution gives it.
+            let mut solved_world = None;
             if let Some(i) = self.leg_at[j] {
                 // A leg's hip: its chain solved from the hip to the foot in body space.
                 let leg = &setup[i];
@@ -958,8 +1084,9 @@ impl Animator {
                         s.foot += closing.feet[i];
                         s.planted = closing.planted[i];
                         let end = unturn * (s.joints.end - body.translation);
-                        let middle = solve_two_bone(root, end, leg.upper, leg.lower, leg.pole);
-                        s.joints.middle = body.transform_point(middle.middle);
+                        let [_, middle, _] =
+                            solve_two_bone_joints(root, end, leg.upper, leg.lower, leg.pole);
+                        s.joints.middle = body.transform_point(middle);
                         closed = s;
                         &closed
                     }
@@ -986,18 +1113,22 @@ impl Animator {
                         normal = fit;
                         if lift > 0.0 {
                             end = to_body(solved.end + Vec3::Y * lift);
-                            middle =
-                                solve_two_bone(root, end, leg.upper, leg.lower, leg.pole).middle;
+                            [_, middle, _] =
+                                solve_two_bone_joints(root, end, leg.upper, leg.lower, leg.pole);
                         }
                     }
                 }
+                // The sole flat on the ground: level, turned to its yaw, tilted to the ground's
+                // normal.
+                let sole = self.legs[i].sole_rotation(normal, yaw);
                 let live = &self.legs[i];
                 // A foot in the air short of a straight leg, as the baked clips hold it.
                 if !state.planted {
                     let soft = soft_reach(root, end, leg.upper + leg.lower, up);
                     if soft != end {
                         end = soft;
-                        middle = solve_two_bone(root, end, leg.upper, leg.lower, leg.pole).middle;
+                        [_, middle, _] =
+                            solve_two_bone_joints(root, end, leg.upper, leg.lower, leg.pole);
                     }
                 }
                 let floor = ground.map_or(f32::NEG_INFINITY, |g| {
@@ -1028,22 +1159,32 @@ impl Animator {
                         new
                     }
                 };
-                let hip_local = parent.map_or(hip_world, |p| p.inverse() * hip_world);
-                self.local[j] = Affine3A::from_rotation_translation(
-                    damped(
-                        &self.local[j],
-                        crate::math::quat_from_mat3a(&hip_local.matrix3).unit(),
-                    ),
-                    hip_local.translation.into(),
-                );
+                if arm && arm_turn != f32::INFINITY {
+                    let hip_local = parent.map_or(hip_world, |p| p.inverse() * hip_world);
+                    self.local[j] = Affine3A::from_rotation_translation(
+                        damped(
+                            &self.local[j],
+                            crate::math::quat_from_mat3a(&hip_local.matrix3).unit(),
+                        ),
+                        hip_local.translation.into(),
+                    );
+                } else {
+                    // Undamped: the hip's world transform as solved, and its local one that
+                    // in its parent's frame (a rotation's inverse is its transpose).
+                    self.local[j] = parent.map_or(hip_world, |p| {
+                        let unturn = p.matrix3.transpose();
+                        Affine3A {
+                            matrix3: unturn * hip_world.matrix3,
+                            translation: unturn * (hip_world.translation - p.translation),
+                        }
+                    });
+                    solved_world = Some(hip_world);
+                }
                 let (knee_joint, foot_joint) = (j + 1, j + 2);
                 self.local[knee_joint] = Affine3A::from_rotation_translation(
                     damped(&self.local[knee_joint], knee),
                     self.rest_local[knee_joint],
                 );
-                // The sole flat on the ground: level, turned to its yaw, tilted to the ground's
-                // normal.
-                let sole = rotation_arc(Vec3::Y, normal) * yaw;
                 let foot_rotation = ((body.rotation * hip * knee).inverse() * sole).unit();
                 self.local[foot_joint] = Affine3A::from_rotation_translation(
                     damped(&self.local[foot_joint], foot_rotation),
@@ -1059,6 +1200,10 @@ impl Animator {
                 });
                 self.local[j] =
                     Affine3A::from_rotation_translation(turn.unit(), self.rest_local[j]);
+            }
+            if let Some(world) = solved_world {
+                self.world[j] = world;
+                continue;
             }
             let local = &self.local[j];
             self.world[j] = match parent {
@@ -1318,14 +1463,33 @@ struct SoleFit {
     /// How far the level sole's rim stands above the ground at its lowest sample (negative
     /// where a sample is in it).
     clearance: f32,
-    /// The plane nearest the ground under the rim: its height over the foot joint at the
-    /// joint and its slopes along world x and z.
-    plane: (f32, f32, f32),
-    /// The farthest the ground under the rim is off that plane (infinite where there is none).
-    off_plane: f32,
+    /// The ground under each rim sample: its offset from the foot joint along world x and z
+    /// and its height over the joint.
+    ground: [(f32, f32, f32); RIM_SAMPLES],
 }
 
 impl SoleFit {
+    /// The plane nearest the ground under the rim (least squares), where none of the ground
+    /// under the rim is farther than `flat` off it; `None` where some is, or where the rim
+    /// spans no area. Fitted only when asked: a foot high in a step needs none.
+    fn plane_within(&self, flat: f32) -> Option<RimPlane> {
+        let (a, p, q) = plane_fit(self.ground.iter().copied())?;
+        let off_plane = self
+            .ground
+            .iter()
+            .map(|&(x, z, h)| (h - a - p * x - q * z).abs())
+            .fold(0.0, max_f);
+        (off_plane <= flat).then_some(RimPlane { plane: (a, p, q) })
+    }
+}
+
+/// The plane of the ground under a sole's rim ([`SoleFit::plane_within`]).
+struct RimPlane {
+    /// Its height over the foot joint at the joint and its slopes along world x and z.
+    plane: (f32, f32, f32),
+}
+
+impl RimPlane {
     /// [`sole_lift`] on the ground's plane under the rim: how far the sole turned to `turn`
     /// must rise for none of its `points` (lowest first, none farther than `reach` from the
     /// joint horizontally) to be below that plane (0 when none is).
@@ -1379,16 +1543,27 @@ fn fit_sole<G: Ground + ?Sized>(
     heading: Quat,
     rim: &[Vec3; RIM_SAMPLES],
     reach: f32,
+    bounds: Option<(f32, f32)>,
 ) -> Option<SoleFit> {
     // A matrix turns the 16 offsets in half the arithmetic of the quaternion.
     let turn = glam::Mat3A::from_quat(heading);
+    let top = foot.y + reach;
+    // On ground the bounds (of the square round the rim) say is flat, every ray that reaches
+    // it hits it at its height: none is cast.
+    let flat = bounds.and_then(|(low, high)| {
+        (low == high && top >= high && top - low <= 2.0 * reach).then_some(low)
+    });
     let at = |d: Vec3| {
         let d = Vec3::from(turn * Vec3A::from(d));
-        let above = Vec3::new(foot.x + d.x, foot.y + reach, foot.z + d.z);
+        let height = match flat {
+            Some(height) => height,
+            None => {
+                let above = Vec3::new(foot.x + d.x, top, foot.z + d.z);
+                ground.cast_down_point(above, 2.0 * reach)?.y
+            }
+        };
         // The ground's height there over the sole's vertex, in the sole's level frame.
-        ground
-            .cast_down_point(above, 2.0 * reach)
-            .map(|hit| (Vec3::new(d.x, 0.0, d.z), hit.y - foot.y - d.y))
+        Some((Vec3::new(d.x, 0.0, d.z), height - foot.y - d.y))
     };
     let mut samples = [(Vec3::ZERO, 0.0); RIM_SAMPLES];
     for (sample, &d) in samples.iter_mut().zip(rim) {
@@ -1410,23 +1585,16 @@ fn fit_sole<G: Ground + ?Sized>(
     let normal = tilted(normal, MAX_SOLE_TILT);
     let mean = samples.iter().map(|s| s.1).sum::<f32>() / RIM_SAMPLES as f32;
     let highest = samples.iter().map(|s| s.1).fold(f32::NEG_INFINITY, max_f);
-    // The plane through the ground under the rim (least squares; heights over the joint).
-    let ground = samples
-        .iter()
-        .zip(rim)
-        .map(|(&(d, h), r)| (d.x, d.z, h + r.y));
-    let plane = plane_fit(ground.clone());
-    let off_plane = plane.map_or(f32::INFINITY, |(a, p, q)| {
-        ground
-            .map(|(x, z, h)| (h - a - p * x - q * z).abs())
-            .fold(0.0, max_f)
-    });
+    // The ground under the rim for its plane (heights over the joint).
+    let mut ground = [(0.0, 0.0, 0.0); RIM_SAMPLES];
+    for (g, (&(d, h), r)) in ground.iter_mut().zip(samples.iter().zip(rim)) {
+        *g = (d.x, d.z, h + r.y);
+    }
     Some(SoleFit {
         normal,
         height: -mean,
         clearance: -highest,
-        plane: plane.unwrap_or((0.0, 0.0, 0.0)),
-        off_plane,
+        ground,
     })
 }
 
@@ -1686,13 +1854,7 @@ mod tests {
                 0.8 * crate::math::sin(t * 0.53),
                 0.8 * crate::math::cos(t * 0.29),
             );
-            let fit = SoleFit {
-                normal: Vec3::Y,
-                height: 0.0,
-                clearance: 0.0,
-                plane,
-                off_plane: 0.0,
-            };
+            let fit = RimPlane { plane };
             let turn = Quat::from_rotation_y(t * 0.7)
                 * Quat::from_rotation_x(0.5 * crate::math::sin(t * 0.13))
                 * Quat::from_rotation_z(0.5 * crate::math::cos(t * 0.17));

@@ -1,6 +1,6 @@
 //! Property tests of the invariants the crate promises, driven by its public strategies.
 
-use creature_gait::glam::{Quat, Vec2, Vec3};
+use creature_gait::glam::{Quat, Vec2, Vec3, Vec4};
 use creature_gait::strategies::{self, MotionStep};
 use creature_gait::{
     Controller, Gait, GaitOptions, GaitSpeeds, Ground, HeightField, Leg, Plane, Pose, RayHit, Side,
@@ -421,6 +421,42 @@ proptest! {
         for max in [max, f32::INFINITY] {
             let full = steep.cast_down(origin, max).filter(RayHit::is_valid).map(|h| h.point);
             prop_assert_eq!(steep.cast_down_point(origin, max), full);
+        }
+    }
+
+    /// `Ground::cast_down_four` finds what four `cast_down_point`s find, bit for bit: the
+    /// height field's lookups four at a time (rays on and off the grid, above and below the
+    /// ground, of any length, heights whose sums overflow) and the trait's default.
+    #[test]
+    fn four_rays_at_once_are_four_rays(
+        field in strategies::height_field(0.5),
+        rays in prop::collection::vec((-22.0f32..22.0, -2.0f32..3.0, -22.0f32..22.0, -0.5f32..5.0), 4),
+        odd in 0usize..8,
+        lane in 0usize..4,
+    ) {
+        let mut ray: [(f32, f32, f32, f32); 4] = core::array::from_fn(|l| rays[l]);
+        // Now and then one ray of the four is odd: a NaN or infinite coordinate or length.
+        let odd_value = [f32::NAN, f32::INFINITY, -f32::INFINITY, 3e38];
+        match odd {
+            0 => ray[lane].0 = odd_value[lane],
+            1 => ray[lane].1 = odd_value[lane],
+            2 => ray[lane].3 = odd_value[lane],
+            _ => {}
+        }
+        let lanes = |f: fn(&(f32, f32, f32, f32)) -> f32| Vec4::from_array(ray.each_ref().map(f));
+        let (x, y, z, max) = (lanes(|r| r.0), lanes(|r| r.1), lanes(|r| r.2), lanes(|r| r.3));
+        let steep = HeightField::new(Vec2::splat(-22.0), 44.0, 2, 2, vec![-3e38, 3e38, 3e38, -3e38])
+            .map_err(|e| TestCaseError::fail(format!("{e}")))?;
+        let plane = Plane::horizontal(0.3);
+        let grounds: [&dyn Ground; 3] = [&field, &steep, &plane];
+        for ground in grounds {
+            let four = ground.cast_down_four(x, y, z, max).map(|h| h.map(f32::to_bits));
+            let one: [Option<u32>; 4] = core::array::from_fn(|l| {
+                ground
+                    .cast_down_point(Vec3::new(x[l], y[l], z[l]), max[l])
+                    .map(|hit| hit.y.to_bits())
+            });
+            prop_assert_eq!(four, one);
         }
     }
 }

@@ -3,7 +3,7 @@
 
 use alloc::vec::Vec;
 
-use glam::{Vec2, Vec3};
+use glam::{Vec2, Vec3, Vec4};
 
 use super::{Ground, RayHit};
 use crate::error::{GaitError, finite, positive};
@@ -354,6 +354,61 @@ impl HeightField {
 }
 
 impl HeightField {
+    /// [`Ground::cast_down_four`] where every ray is over the grid and its cells' indices fit
+    /// `i32` (see `grid`): `locate`, `patch` and `under` for four rays, lane for lane; `None`
+    /// otherwise.
+    #[inline(always)]
+    fn four(&self, x: Vec4, y: Vec4, z: Vec4, max_distance: Vec4) -> Option<[Option<f32>; 4]> {
+        let (last_i, last_j, columns) = self.grid?;
+        // Every sample index below 2²³: the indices below are exact as floats, and 2²³ more
+        // than one holds it in its mantissa's low bits.
+        if self.heights.len() > BIG as usize {
+            return None;
+        }
+        let inv = Vec4::splat(self.inv_cell);
+        let gx = (x - Vec4::splat(self.origin.x)) * inv;
+        let gz = (z - Vec4::splat(self.origin.y)) * inv;
+        let (top_x, top_z) = (Vec4::splat(self.max_grid.x), Vec4::splat(self.max_grid.y));
+        let inside =
+            gx.cmpge(Vec4::ZERO) & gx.cmple(top_x) & gz.cmpge(Vec4::ZERO) & gz.cmple(top_z);
+        if !inside.all() {
+            return None;
+        }
+        // The cell: each grid coordinate's whole part (non-negative and below 2²³: rounded to a
+        // whole number by adding 2²³, then one less where that rounded up; `as i32` exactly),
+        // no further than the last cell; `locate`'s as floats, exactly.
+        let big = Vec4::splat(BIG as f32);
+        let whole = |g: Vec4, last: i32| {
+            let near = (g + big) - big;
+            let floor = Vec4::select(near.cmpgt(g), near - Vec4::ONE, near);
+            floor.min(Vec4::splat(last as f32))
+        };
+        let (i, j) = (whole(gx, last_i), whole(gz, last_j));
+        let (u, v) = (gx - i, gz - j);
+        let c = columns as usize;
+        let first = (j * Vec4::splat(columns as f32) + i + big).to_array();
+        let mut corners = [[0.0f32; 4]; 4];
+        for (l, &k) in first.iter().enumerate() {
+            // 2²³ + k: the float's bits are 2²³'s plus `k`.
+            let k = (k.to_bits() - BIG_BITS) as usize;
+            // Both rows of the cell in one slice (never failing for a located cell).
+            let q = self.heights.get(k..k + c + 2)?;
+            (corners[0][l], corners[1][l]) = (q[0], q[1]);
+            (corners[2][l], corners[3][l]) = (q[c], q[c + 1]);
+        }
+        let [h00, h10, h01, h11] = corners.map(Vec4::from_array);
+        let (a, b, cc, d) = (h00, h10 - h00, h01 - h00, h00 - h10 - h01 + h11);
+        let h = a + b * u + cc * v + d * u * v;
+        // `under`'s checks (the ray starts at or above the height, and reaches it), then
+        // `cast_down_point`'s (a finite distance).
+        let distance = y - h;
+        let hit = !y.cmplt(h) & distance.cmple(max_distance) & distance.is_finite_mask();
+        let (hit, h) = (hit.bitmask(), h.to_array());
+        Some(core::array::from_fn(|l| {
+            (hit & (1 << l) != 0).then_some(h[l])
+        }))
+    }
+
     /// [`Ground::height_bounds`]: the lowest and highest samples at the corners of the cells
     /// the square covers (a bilinear patch lies between its corners), widened by the rounding
     /// of a lookup unless they are equal (a flat patch's lookups are exact); `None` for a
@@ -405,6 +460,13 @@ fn pad(lowest: f32, highest: f32) -> (f32, f32) {
     (lowest - pad, highest + pad)
 }
 
+/// 2²³: a float at least this large is a whole number, and `BIG + k` (a whole `k` below it)
+/// has `BIG`'s bits plus `k` ([`HeightField`]'s four lookups at once).
+const BIG: u32 = 1 << 23;
+
+/// The bits of `BIG as f32`.
+const BIG_BITS: u32 = (BIG as f32).to_bits();
+
 /// The most cells [`HeightField`]'s [`Ground::height_bounds`] scans (a square over more says
 /// nothing).
 const BOUNDED_CELLS: usize = 16;
@@ -443,6 +505,20 @@ impl Ground for HeightField {
     #[inline]
     fn height_bounds(&self, centre: Vec2, half: f32) -> Option<(f32, f32)> {
         self.bounds(centre, half)
+    }
+
+    /// Four lookups together: the same heights, bit for bit, as four
+    /// [`cast_down_point`](Ground::cast_down_point)s (the same operations, lane for lane),
+    /// their grid coordinates and bilinear sums four at a time. Where a ray is off the grid, or
+    /// the grid is too large for `i32` indices, each ray is looked up alone.
+    #[inline]
+    fn cast_down_four(&self, x: Vec4, y: Vec4, z: Vec4, max_distance: Vec4) -> [Option<f32>; 4] {
+        self.four(x, y, z, max_distance).unwrap_or_else(|| {
+            core::array::from_fn(|l| {
+                self.cast_down_point(Vec3::new(x[l], y[l], z[l]), max_distance[l])
+                    .map(|hit| hit.y)
+            })
+        })
     }
 
     fn cast_ray(&self, origin: Vec3, direction: Vec3, max_distance: f32) -> Option<RayHit> {
@@ -545,6 +621,24 @@ mod tests {
             0.3 * crate::math::sin(x * 1.3) * crate::math::cos(z * 0.9) + 0.05 * x
         })
         .unwrap()
+    }
+
+    #[test]
+    fn four_lookups_on_a_grid_too_large_for_float_indices_are_four_lookups() {
+        // 2,900² samples, more than 2²³: each ray is looked up alone (the same heights).
+        let n = 2_900;
+        let heights = (0..n * n).map(|k| (k % 7) as f32 * 0.1).collect();
+        let f = HeightField::new(Vec2::ZERO, 0.5, n, n, heights).unwrap();
+        let x = Vec4::new(0.3, 700.2, 1_449.4, 1_000.0);
+        let z = Vec4::new(0.2, 1_200.7, 1_449.5, -1.0);
+        let (y, max) = (Vec4::splat(2.0), Vec4::splat(5.0));
+        let four = f.cast_down_four(x, y, z, max);
+        let one: [Option<f32>; 4] = core::array::from_fn(|l| {
+            f.cast_down_point(Vec3::new(x[l], y[l], z[l]), max[l])
+                .map(|h| h.y)
+        });
+        assert_eq!(four, one);
+        assert!(four[..3].iter().all(Option::is_some) && four[3].is_none());
     }
 
     #[test]

@@ -1,7 +1,7 @@
 //! Grounds the feet stand on: the [`Ground`] trait (a ray cast) and its implementations
 //! [`Plane`], [`HeightField`] and [`FnGround`] (any closure).
 
-use glam::{Vec2, Vec3};
+use glam::{Vec2, Vec3, Vec4};
 
 use crate::error::{GaitError, finite3};
 
@@ -113,9 +113,9 @@ pub trait Ground {
     ///
     /// assert_eq!(Plane::horizontal(0.5).height_bounds(Vec2::new(3.0, 4.0), 1.0), Some((0.5, 0.5)));
     /// let field = HeightField::new(Vec2::ZERO, 1.0, 3, 2, vec![0.0, 1.0, 2.0, 0.0, 1.0, 2.0])?;
-    /// let (low, high) = field.height_bounds(Vec2::new(0.5, 0.5), 0.25).unwrap();
-    /// let hit = field.cast_down_point(Vec3::new(0.7, 5.0, 0.6), 10.0).unwrap();
-    /// assert!(low <= hit.y && hit.y <= high && high < 1.1);
+    /// let bounds = field.height_bounds(Vec2::new(0.5, 0.5), 0.25);
+    /// let hit = field.cast_down_point(Vec3::new(0.7, 5.0, 0.6), 10.0);
+    /// assert!(bounds.zip(hit).is_some_and(|((low, high), hit)| low <= hit.y && hit.y <= high && high < 1.1));
     /// // Off the grid, a ray may find nothing: no bounds.
     /// assert_eq!(field.height_bounds(Vec2::new(1.9, 0.5), 0.25), None);
     /// # Ok::<(), creature_gait::GaitError>(())
@@ -124,6 +124,31 @@ pub trait Ground {
     fn height_bounds(&self, centre: Vec2, half: f32) -> Option<(f32, f32)> {
         let _ = (centre, half);
         None
+    }
+
+    /// Four rays straight down at once, from `(x[i], y[i], z[i])`, `max_distance[i]` long:
+    /// for each, the height of its hit as [`cast_down_point`](Self::cast_down_point) finds it
+    /// (bit for bit), or `None` where it misses. The default casts the four rays;
+    /// [`HeightField`] looks the four up together, and a caller with many rays (the feet's
+    /// soles, vertex by vertex) saves most of a lookup's overhead.
+    ///
+    /// ```
+    /// use creature_gait::{Ground, HeightField, glam::{Vec2, Vec3, Vec4}};
+    ///
+    /// let field = HeightField::new(Vec2::ZERO, 1.0, 3, 2, vec![0.0, 1.0, 2.0, 0.0, 1.0, 2.0])?;
+    /// let (x, z) = (Vec4::new(0.5, 1.5, 1.9, 3.0), Vec4::splat(0.5));
+    /// let hits = field.cast_down_four(x, Vec4::splat(5.0), z, Vec4::splat(10.0));
+    /// assert_eq!(hits, [Some(0.5), Some(1.5), Some(1.9), None]); // the last is off the grid
+    /// let one = field.cast_down_point(Vec3::new(1.5, 5.0, 0.5), 10.0);
+    /// assert_eq!(one.map(|hit| hit.y), hits[1]);
+    /// # Ok::<(), creature_gait::GaitError>(())
+    /// ```
+    #[inline]
+    fn cast_down_four(&self, x: Vec4, y: Vec4, z: Vec4, max_distance: Vec4) -> [Option<f32>; 4] {
+        core::array::from_fn(|i| {
+            self.cast_down_point(Vec3::new(x[i], y[i], z[i]), max_distance[i])
+                .map(|hit| hit.y)
+        })
     }
 }
 
@@ -146,6 +171,11 @@ impl<G: Ground + ?Sized> Ground for &G {
     #[inline]
     fn height_bounds(&self, centre: Vec2, half: f32) -> Option<(f32, f32)> {
         (**self).height_bounds(centre, half)
+    }
+
+    #[inline]
+    fn cast_down_four(&self, x: Vec4, y: Vec4, z: Vec4, max_distance: Vec4) -> [Option<f32>; 4] {
+        (**self).cast_down_four(x, y, z, max_distance)
     }
 }
 

@@ -6,7 +6,7 @@
 
 use alloc::vec::Vec;
 
-use glam::{Affine3A, Mat4, Quat, Vec2, Vec3, Vec3A};
+use glam::{Affine3A, Mat3A, Mat4, Quat, Vec2, Vec3, Vec3A, Vec4};
 
 use creature_gait::{Controller, Gait, Ground, LegState, LimbKind, Pose, solve_two_bone_joints};
 use creature_limbs::CreatureKind;
@@ -182,6 +182,12 @@ pub struct Animator {
     /// The time step the smoothing shares were last computed for, and the shares (terrain,
     /// turn bend).
     smoothing: (f32, f32, f32),
+    /// Half the side of the square round a walker's body (about its position) whose
+    /// [height bounds](Ground::height_bounds) may settle the rays under its legs' rest
+    /// positions and knees: twice as far as any of those reaches.
+    under_half: f32,
+    /// When to ask the ground for that square's bounds.
+    asking_under: Asking,
     /// Whether the next update starts afresh (feet put under the body where it stands).
     fresh: bool,
     /// How far a walker's body (its mesh skinned to spine joints only) stands off the ground
@@ -240,7 +246,7 @@ struct LiveLeg {
     /// The sole's rim: the foot's farthest vertices near its bottom, at rest (level, facing
     /// +Z), in each of [`RIM`]'s directions: their horizontal offset from the joint and their
     /// height over the foot's lowest vertex.
-    sole: [Vec3; RIM_SAMPLES],
+    sole: RimLanes,
     /// The sole's vertices at rest, as offsets from the foot joint, lowest first
     /// ([`sole_points`]).
     sole_points: Vec<Vec3A>,
@@ -425,13 +431,17 @@ impl LiveLeg {
         let flat = FLAT_SOLE * self.foot_radius;
         let end = solved.end;
         // A swinging foot certainly high above the ground under it (see `high_above`).
-        let high = |b| !state.planted && self.high_above(end, leg.size, b);
+        let mut high = false;
         let mut asking = self.asking[0];
         let bounds = asking.ask(
             || ground.height_bounds(Vec2::new(end.x, end.z), self.rim_reach),
-            |b| b.is_some_and(|b| b.0 == b.1 || high(b)),
+            |b| {
+                b.is_some_and(|b| {
+                    high = !state.planted && self.high_above(end, leg.size, b);
+                    b.0 == b.1 || high
+                })
+            },
         );
-        let high = bounds.is_some_and(high);
         self.asking[0] = asking;
         let mut lift = 0.0;
         let normal = if high {
@@ -569,6 +579,8 @@ impl Animator {
             leg_at: alloc::vec![None; n],
             turns: alloc::vec![false; n],
             smoothing: (0.0, 0.0, 0.0),
+            under_half: 0.0,
+            asking_under: Asking::EVERY_TIME,
             fresh: true,
             clearance: f32::INFINITY,
             world: local.clone(),
@@ -630,6 +642,18 @@ impl Animator {
             animator.leg_at[hip] = Some(i);
         }
         animator.head = head;
+        // The farthest a leg's rest position or knee (and a leg's size above it, where its
+        // ray starts) is from the body's origin horizontally, doubled.
+        animator.under_half = 2.0
+            * setup
+                .legs
+                .iter()
+                .map(|leg| {
+                    let rest = Vec2::new(leg.rest.x, leg.rest.z).norm();
+                    let hip = Vec2::new(leg.hip.x, leg.hip.z).norm();
+                    rest.max(hip + leg.upper) + leg.size
+                })
+                .fold(0.0, f32::max);
         animator.bends = creature.turn_bend_shares();
         if setup.options.hop {
             // (Each a joint of the tail's turn bend too: it turns already.)
@@ -664,7 +688,7 @@ impl Animator {
                     hinge: Hinge::new((rest_upper, rest_lower), leg.pole),
                     knee_radius: creature.ring_radius(hip + 1),
                     foot_radius: creature.ring_radius(hip + 2),
-                    sole: rim,
+                    sole: RimLanes::new(&rim),
                     sole_reach: sole
                         .iter()
                         .map(|p| Vec3A::new(p.x, 0.0, p.z).norm())
@@ -682,7 +706,7 @@ impl Animator {
         animator.pose_joints(
             &Pose::IDENTITY,
             Quat::IDENTITY,
-            None::<&creature_gait::Plane>,
+            None::<(&creature_gait::Plane, _)>,
             f32::INFINITY,
             None,
         );
@@ -766,9 +790,11 @@ impl Animator {
         // is put straight onto the ground where it stands.
         let yaw = Quat::from_rotation_y(heading);
         let reach = self.length;
-        let (mut height, mut slope) = self.ground_under(position, yaw, ground, (reach, reach));
+        let flat = self.flat_under(position, ground);
+        let (mut height, mut slope) =
+            self.ground_under(position, yaw, ground, (reach, reach), flat);
         if self.fresh && height.is_none() {
-            let cast = |origin, range| match self.ground_under(origin, yaw, ground, range) {
+            let cast = |origin, range| match self.ground_under(origin, yaw, ground, range, None) {
                 (Some(height), slope) => Some((height, slope)),
                 (None, _) => None,
             };
@@ -881,7 +907,7 @@ impl Animator {
         self.pose_joints(
             &body,
             yaw,
-            Some(ground),
+            Some((ground, flat)),
             arm_turn,
             closing.map(|c| (reacted, c)),
         );
@@ -952,18 +978,38 @@ impl Animator {
         })
     }
 
+    /// The ground under a walker's body at `position` where its
+    /// [height bounds](Ground::height_bounds) say it is flat (asked as [`Asking`] says).
+    fn flat_under<G: Ground + ?Sized>(&mut self, position: Vec3, ground: &G) -> Option<FlatUnder> {
+        let centre = Vec2::new(position.x, position.z);
+        let half = self.under_half;
+        let bounds = self.asking_under.ask(
+            || ground.height_bounds(centre, half),
+            |b| b.is_some_and(|(low, high)| low == high),
+        );
+        match bounds {
+            Some((low, high)) if low == high => Some(FlatUnder {
+                centre,
+                half: 0.5 * half,
+                height: low,
+            }),
+            _ => None,
+        }
+    }
+
     /// The mean height of the ground under the legs' rest positions with the body at `origin`
     /// turned by `yaw` (none if no ray hits), and
     /// the slopes of those heights along the body's forward and left axes, as a pitch and a
     /// roll (radians, each within [`MAX_LEAN`]); the rays are cast from `above` the body to
     /// `below` it (and a leg's size further): its length each, or [`FRESH_RANGE`] to put it
-    /// down afresh.
+    /// down afresh. Where the ground is `flat` under the body, no ray is cast.
     fn ground_under<G: Ground + ?Sized>(
         &self,
         origin: Vec3,
         yaw: Quat,
         ground: &G,
         (above, below): (f32, f32),
+        flat: Option<FlatUnder>,
     ) -> (Option<f32>, Vec2) {
         // Least-squares slopes of the heights along x and z: sums of e, x, z, x², z², ex, ez.
         let mut count = 0.0f32;
@@ -975,8 +1021,13 @@ impl Animator {
             }
             let rest = Vec3::new(leg.rest.x, 0.0, leg.rest.z);
             let from = origin + yaw * rest + Vec3::Y * above;
-            if let Some(hit) = ground.cast_down_point(from, above + below + leg.size) {
-                let h = hit.y - origin.y;
+            let range = above + below + leg.size;
+            let hit = match flat.and_then(|f| f.hit(from, range)) {
+                Some(height) => Some(height),
+                None => ground.cast_down_point(from, range).map(|hit| hit.y),
+            };
+            if let Some(hit) = hit {
+                let h = hit - origin.y;
                 count += 1.0;
                 (e, x, z) = (e + h, x + rest.x, z + rest.z);
                 (xx, zz) = (xx + rest.x * rest.x, zz + rest.z * rest.z);
@@ -1010,7 +1061,7 @@ impl Animator {
         &mut self,
         body: &Pose,
         heading: Quat,
-        ground: Option<&G>,
+        ground: Option<(&G, Option<FlatUnder>)>,
         arm_turn: f32,
         closing: Option<(Pose, Closing<'_>)>,
     ) {
@@ -1030,6 +1081,9 @@ impl Animator {
         // The neck's joints share one bend, the tail's another (each listed together): each
         // turned and measured once.
         let mut shared: Option<(f32, Quat, f32)> = None;
+        // The last bend's turn and its matrix: a joint turned as the one before it (a neck's
+        // or tail's joints within their limits) takes the matrix as it is.
+        let mut last: Option<(Quat, Mat3A)> = None;
         for &(joint, divisor, limit) in &self.bends {
             let (turn, angle) = match shared {
                 Some((of, turn, angle)) if of == divisor => (turn, angle),
@@ -1055,7 +1109,15 @@ impl Animator {
             {
                 turn = (turn * Quat::from_rotation_x(swing.min(most))).unit();
             }
-            self.local[joint] = Affine3A::from_rotation_translation(turn, self.rest_local[joint]);
+            let matrix3 = match last {
+                Some((of, matrix3)) if of == turn => matrix3,
+                _ => Mat3A::from_quat(turn),
+            };
+            last = Some((turn, matrix3));
+            self.local[joint] = Affine3A {
+                matrix3,
+                translation: self.rest_local[joint].into(),
+            };
         }
         self.local[self.root] = Affine3A::from_rotation_translation(
             body.rotation,
@@ -1066,7 +1128,9 @@ impl Animator {
         let states = self.controller.leg_states();
         let setup = self.controller.legs();
         for &j in &self.order {
-            let parent = self.parents[j].map(|p| self.world[p]);
+            // The parent's index: its world transform is read where it is needed (a copy of
+            // it for every joint cost more than a fifth of the posing's own arithmetic).
+            let parent = self.parents[j];
             // A leg's hip's world transform where its solution gives it.
             let mut solved_world = None;
             if let Some(i) = self.leg_at[j] {
@@ -1107,7 +1171,7 @@ impl Animator {
                 // made once where it stands (the ground under a planted foot is taken not to
                 // change, as the controller takes it).
                 let mut normal = state.normal;
-                if let Some(g) = ground {
+                if let Some((g, _)) = ground {
                     let fitted = self.legs[i].fitted_sole(g, leg, state, (heading, yaw));
                     if let Some((fit, lift)) = fitted {
                         normal = fit;
@@ -1131,13 +1195,17 @@ impl Animator {
                             solve_two_bone_joints(root, end, leg.upper, leg.lower, leg.pole);
                     }
                 }
-                let floor = ground.map_or(f32::NEG_INFINITY, |g| {
+                let floor = ground.map_or(f32::NEG_INFINITY, |(g, flat)| {
                     let knee = body.transform_point(middle);
                     let above = Vec3::new(knee.x, knee.y + leg.size, knee.z);
-                    g.cast_down_point(above, 2.0 * leg.size)
-                        .map_or(f32::NEG_INFINITY, |hit| {
-                            hit.y + live.knee_radius - body.translation.y
-                        })
+                    let range = 2.0 * leg.size;
+                    match flat.and_then(|f| f.hit(above, range)) {
+                        Some(height) => Some(height),
+                        None => g.cast_down_point(above, range).map(|hit| hit.y),
+                    }
+                    .map_or(f32::NEG_INFINITY, |hit| {
+                        hit + live.knee_radius - body.translation.y
+                    })
                 });
                 let middle = knee_above(root, middle, end, up, floor);
                 let upper = (middle - root).unit_or(live.rest_upper);
@@ -1160,7 +1228,8 @@ impl Animator {
                     }
                 };
                 if arm && arm_turn != f32::INFINITY {
-                    let hip_local = parent.map_or(hip_world, |p| p.inverse() * hip_world);
+                    let hip_local =
+                        parent.map_or(hip_world, |p| self.world[p].inverse() * hip_world);
                     self.local[j] = Affine3A::from_rotation_translation(
                         damped(
                             &self.local[j],
@@ -1172,6 +1241,7 @@ impl Animator {
                     // Undamped: the hip's world transform as solved, and its local one that
                     // in its parent's frame (a rotation's inverse is its transpose).
                     self.local[j] = parent.map_or(hip_world, |p| {
+                        let p = &self.world[p];
                         let unturn = p.matrix3.transpose();
                         Affine3A {
                             matrix3: unturn * hip_world.matrix3,
@@ -1196,7 +1266,7 @@ impl Animator {
                 // rotation.
                 let look = body.rotation * self.controller.look().rotation;
                 let turn = parent.map_or(look, |p| {
-                    crate::math::quat_from_mat3a(&p.matrix3).inverse() * look
+                    crate::math::quat_from_mat3a(&self.world[p].matrix3).inverse() * look
                 });
                 self.local[j] =
                     Affine3A::from_rotation_translation(turn.unit(), self.rest_local[j]);
@@ -1208,11 +1278,14 @@ impl Animator {
             let local = &self.local[j];
             self.world[j] = match parent {
                 // Most joints only sit at their rest offset: a translation within the parent.
-                Some(p) if self.turns[j] => p * *local,
-                Some(p) => Affine3A {
-                    matrix3: p.matrix3,
-                    translation: p.transform_point3a(local.translation),
-                },
+                Some(p) if self.turns[j] => self.world[p] * *local,
+                Some(p) => {
+                    let p = &self.world[p];
+                    Affine3A {
+                        matrix3: p.matrix3,
+                        translation: p.transform_point3a(local.translation),
+                    }
+                }
                 None => *local,
             };
         }
@@ -1453,6 +1526,28 @@ fn sole_points(creature: &Creature, foot: usize) -> Vec<Vec3A> {
     points.into_iter().map(Vec3A::from).collect()
 }
 
+/// Flat ground under a walker's body: [height bounds](Ground::height_bounds) whose lowest and
+/// highest are one `height` under a square twice as wide as the one of half-side `half` about
+/// `centre` (world x, z) that its rays are taken from (rounding cannot carry a ray's x or z
+/// outside it).
+#[derive(Debug, Clone, Copy)]
+struct FlatUnder {
+    centre: Vec2,
+    half: f32,
+    height: f32,
+}
+
+impl FlatUnder {
+    /// The height a ray straight down from `from`, `range` long, hits, where the bounds
+    /// settle it: `from` over the square, at or above the ground, and the ray reaching it
+    /// (every such ray hits there); else `None` (cast it).
+    fn hit(&self, from: Vec3, range: f32) -> Option<f32> {
+        let inside = (from.x - self.centre.x).abs() <= self.half
+            && (from.z - self.centre.y).abs() <= self.half;
+        (inside && from.y >= self.height && from.y - self.height <= range).then_some(self.height)
+    }
+}
+
 /// The ground under a sole, sampled on its rim: ahead of, behind, to either side of its
 /// middle and between them.
 struct SoleFit {
@@ -1465,7 +1560,7 @@ struct SoleFit {
     clearance: f32,
     /// The ground under each rim sample: its offset from the foot joint along world x and z
     /// and its height over the joint.
-    ground: [(f32, f32, f32); RIM_SAMPLES],
+    ground: RimLanes,
 }
 
 impl SoleFit {
@@ -1473,12 +1568,18 @@ impl SoleFit {
     /// under the rim is farther than `flat` off it; `None` where some is, or where the rim
     /// spans no area. Fitted only when asked: a foot high in a step needs none.
     fn plane_within(&self, flat: f32) -> Option<RimPlane> {
-        let (a, p, q) = plane_fit(self.ground.iter().copied())?;
-        let off_plane = self
-            .ground
-            .iter()
-            .map(|&(x, z, h)| (h - a - p * x - q * z).abs())
-            .fold(0.0, max_f);
+        let g = &self.ground;
+        let (a, p, q) = plane_fit_lanes(g)?;
+        // Four samples at a time, as `(h - a - p x - q z).abs()` computes each; their largest
+        // in the samples' order (as a fold of `max_f` finds it).
+        let (a4, p4, q4) = (Vec4::splat(a), Vec4::splat(p), Vec4::splat(q));
+        let mut off_plane = 0.0;
+        for k in 0..LANE_GROUPS {
+            let off = (g.y[k] - a4 - p4 * g.x[k] - q4 * g.z[k]).abs();
+            for off in off.to_array() {
+                off_plane = max_f(off_plane, off);
+            }
+        }
         (off_plane <= flat).then_some(RimPlane { plane: (a, p, q) })
     }
 }
@@ -1527,12 +1628,27 @@ fn sole_lift<G: Ground + ?Sized>(
 ) -> f32 {
     let turn = glam::Mat3A::from_quat(rotation);
     let foot = Vec3A::from(foot);
-    points.iter().fold(0.0, |lift, &p| {
-        let at = foot + turn * p;
-        ground
-            .cast_down_point(Vec3::new(at.x, at.y + reach, at.z), 2.0 * reach)
-            .map_or(lift, |hit| max_f(lift, hit.y - at.y))
-    })
+    // Four points at a time (the last four again for the remainder: the largest lift is the
+    // same), in their order.
+    let mut lift = 0.0;
+    let mut start = 0;
+    while start < points.len() {
+        let first = start.min(points.len().saturating_sub(4));
+        let four: [Vec3A; 4] = core::array::from_fn(|l| {
+            let p = points.get(first + l).map_or(Vec3A::ZERO, |&p| p);
+            foot + turn * p
+        });
+        let lanes = |along: fn(&Vec3A) -> f32| Vec4::from_array(four.each_ref().map(along));
+        let (x, y, z) = (lanes(|p| p.x), lanes(|p| p.y), lanes(|p| p.z));
+        let hits = ground.cast_down_four(x, y + Vec4::splat(reach), z, Vec4::splat(2.0 * reach));
+        for (hit, at) in hits.into_iter().zip(&four).take(points.len().min(4)) {
+            if let Some(height) = hit {
+                lift = max_f(lift, height - at.y);
+            }
+        }
+        start = first + 4;
+    }
+    lift
 }
 
 /// The ground under a sole of `radius` at `foot` (world) turned with `heading`: `None` when a
@@ -1541,11 +1657,12 @@ fn fit_sole<G: Ground + ?Sized>(
     ground: &G,
     foot: Vec3,
     heading: Quat,
-    rim: &[Vec3; RIM_SAMPLES],
+    rim: &RimLanes,
     reach: f32,
     bounds: Option<(f32, f32)>,
 ) -> Option<SoleFit> {
-    // A matrix turns the 16 offsets in half the arithmetic of the quaternion.
+    // A matrix turns the 16 offsets in half the arithmetic of the quaternion; four at a time,
+    // lane for lane as `turn * d` turns each.
     let turn = glam::Mat3A::from_quat(heading);
     let top = foot.y + reach;
     // On ground the bounds (of the square round the rim) say is flat, every ray that reaches
@@ -1553,22 +1670,38 @@ fn fit_sole<G: Ground + ?Sized>(
     let flat = bounds.and_then(|(low, high)| {
         (low == high && top >= high && top - low <= 2.0 * reach).then_some(low)
     });
-    let at = |d: Vec3| {
-        let d = Vec3::from(turn * Vec3A::from(d));
+    let (tx, ty, tz) = (turn.x_axis, turn.y_axis, turn.z_axis);
+    let turned = |k: usize, along: fn(Vec3A) -> f32| {
+        let axis = |v: Vec3A| Vec4::splat(along(v));
+        axis(tx) * rim.x[k] + axis(ty) * rim.y[k] + axis(tz) * rim.z[k]
+    };
+    let foot_y = Vec4::splat(foot.y);
+    // Per sample: its offset turned (x and z), and the ground's height there over the sole's
+    // vertex, in the sole's level frame (`height - foot.y - d.y`).
+    let mut fit = RimLanes::ZERO;
+    let mut heights = [Vec4::ZERO; LANE_GROUPS];
+    for (k, heights) in heights.iter_mut().enumerate() {
+        let (x, y, z) = (turned(k, |v| v.x), turned(k, |v| v.y), turned(k, |v| v.z));
         let height = match flat {
-            Some(height) => height,
+            Some(height) => Vec4::splat(height),
             None => {
-                let above = Vec3::new(foot.x + d.x, top, foot.z + d.z);
-                ground.cast_down_point(above, 2.0 * reach)?.y
+                // From above each sample (`foot.x + d.x`, `top`, `foot.z + d.z`).
+                let (x, z) = (Vec4::splat(foot.x) + x, Vec4::splat(foot.z) + z);
+                match ground.cast_down_four(x, Vec4::splat(top), z, Vec4::splat(2.0 * reach)) {
+                    [Some(a), Some(b), Some(c), Some(d)] => Vec4::new(a, b, c, d),
+                    _ => return None,
+                }
             }
         };
-        // The ground's height there over the sole's vertex, in the sole's level frame.
-        Some((Vec3::new(d.x, 0.0, d.z), height - foot.y - d.y))
-    };
-    let mut samples = [(Vec3::ZERO, 0.0); RIM_SAMPLES];
-    for (sample, &d) in samples.iter_mut().zip(rim) {
-        *sample = at(d)?;
+        let h = height - foot_y - y;
+        (fit.x[k], fit.z[k], *heights) = (x, z, h);
+        // The ground under the rim for its plane (heights over the joint).
+        fit.y[k] = h + rim.y[k];
     }
+    let sample = |i: usize| {
+        let (k, l) = (i / 4, i % 4);
+        (Vec3::new(fit.x[k][l], 0.0, fit.z[k][l]), heights[k][l])
+    };
     // The slope along and across the heading, from the rim's ends.
     let slope = |(da, a): (Vec3, f32), (db, b): (Vec3, f32)| {
         let run = da - db;
@@ -1580,21 +1713,84 @@ fn fit_sole<G: Ground + ?Sized>(
         }
     };
     let normal =
-        (Vec3::Y - slope(samples[0], samples[1]) - slope(samples[2], samples[3])).unit_or(Vec3::Y);
+        (Vec3::Y - slope(sample(0), sample(1)) - slope(sample(2), sample(3))).unit_or(Vec3::Y);
     // At most the steepest tilt: the normal's horizontal part scaled down.
     let normal = tilted(normal, MAX_SOLE_TILT);
-    let mean = samples.iter().map(|s| s.1).sum::<f32>() / RIM_SAMPLES as f32;
-    let highest = samples.iter().map(|s| s.1).fold(f32::NEG_INFINITY, max_f);
-    // The ground under the rim for its plane (heights over the joint).
-    let mut ground = [(0.0, 0.0, 0.0); RIM_SAMPLES];
-    for (g, (&(d, h), r)) in ground.iter_mut().zip(samples.iter().zip(rim)) {
-        *g = (d.x, d.z, h + r.y);
-    }
+    let all = heights.map(|h| h.to_array());
+    let all = all.as_flattened();
+    let mean = all.iter().sum::<f32>() / RIM_SAMPLES as f32;
+    let highest = all.iter().copied().fold(f32::NEG_INFINITY, max_f);
     Some(SoleFit {
         normal,
         height: -mean,
         clearance: -highest,
-        ground,
+        ground: fit,
+    })
+}
+
+/// Groups of four of a sole's [`RIM_SAMPLES`] (SIMD lanes).
+const LANE_GROUPS: usize = RIM_SAMPLES / 4;
+
+/// A sole's rim samples, four to a SIMD lane group (sample `4 k + l` is lane `l` of group
+/// `k`): for its rim's offsets from the foot joint (x, y, z), or for the ground under it
+/// (x, height, z; [`SoleFit::ground`]).
+#[derive(Debug, Clone, Copy)]
+struct RimLanes {
+    x: [Vec4; LANE_GROUPS],
+    y: [Vec4; LANE_GROUPS],
+    z: [Vec4; LANE_GROUPS],
+}
+
+impl RimLanes {
+    const ZERO: Self = Self {
+        x: [Vec4::ZERO; LANE_GROUPS],
+        y: [Vec4::ZERO; LANE_GROUPS],
+        z: [Vec4::ZERO; LANE_GROUPS],
+    };
+
+    fn new(rim: &[Vec3; RIM_SAMPLES]) -> Self {
+        let lanes = |along: fn(&Vec3) -> f32| {
+            core::array::from_fn(|k| {
+                Vec4::from_array(core::array::from_fn(|l| along(&rim[4 * k + l])))
+            })
+        };
+        Self {
+            x: lanes(|d| d.x),
+            y: lanes(|d| d.y),
+            z: lanes(|d| d.z),
+        }
+    }
+
+    /// Sample `i`'s x, y and z.
+    fn get(&self, i: usize) -> (f32, f32, f32) {
+        let (k, l) = (i / 4, i % 4);
+        (self.x[k][l], self.y[k][l], self.z[k][l])
+    }
+}
+
+/// [`plane_fit`] through the ground under a rim (`(x, height, z)`), in the samples' order: the
+/// same sums, term for term, each term computed four at a time.
+fn plane_fit_lanes(g: &RimLanes) -> Option<(f32, f32, f32)> {
+    let (mut n, mut sx, mut sz, mut sh) = (0.0f32, 0.0f32, 0.0f32, 0.0f32);
+    for i in 0..RIM_SAMPLES {
+        let (x, h, z) = g.get(i);
+        (n, sx, sz, sh) = (n + 1.0, sx + x, sz + z, sh + h);
+    }
+    let (mx, mz, mh) = (sx / n, sz / n, sh / n);
+    let (mx4, mz4, mh4) = (Vec4::splat(mx), Vec4::splat(mz), Vec4::splat(mh));
+    let (mut xx, mut xz, mut zz, mut xh, mut zh) = (0.0f32, 0.0f32, 0.0f32, 0.0f32, 0.0f32);
+    for k in 0..LANE_GROUPS {
+        let (x, z, h) = (g.x[k] - mx4, g.z[k] - mz4, g.y[k] - mh4);
+        let [x2, xz2, z2, xh2, zh2] = [x * x, x * z, z * z, x * h, z * h].map(|t| t.to_array());
+        for l in 0..4 {
+            (xx, xz, zz) = (xx + x2[l], xz + xz2[l], zz + z2[l]);
+            (xh, zh) = (xh + xh2[l], zh + zh2[l]);
+        }
+    }
+    let det = xx * zz - xz * xz;
+    (det > 1e-12 * (xx + zz) * (xx + zz)).then(|| {
+        let (p, q) = ((xh * zz - zh * xz) / det, (zh * xx - xh * xz) / det);
+        (mh - p * mx - q * mz, p, q)
     })
 }
 

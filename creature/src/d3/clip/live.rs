@@ -179,6 +179,9 @@ pub struct Animator {
     /// and tail's bending joints; a flier's wings and chains; a swimmer's spine and fins; a
     /// slitherer's spine. The others only sit at their rest offset.
     turns: Vec<bool>,
+    /// A walker's joints in `order`, each with its parent, its leg (if it is one's hip) and
+    /// whether it turns: what its posing reads of each joint, in one place.
+    plan: Vec<PlanStep>,
     /// The time step the smoothing shares were last computed for, and the shares (terrain,
     /// turn bend).
     smoothing: (f32, f32, f32),
@@ -196,6 +199,16 @@ pub struct Animator {
     local: Vec<Affine3A>,
     world: Vec<Affine3A>,
     skinning: Vec<Mat4>,
+}
+
+/// One joint of a walker's posing ([`Animator`]'s `plan`).
+#[derive(Debug, Clone, Copy)]
+struct PlanStep {
+    joint: usize,
+    parent: Option<usize>,
+    /// The leg (index into `legs`) whose hip it is.
+    leg: Option<usize>,
+    turns: bool,
 }
 
 /// What moves an [`Animator`]'s body.
@@ -578,6 +591,7 @@ impl Animator {
             head: None,
             leg_at: alloc::vec![None; n],
             turns: alloc::vec![false; n],
+            plan: Vec::new(),
             smoothing: (0.0, 0.0, 0.0),
             under_half: 0.0,
             asking_under: Asking::EVERY_TIME,
@@ -669,6 +683,16 @@ impl Animator {
         for &hip in &setup.hip_joints {
             turns[hip..hip + 3].fill(true);
         }
+        animator.plan = animator
+            .order
+            .iter()
+            .map(|&joint| PlanStep {
+                joint,
+                parent: animator.parents[joint],
+                leg: animator.leg_at[joint],
+                turns: animator.turns[joint],
+            })
+            .collect();
         animator.legs = setup
             .legs
             .iter()
@@ -1127,13 +1151,22 @@ impl Animator {
         let up = unturn * Vec3::Y;
         let states = self.controller.leg_states();
         let setup = self.controller.legs();
-        for &j in &self.order {
-            // The parent's index: its world transform is read where it is needed (a copy of
-            // it for every joint cost more than a fifth of the posing's own arithmetic).
-            let parent = self.parents[j];
+        // The head, where it turns alone to the look (no neck shares it).
+        let head_alone = self.head.filter(|_| look == Quat::IDENTITY);
+        // (Taken out while the joints are posed, and put back: no allocation.)
+        let plan = core::mem::take(&mut self.plan);
+        for &PlanStep {
+            joint: j,
+            parent,
+            leg,
+            turns,
+        } in &plan
+        {
+            // The parent's world transform is read where it is needed (a copy of it for
+            // every joint cost more than a fifth of the posing's own arithmetic).
             // A leg's hip's world transform where its solution gives it.
             let mut solved_world = None;
-            if let Some(i) = self.leg_at[j] {
+            if let Some(i) = leg {
                 // A leg's hip: its chain solved from the hip to the foot in body space.
                 let leg = &setup[i];
                 // A closed loop's leg: its hip where it is on the body, its foot moved and
@@ -1171,14 +1204,15 @@ impl Animator {
                 // made once where it stands (the ground under a planted foot is taken not to
                 // change, as the controller takes it).
                 let mut normal = state.normal;
+                // Whether the foot moved off the solution (its knee solved again, once).
+                let mut moved = false;
                 if let Some((g, _)) = ground {
                     let fitted = self.legs[i].fitted_sole(g, leg, state, (heading, yaw));
                     if let Some((fit, lift)) = fitted {
                         normal = fit;
                         if lift > 0.0 {
                             end = to_body(solved.end + Vec3::Y * lift);
-                            [_, middle, _] =
-                                solve_two_bone_joints(root, end, leg.upper, leg.lower, leg.pole);
+                            moved = true;
                         }
                     }
                 }
@@ -1191,9 +1225,12 @@ impl Animator {
                     let soft = soft_reach(root, end, leg.upper + leg.lower, up);
                     if soft != end {
                         end = soft;
-                        [_, middle, _] =
-                            solve_two_bone_joints(root, end, leg.upper, leg.lower, leg.pole);
+                        moved = true;
                     }
+                }
+                if moved {
+                    [_, middle, _] =
+                        solve_two_bone_joints(root, end, leg.upper, leg.lower, leg.pole);
                 }
                 let floor = ground.map_or(f32::NEG_INFINITY, |(g, flat)| {
                     let knee = body.transform_point(middle);
@@ -1261,7 +1298,7 @@ impl Animator {
                     self.rest_local[foot_joint],
                 );
             }
-            if Some(j) == self.head && look == Quat::IDENTITY {
+            if Some(j) == head_alone {
                 // No neck to share it: the look, a rotation in body space, as the head's world
                 // rotation.
                 let look = body.rotation * self.controller.look().rotation;
@@ -1278,7 +1315,7 @@ impl Animator {
             let local = &self.local[j];
             self.world[j] = match parent {
                 // Most joints only sit at their rest offset: a translation within the parent.
-                Some(p) if self.turns[j] => self.world[p] * *local,
+                Some(p) if turns => self.world[p] * *local,
                 Some(p) => {
                     let p = &self.world[p];
                     Affine3A {
@@ -1289,6 +1326,7 @@ impl Animator {
                 None => *local,
             };
         }
+        self.plan = plan;
         self.skin();
     }
 

@@ -414,10 +414,11 @@ impl LiveLeg {
         leg: &creature_gait::Leg,
         state: &LegState,
         (heading, yaw): (Quat, Quat),
+        plant: f32,
     ) -> Option<(Vec3, f32)> {
         let end = state.joints.end;
         if !state.planted {
-            return self.fit(ground, leg, state, (heading, yaw));
+            return self.fit(ground, leg, state, (heading, yaw), plant);
         }
         if let Some((at, turned, normal, lift)) = self.fitted
             && at == end
@@ -425,7 +426,7 @@ impl LiveLeg {
         {
             return Some((normal, lift));
         }
-        let fitted = self.fit(ground, leg, state, (heading, yaw));
+        let fitted = self.fit(ground, leg, state, (heading, yaw), plant);
         self.fitted = fitted.map(|(normal, lift)| (end, yaw, normal, lift));
         fitted
     }
@@ -439,6 +440,7 @@ impl LiveLeg {
         leg: &creature_gait::Leg,
         state: &LegState,
         (heading, yaw): (Quat, Quat),
+        plant: f32,
     ) -> Option<(Vec3, f32)> {
         let solved = &state.joints;
         let flat = FLAT_SOLE * self.foot_radius;
@@ -490,10 +492,23 @@ impl LiveLeg {
         let landing = 2.0 * state.progress - 1.0;
         if leg.kind == LimbKind::Leg && state.stepping && !state.planted && landing > 0.0 {
             let target = state.step_target;
+            // While the step's target still follows the body, a fit made within a sole's radius
+            // of it and 2° of its heading serves (the lift of a sole resting there
+            // changes by a fraction of a millimetre on hills; it anticipates the landing, and
+            // the fit under the foot itself keeps the sole out of the ground); once the target
+            // stays put (the step's last `plant` of progress), the fit is made for it exactly,
+            // so the foot lands on the lift it will stand on.
+            let following = state.progress < 1.0 - plant;
             let rest = match self.landing {
-                // The same target and heading as the last frame's (the target stays put over
-                // the step's end; the heading, walking straight).
-                Some((at, turned, rest)) if at == target && turned == heading => Some(rest),
+                Some((at, turned, rest))
+                    if turned.dot(heading).abs() >= LANDING_TURN_COS
+                        && (at == target
+                            || (following
+                                && (at - target).length_squared()
+                                    <= self.foot_radius * self.foot_radius)) =>
+                {
+                    Some(rest)
+                }
                 _ => {
                     let reach = self.rim_reach;
                     let bounds = self.asking[1].ask(
@@ -1151,6 +1166,7 @@ impl Animator {
         let up = unturn * Vec3::Y;
         let states = self.controller.leg_states();
         let setup = self.controller.legs();
+        let plant = self.controller.options().plant_fraction;
         // The head, where it turns alone to the look (no neck shares it).
         let head_alone = self.head.filter(|_| look == Quat::IDENTITY);
         // (Taken out while the joints are posed, and put back: no allocation.)
@@ -1207,7 +1223,7 @@ impl Animator {
                 // Whether the foot moved off the solution (its knee solved again, once).
                 let mut moved = false;
                 if let Some((g, _)) = ground {
-                    let fitted = self.legs[i].fitted_sole(g, leg, state, (heading, yaw));
+                    let fitted = self.legs[i].fitted_sole(g, leg, state, (heading, yaw), plant);
                     if let Some((fit, lift)) = fitted {
                         normal = fit;
                         if lift > 0.0 {
@@ -1504,6 +1520,11 @@ const RIM: [Vec3; RIM_SAMPLES] = {
     }
     rim
 };
+
+/// How far the body may turn from the heading a step's landing fit was made for before the fit
+/// is made again, as the least `|a · b|` of two unit quaternions that close: the cosine of half
+/// of 2°.
+const LANDING_TURN_COS: f32 = 0.999_847_7;
 
 /// How many directions [`RIM`] samples.
 const RIM_SAMPLES: usize = 16;
@@ -2146,5 +2167,57 @@ mod tests {
         let top = (2.0 * walker.speed).max(run);
         assert!((velocity.length() - top).abs() < 1e-3 * walker.speed);
         assert_eq!(turn, animator.max_turn_rate());
+    }
+
+    #[test]
+    fn landing_turn_cos_is_the_cosine_of_one_degree() {
+        let cos = crate::math::cos(core::f32::consts::PI / 180.0);
+        assert!((cos - LANDING_TURN_COS).abs() <= f32::EPSILON, "{cos}");
+    }
+
+    #[test]
+    fn a_landing_fit_is_made_for_the_step_target_once_it_stays_put() {
+        // Walker 32 circling on the default terrain: while a step's target follows the body,
+        // its landing fit may be one made within a sole's radius of it; over the step's last
+        // `plant_fraction` of progress (the target put), it is the fit for that target.
+        let walker = crate::d3::generate(
+            32,
+            &crate::d3::Params::DEFAULT
+                .with_kind(crate::d3::Kind::Walker)
+                .with_clips(false),
+        )
+        .unwrap();
+        let hills = crate::terrain::terrain(7, &crate::terrain::TerrainParams::DEFAULT).unwrap();
+        let mut animator = Animator::new(&walker).unwrap();
+        let plant = animator.controller.options().plant_fraction;
+        let (mut put, mut near) = (0, 0);
+        for _ in 0..600 {
+            let heading = animator.heading();
+            let intent = Intent::Move {
+                velocity: Vec3::new(heading.sin(), 0.0, heading.cos()) * walker.speed,
+                turn_rate: 0.5,
+            };
+            animator.update(1.0 / 60.0, intent, &hills).unwrap();
+            let legs = animator.controller.legs();
+            let states = animator.controller.leg_states();
+            for ((live, leg), state) in animator.legs.iter().zip(legs).zip(states) {
+                if leg.kind != LimbKind::Leg
+                    || !(state.stepping && !state.planted && state.progress > 0.5)
+                {
+                    continue;
+                }
+                let (at, _, _) = live.landing.unwrap();
+                let target = state.step_target;
+                if state.progress >= 1.0 - plant {
+                    assert_eq!(at, target, "progress {}", state.progress);
+                    put += 1;
+                } else {
+                    let off = (at - target).length();
+                    assert!(off <= 1.000_001 * live.foot_radius, "{off} m off");
+                    near += usize::from(at != target);
+                }
+            }
+        }
+        assert!(put > 0 && near > 0, "{put} landings put, {near} near");
     }
 }

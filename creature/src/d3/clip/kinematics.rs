@@ -152,6 +152,14 @@ impl Hinge {
         let knee = rotation_arc(self.rest_lower, hip.inverse() * now.1);
         (hip, knee)
     }
+
+    /// [`rotations`](Self::rotations) as matrices: the hip's frame turned by the rest frame's
+    /// inverse (no round trip through a quaternion), and the knee's [`rotation_arc`].
+    pub(super) fn matrices(&self, now: (Vec3, Vec3)) -> (Mat3A, Mat3A) {
+        let hip = Mat3A::from(bend_frame(now, self.pole)) * self.unframe;
+        let knee = Mat3A::from_quat(rotation_arc(self.rest_lower, hip.transpose() * now.1));
+        (hip, knee)
+    }
 }
 
 /// The frame of a two-bone limb's segments `(upper, lower)`: the upper segment, the bend
@@ -212,6 +220,48 @@ mod tests {
         let (hip, knee) = Hinge::new(straight, Vec3::Z).rotations(turned);
         assert!((hip * Vec3::NEG_Y).distance(turned.0) < 1e-5);
         assert!(knee.angle_between(Quat::IDENTITY) < 1e-4);
+    }
+
+    #[test]
+    fn a_hinges_matrices_are_its_rotations() {
+        // Limbs bent, straight and folded back, turned every way: the matrices the live
+        // animator poses legs with turn as the quaternions do.
+        let s = core::f32::consts::FRAC_1_SQRT_2;
+        let close = |m: Mat3A, q: Quat| {
+            let q = Mat3A::from_quat(q);
+            [
+                m.x_axis - q.x_axis,
+                m.y_axis - q.y_axis,
+                m.z_axis - q.z_axis,
+            ]
+            .iter()
+            .all(|d| d.length() < 1e-5)
+        };
+        for k in 0..200 {
+            let t = k as f32;
+            let rest = if k % 2 == 0 {
+                (Vec3::new(0.0, -s, s), Vec3::new(0.0, -s, -s))
+            } else {
+                (Vec3::NEG_Y, Vec3::NEG_Y)
+            };
+            let turn = Quat::from_rotation_y(0.7 * t)
+                * Quat::from_rotation_z(0.4 * crate::math::sin(t))
+                * Quat::from_rotation_x(0.3 * crate::math::cos(1.3 * t));
+            // Bent from a little to 148° (folded further, the arc to the lower segment is
+            // ill-conditioned: its axis a cross product of nearly opposite vectors).
+            let bend = Quat::from_rotation_x(-0.013 * t);
+            let now = (turn * rest.0, turn * bend * rest.1);
+            for pole in [Vec3::Z, Vec3::X, Vec3::NEG_Y] {
+                let hinge = Hinge::new(rest, pole);
+                let (hip, knee) = hinge.rotations(now);
+                let (hip_m, knee_m) = hinge.matrices(now);
+                assert!(close(hip_m, hip), "{k} {pole}: hip {hip_m} against {hip}");
+                assert!(
+                    close(knee_m, knee),
+                    "{k} {pole}: knee {knee_m} against {knee}"
+                );
+            }
+        }
     }
 
     #[test]

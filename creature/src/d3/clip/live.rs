@@ -289,8 +289,8 @@ struct LiveLeg {
     /// Their mean.
     rim_mean: f32,
     /// The last [`sole_rotation`](Self::sole_rotation): the normal and yaw it was made for,
-    /// and the rotation.
-    sole_turn: Option<(Vec3, Quat, Quat)>,
+    /// and the rotation (a quaternion and its matrix).
+    sole_turn: Option<(Vec3, Quat, Quat, Mat3A)>,
 }
 
 /// When a fit asks the ground for its [height bounds](Ground::height_bounds): every time while
@@ -393,15 +393,16 @@ impl LiveLeg {
             && foot.y + self.rim_low - high >= self.foot_radius + margin
     }
 
-    /// The sole's world rotation: level, turned to `yaw`, tilted to the ground's `normal`;
-    /// made again only when either changes (a planted foot's stay).
-    fn sole_rotation(&mut self, normal: Vec3, yaw: Quat) -> Quat {
+    /// The sole's world rotation (as a quaternion and a matrix): level, turned to `yaw`, tilted
+    /// to the ground's `normal`; made again only when either changes (a planted foot's stay).
+    fn sole_rotation(&mut self, normal: Vec3, yaw: Quat) -> (Quat, Mat3A) {
         match self.sole_turn {
-            Some((n, y, sole)) if n == normal && y == yaw => sole,
+            Some((n, y, sole, matrix)) if n == normal && y == yaw => (sole, matrix),
             _ => {
                 let sole = rotation_arc(Vec3::Y, normal) * yaw;
-                self.sole_turn = Some((normal, yaw, sole));
-                sole
+                let matrix = Mat3A::from_quat(sole);
+                self.sole_turn = Some((normal, yaw, sole, matrix));
+                (sole, matrix)
             }
         }
     }
@@ -1162,6 +1163,7 @@ impl Animator {
             body.rotation,
             body.translation + body.rotation * self.rest_root,
         );
+        let body_turn = self.local[self.root].matrix3;
         let unturn = body.rotation.inverse();
         let up = unturn * Vec3::Y;
         let states = self.controller.leg_states();
@@ -1234,7 +1236,7 @@ impl Animator {
                 }
                 // The sole flat on the ground: level, turned to its yaw, tilted to the ground's
                 // normal.
-                let sole = self.legs[i].sole_rotation(normal, yaw);
+                let (sole, sole_turn) = self.legs[i].sole_rotation(normal, yaw);
                 let live = &self.legs[i];
                 // A foot in the air short of a straight leg, as the baked clips hold it.
                 if !state.planted {
@@ -1263,24 +1265,21 @@ impl Animator {
                 let middle = knee_above(root, middle, end, up, floor);
                 let upper = (middle - root).unit_or(live.rest_upper);
                 let lower = (end - middle).unit_or(live.rest_lower);
-                let (hip, knee) = live.hinge.rotations((upper, lower));
-                let hip_world =
-                    Affine3A::from_rotation_translation(body.rotation * hip, solved.root);
-                let arm = leg.kind == LimbKind::Arm;
-                // An arm's joint turned from its last pose no more than `arm_turn`.
-                let damped = |old: &Affine3A, new: Quat| {
-                    if !arm || arm_turn == f32::INFINITY {
-                        return new;
-                    }
-                    let old = crate::math::quat_from_mat3a(&old.matrix3).unit();
-                    let angle = old.angle_between(new);
-                    if angle > arm_turn {
-                        old.slerp(new, arm_turn / angle).unit()
-                    } else {
-                        new
-                    }
-                };
-                if arm && arm_turn != f32::INFINITY {
+                let (knee_joint, foot_joint) = (j + 1, j + 2);
+                if leg.kind == LimbKind::Arm && arm_turn != f32::INFINITY {
+                    // An arm's joints turned from their last pose no more than `arm_turn`.
+                    let (hip, knee) = live.hinge.rotations((upper, lower));
+                    let hip_world =
+                        Affine3A::from_rotation_translation(body.rotation * hip, solved.root);
+                    let damped = |old: &Affine3A, new: Quat| {
+                        let old = crate::math::quat_from_mat3a(&old.matrix3).unit();
+                        let angle = old.angle_between(new);
+                        if angle > arm_turn {
+                            old.slerp(new, arm_turn / angle).unit()
+                        } else {
+                            new
+                        }
+                    };
                     let hip_local =
                         parent.map_or(hip_world, |p| self.world[p].inverse() * hip_world);
                     self.local[j] = Affine3A::from_rotation_translation(
@@ -1290,9 +1289,24 @@ impl Animator {
                         ),
                         hip_local.translation.into(),
                     );
+                    self.local[knee_joint] = Affine3A::from_rotation_translation(
+                        damped(&self.local[knee_joint], knee),
+                        self.rest_local[knee_joint],
+                    );
+                    let foot_rotation = ((body.rotation * hip * knee).inverse() * sole).unit();
+                    self.local[foot_joint] = Affine3A::from_rotation_translation(
+                        damped(&self.local[foot_joint], foot_rotation),
+                        self.rest_local[foot_joint],
+                    );
                 } else {
-                    // Undamped: the hip's world transform as solved, and its local one that
-                    // in its parent's frame (a rotation's inverse is its transpose).
+                    // The hip's world transform as solved, and its local one that in its
+                    // parent's frame (a rotation's inverse is its transpose); the knee's and
+                    // the foot's as matrices (the foot turned in the world as its sole).
+                    let (hip, knee) = live.hinge.matrices((upper, lower));
+                    let hip_world = Affine3A {
+                        matrix3: body_turn * hip,
+                        translation: solved.root.into(),
+                    };
                     self.local[j] = parent.map_or(hip_world, |p| {
                         let p = &self.world[p];
                         let unturn = p.matrix3.transpose();
@@ -1302,17 +1316,15 @@ impl Animator {
                         }
                     });
                     solved_world = Some(hip_world);
+                    self.local[knee_joint] = Affine3A {
+                        matrix3: knee,
+                        translation: self.rest_local[knee_joint].into(),
+                    };
+                    self.local[foot_joint] = Affine3A {
+                        matrix3: (hip_world.matrix3 * knee).transpose() * sole_turn,
+                        translation: self.rest_local[foot_joint].into(),
+                    };
                 }
-                let (knee_joint, foot_joint) = (j + 1, j + 2);
-                self.local[knee_joint] = Affine3A::from_rotation_translation(
-                    damped(&self.local[knee_joint], knee),
-                    self.rest_local[knee_joint],
-                );
-                let foot_rotation = ((body.rotation * hip * knee).inverse() * sole).unit();
-                self.local[foot_joint] = Affine3A::from_rotation_translation(
-                    damped(&self.local[foot_joint], foot_rotation),
-                    self.rest_local[foot_joint],
-                );
             }
             if Some(j) == head_alone {
                 // No neck to share it: the look, a rotation in body space, as the head's world

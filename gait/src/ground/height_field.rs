@@ -386,17 +386,25 @@ impl HeightField {
         let (i, j) = (whole(gx, last_i), whole(gz, last_j));
         let (u, v) = (gx - i, gz - j);
         let c = columns as usize;
-        let first = (j * Vec4::splat(columns as f32) + i + big).to_array();
-        let mut corners = [[0.0f32; 4]; 4];
-        for (l, &k) in first.iter().enumerate() {
-            // 2²³ + k: the float's bits are 2²³'s plus `k`.
-            let k = (k.to_bits() - BIG_BITS) as usize;
+        let first = j * Vec4::splat(columns as f32) + i + big;
+        // 2²³ + k: the float's bits are 2²³'s plus `k`.
+        let index = |k: f32| (k.to_bits() - BIG_BITS) as usize;
+        let [h00, h10, h01, h11] = if first.cmpeq(Vec4::splat(first.x)).all() {
+            // One cell under the four (a sole's rays, mostly): its corners read once.
+            let k = index(first.x);
             // Both rows of the cell in one slice (never failing for a located cell).
             let q = self.heights.get(k..k + c + 2)?;
-            (corners[0][l], corners[1][l]) = (q[0], q[1]);
-            (corners[2][l], corners[3][l]) = (q[c], q[c + 1]);
-        }
-        let [h00, h10, h01, h11] = corners.map(Vec4::from_array);
+            [q[0], q[1], q[c], q[c + 1]].map(Vec4::splat)
+        } else {
+            let mut corners = [[0.0f32; 4]; 4];
+            for (l, k) in first.to_array().into_iter().enumerate() {
+                let k = index(k);
+                let q = self.heights.get(k..k + c + 2)?;
+                (corners[0][l], corners[1][l]) = (q[0], q[1]);
+                (corners[2][l], corners[3][l]) = (q[c], q[c + 1]);
+            }
+            corners.map(Vec4::from_array)
+        };
         let (a, b, cc, d) = (h00, h10 - h00, h01 - h00, h00 - h10 - h01 + h11);
         let h = a + b * u + cc * v + d * u * v;
         // `under`'s checks (the ray starts at or above the height, and reaches it), then
@@ -621,6 +629,41 @@ mod tests {
             0.3 * crate::math::sin(x * 1.3) * crate::math::cos(z * 0.9) + 0.05 * x
         })
         .unwrap()
+    }
+
+    #[test]
+    fn four_lookups_in_one_cell_are_four_lookups() {
+        // Four rays round a point (a sole's rim: mostly in one cell, which is read once), at
+        // points all over a bumpy grid, its edges included: the heights of four single casts.
+        let f = bumpy();
+        let (mut one_cell, mut several) = (0, 0);
+        for k in 0..400 {
+            let t = k as f32;
+            let (cx, cz) = (-5.0 + 0.025 * t, 5.0 - 0.0251 * t);
+            let r = 0.004 * (k % 40) as f32;
+            let x = Vec4::new(cx + r, cx - r, cx, cx + 0.5 * r).min(Vec4::splat(5.0));
+            let z = Vec4::new(cz, cz + r, cz - r, cz - 0.5 * r).max(Vec4::splat(-5.0));
+            let (y, max) = (Vec4::splat(2.0), Vec4::splat(5.0));
+            let four = f.cast_down_four(x, y, z, max).map(|h| h.map(f32::to_bits));
+            let one: [Option<u32>; 4] = core::array::from_fn(|l| {
+                f.cast_down_point(Vec3::new(x[l], y[l], z[l]), max[l])
+                    .map(|h| h.y.to_bits())
+            });
+            assert_eq!(four, one, "{k}");
+            let cells: [(usize, usize); 4] = core::array::from_fn(|l| {
+                let (i, j, _, _) = f.locate(x[l], z[l]).unwrap();
+                (i, j)
+            });
+            if cells.iter().all(|&c| c == cells[0]) {
+                one_cell += 1;
+            } else {
+                several += 1;
+            }
+        }
+        assert!(
+            one_cell > 100 && several > 10,
+            "{one_cell} in one cell, {several} not"
+        );
     }
 
     #[test]

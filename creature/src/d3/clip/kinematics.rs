@@ -144,7 +144,9 @@ impl Hinge {
         }
     }
 
-    /// The hip's and knee's rotations turning the limb's segments to `now`.
+    /// The hip's and knee's rotations turning the limb's segments to `now` (the reference
+    /// [`matrices`](Self::matrices) is tested against).
+    #[cfg(test)]
     pub(super) fn rotations(&self, now: (Vec3, Vec3)) -> (Quat, Quat) {
         let hip =
             crate::math::quat_from_mat3a(&(Mat3A::from(bend_frame(now, self.pole)) * self.unframe))
@@ -153,8 +155,9 @@ impl Hinge {
         (hip, knee)
     }
 
-    /// [`rotations`](Self::rotations) as matrices: the hip's frame turned by the rest frame's
-    /// inverse (no round trip through a quaternion), and the knee's [`rotation_arc`].
+    /// The hip's and knee's rotations turning the limb's segments to `now`, as matrices: the
+    /// hip's frame turned by the rest frame's inverse (no round trip through a quaternion), and
+    /// the knee's [`rotation_arc`].
     pub(super) fn matrices(&self, now: (Vec3, Vec3)) -> (Mat3A, Mat3A) {
         let hip = Mat3A::from(bend_frame(now, self.pole)) * self.unframe;
         let knee = Mat3A::from_quat(rotation_arc(self.rest_lower, hip.transpose() * now.1));

@@ -289,8 +289,8 @@ struct LiveLeg {
     /// Their mean.
     rim_mean: f32,
     /// The last [`sole_rotation`](Self::sole_rotation): the normal and yaw it was made for,
-    /// and the rotation (a quaternion and its matrix).
-    sole_turn: Option<(Vec3, Quat, Quat, Mat3A)>,
+    /// and the rotation.
+    sole_turn: Option<(Vec3, Quat, Mat3A)>,
 }
 
 /// When a fit asks the ground for its [height bounds](Ground::height_bounds): every time while
@@ -393,16 +393,15 @@ impl LiveLeg {
             && foot.y + self.rim_low - high >= self.foot_radius + margin
     }
 
-    /// The sole's world rotation (as a quaternion and a matrix): level, turned to `yaw`, tilted
-    /// to the ground's `normal`; made again only when either changes (a planted foot's stay).
-    fn sole_rotation(&mut self, normal: Vec3, yaw: Quat) -> (Quat, Mat3A) {
+    /// The sole's world rotation (a matrix): level, turned to `yaw`, tilted to the ground's
+    /// `normal`; made again only when either changes (a planted foot's stay).
+    fn sole_rotation(&mut self, normal: Vec3, yaw: Quat) -> Mat3A {
         match self.sole_turn {
-            Some((n, y, sole, matrix)) if n == normal && y == yaw => (sole, matrix),
+            Some((n, y, matrix)) if n == normal && y == yaw => matrix,
             _ => {
-                let sole = rotation_arc(Vec3::Y, normal) * yaw;
-                let matrix = Mat3A::from_quat(sole);
-                self.sole_turn = Some((normal, yaw, sole, matrix));
-                (sole, matrix)
+                let matrix = Mat3A::from_quat(rotation_arc(Vec3::Y, normal) * yaw);
+                self.sole_turn = Some((normal, yaw, matrix));
+                matrix
             }
         }
     }
@@ -1236,7 +1235,7 @@ impl Animator {
                 }
                 // The sole flat on the ground: level, turned to its yaw, tilted to the ground's
                 // normal.
-                let (sole, sole_turn) = self.legs[i].sole_rotation(normal, yaw);
+                let sole_turn = self.legs[i].sole_rotation(normal, yaw);
                 let live = &self.legs[i];
                 // A foot in the air short of a straight leg, as the baked clips hold it.
                 if !state.planted {
@@ -1266,12 +1265,18 @@ impl Animator {
                 let upper = (middle - root).unit_or(live.rest_upper);
                 let lower = (end - middle).unit_or(live.rest_lower);
                 let (knee_joint, foot_joint) = (j + 1, j + 2);
+                // The hip's world transform as solved; the knee's and the foot's as matrices
+                // (the foot turned in the world as its sole).
+                let (hip, knee) = live.hinge.matrices((upper, lower));
+                let hip_world = Affine3A {
+                    matrix3: body_turn * hip,
+                    translation: solved.root.into(),
+                };
+                let foot = (hip_world.matrix3 * knee).transpose() * sole_turn;
                 if leg.kind == LimbKind::Arm && arm_turn != f32::INFINITY {
                     // An arm's joints turned from their last pose no more than `arm_turn`.
-                    let (hip, knee) = live.hinge.rotations((upper, lower));
-                    let hip_world =
-                        Affine3A::from_rotation_translation(body.rotation * hip, solved.root);
-                    let damped = |old: &Affine3A, new: Quat| {
+                    let damped = |old: &Affine3A, new: &Mat3A| {
+                        let new = crate::math::quat_from_mat3a(new).unit();
                         let old = crate::math::quat_from_mat3a(&old.matrix3).unit();
                         let angle = old.angle_between(new);
                         if angle > arm_turn {
@@ -1283,30 +1288,20 @@ impl Animator {
                     let hip_local =
                         parent.map_or(hip_world, |p| self.world[p].inverse() * hip_world);
                     self.local[j] = Affine3A::from_rotation_translation(
-                        damped(
-                            &self.local[j],
-                            crate::math::quat_from_mat3a(&hip_local.matrix3).unit(),
-                        ),
+                        damped(&self.local[j], &hip_local.matrix3),
                         hip_local.translation.into(),
                     );
                     self.local[knee_joint] = Affine3A::from_rotation_translation(
-                        damped(&self.local[knee_joint], knee),
+                        damped(&self.local[knee_joint], &knee),
                         self.rest_local[knee_joint],
                     );
-                    let foot_rotation = ((body.rotation * hip * knee).inverse() * sole).unit();
                     self.local[foot_joint] = Affine3A::from_rotation_translation(
-                        damped(&self.local[foot_joint], foot_rotation),
+                        damped(&self.local[foot_joint], &foot),
                         self.rest_local[foot_joint],
                     );
                 } else {
-                    // The hip's world transform as solved, and its local one that in its
-                    // parent's frame (a rotation's inverse is its transpose); the knee's and
-                    // the foot's as matrices (the foot turned in the world as its sole).
-                    let (hip, knee) = live.hinge.matrices((upper, lower));
-                    let hip_world = Affine3A {
-                        matrix3: body_turn * hip,
-                        translation: solved.root.into(),
-                    };
+                    // The hip's local transform that in its parent's frame (a rotation's
+                    // inverse is its transpose).
                     self.local[j] = parent.map_or(hip_world, |p| {
                         let p = &self.world[p];
                         let unturn = p.matrix3.transpose();
@@ -1321,7 +1316,7 @@ impl Animator {
                         translation: self.rest_local[knee_joint].into(),
                     };
                     self.local[foot_joint] = Affine3A {
-                        matrix3: (hip_world.matrix3 * knee).transpose() * sole_turn,
+                        matrix3: foot,
                         translation: self.rest_local[foot_joint].into(),
                     };
                 }

@@ -431,6 +431,11 @@ impl Controller {
 
         // The pose's rotation as a matrix, for the action and the reaction.
         let rotation = Mat3A::from_quat(pose.rotation);
+        // On WebAssembly, one action for every kind of ground (its queries through a vtable),
+        // not a copy per kind: each copy is about 15 KB of the module. The same arithmetic
+        // either way.
+        #[cfg(target_arch = "wasm32")]
+        let ground: &dyn Ground = &ground;
         self.action(dt, &pose, &rotation, velocity, angular_velocity, ground);
         self.gather_feet();
         self.react(&pose, &rotation);

@@ -417,6 +417,17 @@ impl HeightField {
         }))
     }
 
+    /// [`Ground::cast_down_four`] ray by ray (where [`four`](Self::four) cannot look the
+    /// four up together: kept out of line, as it is rarely taken).
+    #[cold]
+    #[inline(never)]
+    fn each_of_four(&self, x: Vec4, y: Vec4, z: Vec4, max_distance: Vec4) -> [Option<f32>; 4] {
+        core::array::from_fn(|l| {
+            self.cast_down_point(Vec3::new(x[l], y[l], z[l]), max_distance[l])
+                .map(|hit| hit.y)
+        })
+    }
+
     /// [`Ground::height_bounds`]: the lowest and highest samples at the corners of the cells
     /// the square covers (a bilinear patch lies between its corners), widened by the rounding
     /// of a lookup unless they are equal (a flat patch's lookups are exact); `None` for a
@@ -519,14 +530,14 @@ impl Ground for HeightField {
     /// [`cast_down_point`](Ground::cast_down_point)s (the same operations, lane for lane),
     /// their grid coordinates and bilinear sums four at a time. Where a ray is off the grid, or
     /// the grid is too large for `i32` indices, each ray is looked up alone.
-    #[inline]
+    ///
+    /// Inlined into its callers natively (a sole's 16 rays, four at a time, keep the grid's
+    /// constants in registers); on WebAssembly, where the module's size counts, one copy.
+    #[cfg_attr(not(target_arch = "wasm32"), inline(always))]
+    #[cfg_attr(target_arch = "wasm32", inline)]
     fn cast_down_four(&self, x: Vec4, y: Vec4, z: Vec4, max_distance: Vec4) -> [Option<f32>; 4] {
-        self.four(x, y, z, max_distance).unwrap_or_else(|| {
-            core::array::from_fn(|l| {
-                self.cast_down_point(Vec3::new(x[l], y[l], z[l]), max_distance[l])
-                    .map(|hit| hit.y)
-            })
-        })
+        self.four(x, y, z, max_distance)
+            .unwrap_or_else(|| self.each_of_four(x, y, z, max_distance))
     }
 
     fn cast_ray(&self, origin: Vec3, direction: Vec3, max_distance: f32) -> Option<RayHit> {

@@ -4,7 +4,7 @@
 
 use alloc::vec::Vec;
 
-use glam::{Affine3A, Mat3, Mat3A, Quat, Vec3};
+use glam::{Affine3A, Mat3, Mat3A, Mat4, Quat, Vec3, Vec3A, Vec4};
 
 use super::Clip;
 use crate::Error;
@@ -158,11 +158,190 @@ impl Hinge {
     /// The hip's and knee's rotations turning the limb's segments to `now`, as matrices: the
     /// hip's frame turned by the rest frame's inverse (no round trip through a quaternion), and
     /// the knee's [`rotation_arc`].
+    #[cfg(test)]
     pub(super) fn matrices(&self, now: (Vec3, Vec3)) -> (Mat3A, Mat3A) {
         let hip = Mat3A::from(bend_frame(now, self.pole)) * self.unframe;
         let knee = Mat3A::from_quat(rotation_arc(self.rest_lower, hip.transpose() * now.1));
         (hip, knee)
     }
+}
+
+/// Three coordinates of four vectors, a SIMD lane each.
+type Lanes3 = [Vec4; 3];
+
+/// The cross product of four pairs of vectors, lane for lane.
+#[inline(always)]
+fn cross4(a: &Lanes3, b: &Lanes3) -> Lanes3 {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+/// The dot product of four pairs of vectors, lane for lane.
+#[inline(always)]
+fn dot4(a: &Lanes3, b: &Lanes3) -> Vec4 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+/// Four vectors in lanes.
+#[inline(always)]
+fn lanes3(v: [Vec3; 4]) -> Lanes3 {
+    let m = Mat4::from_cols(
+        v[0].extend(0.0),
+        v[1].extend(0.0),
+        v[2].extend(0.0),
+        v[3].extend(0.0),
+    )
+    .transpose();
+    [m.x_axis, m.y_axis, m.z_axis]
+}
+
+/// Four vectors out of lanes.
+#[inline(always)]
+fn unlanes3(v: &Lanes3) -> [Vec3A; 4] {
+    let m = Mat4::from_cols(v[0], v[1], v[2], Vec4::ZERO).transpose();
+    [m.x_axis, m.y_axis, m.z_axis, m.w_axis].map(Vec3A::from_vec4)
+}
+
+/// Four [`Hinge`]s in SIMD lanes (a group of four limbs, the last group padded with its last
+/// limb): their [`matrices`](Self::matrices) made together, the long chains of square roots
+/// and divisions of four limbs side by side.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct HingeLanes {
+    rest_lower: Lanes3,
+    /// The rest frame's inverse, column by column.
+    unframe: [Lanes3; 3],
+    pole: Lanes3,
+}
+
+impl HingeLanes {
+    /// The lanes of `hinges` (one to four, a group of a creature's limbs; the lanes past them
+    /// repeat the last).
+    pub(super) fn new(hinges: &[Hinge]) -> Self {
+        debug_assert!((1..=4).contains(&hinges.len()));
+        let last = hinges.len() - 1;
+        let pick =
+            |f: &dyn Fn(&Hinge) -> Vec3| lanes3(core::array::from_fn(|l| f(&hinges[l.min(last)])));
+        Self {
+            rest_lower: pick(&|h| h.rest_lower),
+            unframe: [
+                pick(&|h| h.unframe.x_axis.into()),
+                pick(&|h| h.unframe.y_axis.into()),
+                pick(&|h| h.unframe.z_axis.into()),
+            ],
+            pole: pick(&|h| h.pole),
+        }
+    }
+
+    /// [`Hinge::matrices`] for the four limbs, lane for lane (the same arithmetic, four at a
+    /// time): each limb's hip's and knee's rotations turning its segments to `now` (unit).
+    pub(super) fn matrices(&self, now: [(Vec3, Vec3); 4]) -> [(Mat3A, Mat3A); 4] {
+        let upper = lanes3(now.map(|n| n.0));
+        let lower = lanes3(now.map(|n| n.1));
+        // The bend frame: the upper segment, the bend plane's normal, their cross product.
+        let bend = cross4(&upper, &lower);
+        let bent = dot4(&bend, &bend).cmpgt(Vec4::splat(1e-6));
+        let sum = [
+            upper[0] + lower[0],
+            upper[1] + lower[1],
+            upper[2] + lower[2],
+        ];
+        let across = cross4(&self.pole, &sum);
+        let normal: Lanes3 = core::array::from_fn(|c| Vec4::select(bent, bend[c], across[c]));
+        let along = dot4(&normal, &upper);
+        let mut normal: Lanes3 = core::array::from_fn(|c| normal[c] - upper[c] * along);
+        let rcp = Vec4::ONE / sqrt4(dot4(&normal, &normal));
+        let unit = rcp.is_finite_mask() & rcp.cmpgt(Vec4::ZERO);
+        normal = core::array::from_fn(|c| normal[c] * rcp);
+        if !unit.all() {
+            normal = across_upper(normal, &upper, unit.bitmask());
+        }
+        let third = cross4(&upper, &normal);
+        // The hip: the frame times the rest frame's inverse, column by column.
+        let hip: [Lanes3; 3] = core::array::from_fn(|j| {
+            let u = &self.unframe[j];
+            core::array::from_fn(|c| upper[c] * u[0] + normal[c] * u[1] + third[c] * u[2])
+        });
+        // The lower segment in the hip's frame, and the knee's shortest arc to it from rest.
+        let local = [
+            dot4(&hip[0], &lower),
+            dot4(&hip[1], &lower),
+            dot4(&hip[2], &lower),
+        ];
+        let rest = &self.rest_lower;
+        let dot = dot4(rest, &local);
+        let axis = cross4(rest, &local);
+        let w = Vec4::ONE + dot;
+        let scale = Vec4::ONE / sqrt4(dot4(&axis, &axis) + w * w);
+        let mut q = [axis[0] * scale, axis[1] * scale, axis[2] * scale, w * scale];
+        let opposite = dot.cmplt(Vec4::splat(-1.0 + 1e-6));
+        if opposite.any() {
+            q = half_turns(q, rest, &local, opposite.bitmask());
+        }
+        let [x, y, z, w] = q;
+        // The knee's matrix from its quaternion (as `Mat3A::from_quat`).
+        let (x2, y2, z2) = (x + x, y + y, z + z);
+        let (xx, xy, xz) = (x * x2, x * y2, x * z2);
+        let (yy, yz, zz) = (y * y2, y * z2, z * z2);
+        let (wx, wy, wz) = (w * x2, w * y2, w * z2);
+        let knee = [
+            [Vec4::ONE - (yy + zz), xy + wz, xz - wy],
+            [xy - wz, Vec4::ONE - (xx + zz), yz + wx],
+            [xz + wy, yz - wx, Vec4::ONE - (xx + yy)],
+        ];
+        let [h0, h1, h2] = hip.each_ref().map(unlanes3);
+        let [k0, k1, k2] = knee.each_ref().map(unlanes3);
+        core::array::from_fn(|l| {
+            (
+                Mat3A::from_cols(h0[l], h1[l], h2[l]),
+                Mat3A::from_cols(k0[l], k1[l], k2[l]),
+            )
+        })
+    }
+}
+
+/// [`HingeLanes::matrices`]' bend normals where a lane's is not a unit vector (a limb along its
+/// pole: no bend plane; `unit` has bit `l` set where lane `l`'s is one): any unit vector
+/// across that lane's upper segment (as `bend_frame`).
+#[cold]
+#[inline(never)]
+fn across_upper(normal: Lanes3, upper: &Lanes3, unit: u32) -> Lanes3 {
+    let mut lanes = unlanes3(&normal);
+    let ups = unlanes3(upper);
+    for (l, n) in lanes.iter_mut().enumerate() {
+        if unit & (1 << l) == 0 {
+            *n = ups[l].any_orthonormal_vector();
+        }
+    }
+    lanes3(lanes.map(Vec3::from))
+}
+
+/// [`HingeLanes::matrices`]' knee quaternions (`q`, its x, y, z and w lanes) where the lower
+/// segment turned nearly opposite its rest direction (`opposite`): any half turn about an axis
+/// across the rest direction (as [`rotation_arc`]); `opposite` has bit `l` set for lane `l`.
+#[cold]
+#[inline(never)]
+fn half_turns(q: [Vec4; 4], rest: &Lanes3, local: &Lanes3, opposite: u32) -> [Vec4; 4] {
+    let (rests, locals) = (unlanes3(rest), unlanes3(local));
+    let mut q = q.map(|v| v.to_array());
+    for l in 0..4 {
+        if opposite & (1 << l) != 0 {
+            let arc = Quat::from_rotation_arc(rests[l].into(), locals[l].into());
+            (q[0][l], q[1][l], q[2][l], q[3][l]) = (arc.x, arc.y, arc.z, arc.w);
+        }
+    }
+    q.map(Vec4::from_array)
+}
+
+/// Four square roots, lane for lane (exactly rounded, as [`crate::math::sqrt`]).
+#[inline(always)]
+fn sqrt4(v: Vec4) -> Vec4 {
+    #[cfg(not(feature = "libm"))]
+    return v.sqrt();
+    #[cfg(feature = "libm")]
+    return Vec4::from_array(v.to_array().map(crate::math::sqrt));
 }
 
 /// The frame of a two-bone limb's segments `(upper, lower)`: the upper segment, the bend
@@ -263,6 +442,63 @@ mod tests {
                     close(knee_m, knee),
                     "{k} {pole}: knee {knee_m} against {knee}"
                 );
+            }
+        }
+    }
+
+    #[test]
+    fn hinge_lanes_are_four_hinges() {
+        // Four limbs at a time (rests, poles and bends of every kind, the last group of a
+        // creature's limbs padded), and the rare cases lane by lane: a straight limb along its
+        // pole (no bend plane) and a knee folded right back (no shortest arc): each lane's
+        // matrices those of its hinge alone, and they turn as its quaternions do.
+        let s = core::f32::consts::FRAC_1_SQRT_2;
+        let near = |a: Mat3A, b: Mat3A, within: f32| {
+            [
+                a.x_axis - b.x_axis,
+                a.y_axis - b.y_axis,
+                a.z_axis - b.z_axis,
+            ]
+            .iter()
+            .all(|d| d.length() <= within)
+        };
+        let rests = [
+            (Vec3::new(0.0, -s, s), Vec3::new(0.0, -s, -s)),
+            (Vec3::NEG_Y, Vec3::NEG_Y),
+            (Vec3::new(s, -s, 0.0), Vec3::NEG_Y),
+        ];
+        let poles = [Vec3::Z, Vec3::X, Vec3::NEG_Y, Vec3::new(0.6, 0.0, 0.8)];
+        let mut cases = Vec::new();
+        for k in 0..120 {
+            let t = k as f32;
+            let rest = rests[k % 3];
+            let turn = Quat::from_rotation_y(0.7 * t)
+                * Quat::from_rotation_z(0.4 * crate::math::sin(t))
+                * Quat::from_rotation_x(0.3 * crate::math::cos(1.3 * t));
+            let bend = Quat::from_rotation_x(-0.02 * t);
+            cases.push((rest, poles[k % 4], (turn * rest.0, turn * bend * rest.1)));
+        }
+        // Straight along its pole, and folded right back.
+        cases.push((
+            (Vec3::NEG_Y, Vec3::NEG_Y),
+            Vec3::NEG_Y,
+            (Vec3::NEG_Y, Vec3::NEG_Y),
+        ));
+        cases.push(((Vec3::NEG_Y, Vec3::NEG_Y), Vec3::Z, (Vec3::NEG_Y, Vec3::Y)));
+        for group in cases.chunks(4) {
+            let hinges: Vec<Hinge> = group.iter().map(|&(r, p, _)| Hinge::new(r, p)).collect();
+            let now = core::array::from_fn(|l| group[l.min(group.len() - 1)].2);
+            let lanes = HingeLanes::new(&hinges).matrices(now);
+            for ((hinge, &(rest, _, now)), (hip, knee)) in hinges.iter().zip(group).zip(lanes) {
+                let (hip_m, knee_m) = hinge.matrices(now);
+                assert!(near(hip, hip_m, 1e-6), "{now:?}: hip {hip} against {hip_m}");
+                assert!(
+                    near(knee, knee_m, 1e-6),
+                    "{now:?}: knee {knee} against {knee_m}"
+                );
+                // The segments turned onto `now`.
+                assert!((hip * rest.0).distance(now.0) < 1e-5, "{now:?}");
+                assert!((hip * knee * rest.1).distance(now.1) < 1e-5, "{now:?}");
             }
         }
     }

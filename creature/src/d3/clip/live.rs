@@ -12,7 +12,7 @@ use creature_gait::{Controller, Gait, Ground, LegState, LimbKind, Pose, solve_tw
 use creature_limbs::CreatureKind;
 
 use super::floor::knee_above;
-use super::kinematics::{Hinge, rotation_arc};
+use super::kinematics::{Hinge, HingeLanes, rotation_arc};
 use super::walk::{MAX_ARM_TURN_RATE, hop_tail_swing, soft_reach, turn_bend_total};
 use super::{CLIP_FPS, Clip};
 use crate::Error;
@@ -182,6 +182,10 @@ pub struct Animator {
     /// A walker's joints in `order`, each with its parent, its leg (if it is one's hip) and
     /// whether it turns: what its posing reads of each joint, in one place.
     plan: Vec<PlanStep>,
+    /// Each leg's pose this update, made before its joints are posed.
+    leg_poses: Vec<LegPose>,
+    /// The legs' hinges, four legs at a time.
+    hinge_lanes: Vec<HingeLanes>,
     /// The time step the smoothing shares were last computed for, and the shares (terrain,
     /// turn bend).
     smoothing: (f32, f32, f32),
@@ -209,6 +213,21 @@ struct PlanStep {
     /// The leg (index into `legs`) whose hip it is.
     leg: Option<usize>,
     turns: bool,
+}
+
+/// A leg's pose this update ([`Animator`]'s `leg_poses`), made before the joints are posed.
+#[derive(Debug, Clone, Copy)]
+struct LegPose {
+    /// The hip's place (world), as the controller solved it.
+    root: Vec3A,
+    /// The segments' directions (upper, lower; body space, unit).
+    segments: (Vec3, Vec3),
+    /// The sole's world rotation.
+    sole: Mat3A,
+    /// The hip's rotation in body space.
+    hip: Mat3A,
+    /// The knee's rotation in the hip's frame.
+    knee: Mat3A,
 }
 
 /// What moves an [`Animator`]'s body.
@@ -260,15 +279,19 @@ struct LiveLeg {
     /// +Z), in each of [`RIM`]'s directions: their horizontal offset from the joint and their
     /// height over the foot's lowest vertex.
     sole: RimLanes,
+    /// The ground under the rim at the last fit ([`SoleFit::ground`]): kept here, not moved
+    /// about with each fit.
+    rim_ground: RimLanes,
     /// The sole's vertices at rest, as offsets from the foot joint, lowest first
     /// ([`sole_points`]).
     sole_points: Vec<Vec3A>,
     /// The farthest any of `sole_points` reaches from the foot joint horizontally.
     sole_reach: f32,
-    /// The sole's yaw (world, about +Y): see [`turn_sole`](Self::turn_sole).
-    yaw: Quat,
-    /// The yaw the foot lifted off with, which a step turns from.
-    lifted: Quat,
+    /// The sole's yaw (world, about +Y): see [`turn_sole`](Self::turn_sole); as an angle
+    /// (radians from +Z) and as a rotation.
+    yaw: (f32, Quat),
+    /// The yaw the foot lifted off with (radians), which a step turns from.
+    lifted: f32,
     /// The sole's fit where the foot last stood planted: the foot joint's place and the yaw
     /// it was made for, the sole's normal and its lift there.
     fitted: Option<(Vec3, Quat, Vec3, f32)>,
@@ -342,7 +365,17 @@ impl LiveLeg {
     /// update turns on from there); a foot off the ground and not stepping
     /// turns toward the heading by at most `most` (radians). An arm's hand turns with the
     /// heading.
-    fn turn_sole(&mut self, kind: LimbKind, state: &LegState, heading: Quat, most: f32) -> Quat {
+    ///
+    /// `heading` is the body's yaw as an angle (radians) and as a rotation; the sole turns by
+    /// angles (a turn about +Y from one yaw to another is the difference of their angles, the
+    /// shorter way round), its rotation made from its angle where it turns.
+    fn turn_sole(
+        &mut self,
+        kind: LimbKind,
+        state: &LegState,
+        heading: (f32, Quat),
+        most: f32,
+    ) -> Quat {
         if most == f32::INFINITY {
             // Afresh: the foot put down under the body.
             self.fitted = None;
@@ -350,32 +383,33 @@ impl LiveLeg {
         }
         let stepped = self.stepped.take();
         if kind != LimbKind::Leg || most == f32::INFINITY {
-            self.lifted = heading;
+            self.lifted = heading.0;
             self.yaw = heading;
         } else if state.planted {
             if stepped.is_some() {
                 // Just landed.
                 self.yaw = heading;
             }
-            self.lifted = self.yaw;
+            self.lifted = self.yaw.0;
         } else if state.stepping {
             if stepped.is_some_and(|p| state.progress < p) {
                 // The last step ended (turned with the body) and this one began in one update.
-                self.lifted = heading;
+                self.lifted = heading.0;
             }
             self.stepped = Some(state.progress);
             let t = state.progress.clamp(0.0, 1.0);
-            self.yaw = self.lifted.slerp(heading, t * t * (3.0 - 2.0 * t)).unit();
+            let turn = wrap(heading.0 - self.lifted) * (t * t * (3.0 - 2.0 * t));
+            self.yaw = yawed(self.lifted + turn);
         } else {
-            let angle = self.yaw.angle_between(heading);
-            self.yaw = if angle > most {
-                self.yaw.slerp(heading, most / angle).unit()
+            let turn = wrap(heading.0 - self.yaw.0);
+            self.yaw = if turn.abs() > most {
+                yawed(self.yaw.0 + most.copysign(turn))
             } else {
                 heading
             };
-            self.lifted = self.yaw;
+            self.lifted = self.yaw.0;
         }
-        self.yaw
+        self.yaw.1
     }
 
     /// Whether the sole with its joint at `foot` is certainly high above ground of height
@@ -465,7 +499,8 @@ impl LiveLeg {
             // without its rays.
             Vec3::Y
         } else {
-            let fit = fit_sole(ground, solved.end, yaw, &self.sole, leg.size, bounds)?;
+            let rim = &mut self.rim_ground;
+            let fit = fit_sole(ground, solved.end, yaw, &self.sole, leg.size, bounds, rim)?;
             // A swinging foot levels off as it rises from the ground.
             let level = if state.planted {
                 1.0
@@ -515,7 +550,8 @@ impl LiveLeg {
                         || ground.height_bounds(Vec2::new(target.x, target.z), reach),
                         |b| b.is_some_and(|(low, high)| low == high),
                     );
-                    fit_sole(ground, target, heading, &self.sole, leg.size, bounds)
+                    let rim = &mut self.rim_ground;
+                    fit_sole(ground, target, heading, &self.sole, leg.size, bounds, rim)
                 }
                 .map(|fit| {
                     let sole = rotation_arc(Vec3::Y, fit.normal) * heading;
@@ -607,6 +643,8 @@ impl Animator {
             leg_at: alloc::vec![None; n],
             turns: alloc::vec![false; n],
             plan: Vec::new(),
+            leg_poses: Vec::new(),
+            hinge_lanes: Vec::new(),
             smoothing: (0.0, 0.0, 0.0),
             under_half: 0.0,
             asking_under: Asking::EVERY_TIME,
@@ -728,13 +766,14 @@ impl Animator {
                     knee_radius: creature.ring_radius(hip + 1),
                     foot_radius: creature.ring_radius(hip + 2),
                     sole: RimLanes::new(&rim),
+                    rim_ground: RimLanes::ZERO,
                     sole_reach: sole
                         .iter()
                         .map(|p| Vec3A::new(p.x, 0.0, p.z).norm())
                         .fold(0.0, f32::max),
                     sole_points: sole,
-                    yaw: Quat::IDENTITY,
-                    lifted: Quat::IDENTITY,
+                    yaw: (0.0, Quat::IDENTITY),
+                    lifted: 0.0,
                     fitted: None,
                     landing: None,
                     sole_turn: None,
@@ -742,9 +781,21 @@ impl Animator {
                 }
             })
             .collect();
+        animator.leg_poses = alloc::vec![
+            LegPose {
+                root: Vec3A::ZERO,
+                segments: (Vec3::NEG_Y, Vec3::NEG_Y),
+                sole: Mat3A::IDENTITY,
+                hip: Mat3A::IDENTITY,
+                knee: Mat3A::IDENTITY,
+            };
+            setup.legs.len()
+        ];
+        let hinges: Vec<Hinge> = animator.legs.iter().map(|l| l.hinge).collect();
+        animator.hinge_lanes = hinges.chunks(4).map(HingeLanes::new).collect();
         animator.pose_joints(
             &Pose::IDENTITY,
-            Quat::IDENTITY,
+            (0.0, Quat::IDENTITY),
             None::<(&creature_gait::Plane, _)>,
             f32::INFINITY,
             None,
@@ -945,7 +996,7 @@ impl Animator {
         self.turn += (turn_rate - self.turn) * self.smoothing(dt).1;
         self.pose_joints(
             &body,
-            yaw,
+            (heading, yaw),
             Some((ground, flat)),
             arm_turn,
             closing.map(|c| (reacted, c)),
@@ -1099,7 +1150,7 @@ impl Animator {
     fn pose_joints<G: Ground + ?Sized>(
         &mut self,
         body: &Pose,
-        heading: Quat,
+        (heading_angle, heading): (f32, Quat),
         ground: Option<(&G, Option<FlatUnder>)>,
         arm_turn: f32,
         closing: Option<(Pose, Closing<'_>)>,
@@ -1165,11 +1216,114 @@ impl Animator {
         let body_turn = self.local[self.root].matrix3;
         let unturn = body.rotation.inverse();
         let up = unturn * Vec3::Y;
+        // The body's rotation and its inverse as matrices (for the legs' points).
+        let body_unturn = body_turn.transpose();
         let states = self.controller.leg_states();
         let setup = self.controller.legs();
         let plant = self.controller.options().plant_fraction;
         // The head, where it turns alone to the look (no neck shares it).
         let head_alone = self.head.filter(|_| look == Quat::IDENTITY);
+        // Each leg's chain first (its sole fitted to the ground, its knee solved and kept
+        // above it), then its hip's and knee's rotations, then the joints in order.
+        for i in 0..setup.len() {
+            // A leg's chain solved from the hip to the foot in body space.
+            let leg = &setup[i];
+            // A closed loop's leg: its hip where it is on the body, its foot moved and
+            // planted as the closing has it, its knee solved again.
+            let closed;
+            let state = match &closing {
+                Some((reacted, closing)) => {
+                    let mut s = states[i];
+                    let root = reacted.inverse_transform_point(s.joints.root);
+                    s.joints.root = body.transform_point(root);
+                    s.joints.end += closing.feet[i];
+                    s.foot += closing.feet[i];
+                    s.planted = closing.planted[i];
+                    let end = unturn * (s.joints.end - body.translation);
+                    let [_, middle, _] =
+                        solve_two_bone_joints(root, end, leg.upper, leg.lower, leg.pole);
+                    s.joints.middle = body.transform_point(middle);
+                    closed = s;
+                    &closed
+                }
+                None => &states[i],
+            };
+            let mut yaw =
+                self.legs[i].turn_sole(leg.kind, state, (heading_angle, heading), arm_turn);
+            if let Some((_, closing)) = &closing {
+                yaw = (Quat::from_rotation_y(closing.soles[i]) * yaw).unit();
+            }
+            // The controller's two-bone solution (world, the knee toward the pole), in
+            // body space.
+            let solved = &state.joints;
+            let to_body = |p: Vec3| Vec3::from(body_unturn * Vec3A::from(p - body.translation));
+            let (root, mut end) = (to_body(solved.root), to_body(solved.end));
+            let mut middle = to_body(solved.middle);
+            // The sole fitted to the ground across its width, and raised off it where an
+            // edge would be in it (a step's edge under a foot): a planted foot's fit is
+            // made once where it stands (the ground under a planted foot is taken not to
+            // change, as the controller takes it).
+            let mut normal = state.normal;
+            // Whether the foot moved off the solution (its knee solved again, once).
+            let mut moved = false;
+            if let Some((g, _)) = ground {
+                let fitted = self.legs[i].fitted_sole(g, leg, state, (heading, yaw), plant);
+                if let Some((fit, lift)) = fitted {
+                    normal = fit;
+                    if lift > 0.0 {
+                        end = to_body(solved.end + Vec3::Y * lift);
+                        moved = true;
+                    }
+                }
+            }
+            // The sole flat on the ground: level, turned to its yaw, tilted to the ground's
+            // normal.
+            let sole_turn = self.legs[i].sole_rotation(normal, yaw);
+            let live = &self.legs[i];
+            // A foot in the air short of a straight leg, as the baked clips hold it.
+            if !state.planted {
+                let soft = soft_reach(root, end, leg.upper + leg.lower, up);
+                if soft != end {
+                    end = soft;
+                    moved = true;
+                }
+            }
+            if moved {
+                [_, middle, _] = solve_two_bone_joints(root, end, leg.upper, leg.lower, leg.pole);
+            }
+            let floor = ground.map_or(f32::NEG_INFINITY, |(g, flat)| {
+                let knee = Vec3::from(body_turn * Vec3A::from(middle)) + body.translation;
+                let above = Vec3::new(knee.x, knee.y + leg.size, knee.z);
+                let range = 2.0 * leg.size;
+                match flat.and_then(|f| f.hit(above, range)) {
+                    Some(height) => Some(height),
+                    None => g.cast_down_point(above, range).map(|hit| hit.y),
+                }
+                .map_or(f32::NEG_INFINITY, |hit| {
+                    hit + live.knee_radius - body.translation.y
+                })
+            });
+            let middle = knee_above(root, middle, end, up, floor);
+            self.leg_poses[i] = LegPose {
+                root: solved.root.into(),
+                segments: (
+                    (middle - root).unit_or(live.rest_upper),
+                    (end - middle).unit_or(live.rest_lower),
+                ),
+                sole: sole_turn,
+                hip: Mat3A::IDENTITY,
+                knee: Mat3A::IDENTITY,
+            };
+        }
+        // The hips' and knees' rotations, four legs at a time.
+        for (lanes, poses) in self.hinge_lanes.iter().zip(self.leg_poses.chunks_mut(4)) {
+            // The group's last leg again in the lanes past it (a chunk is never empty).
+            let last = poses.len() - 1;
+            let now = core::array::from_fn(|l| poses[l.min(last)].segments);
+            for (pose, (hip, knee)) in poses.iter_mut().zip(lanes.matrices(now)) {
+                (pose.hip, pose.knee) = (hip, knee);
+            }
+        }
         // (Taken out while the joints are posed, and put back: no allocation.)
         let plan = core::mem::take(&mut self.plan);
         for &PlanStep {
@@ -1184,95 +1338,22 @@ impl Animator {
             // A leg's hip's world transform where its solution gives it.
             let mut solved_world = None;
             if let Some(i) = leg {
-                // A leg's hip: its chain solved from the hip to the foot in body space.
                 let leg = &setup[i];
-                // A closed loop's leg: its hip where it is on the body, its foot moved and
-                // planted as the closing has it, its knee solved again.
-                let closed;
-                let state = match &closing {
-                    Some((reacted, closing)) => {
-                        let mut s = states[i];
-                        let root = reacted.inverse_transform_point(s.joints.root);
-                        s.joints.root = body.transform_point(root);
-                        s.joints.end += closing.feet[i];
-                        s.foot += closing.feet[i];
-                        s.planted = closing.planted[i];
-                        let end = unturn * (s.joints.end - body.translation);
-                        let [_, middle, _] =
-                            solve_two_bone_joints(root, end, leg.upper, leg.lower, leg.pole);
-                        s.joints.middle = body.transform_point(middle);
-                        closed = s;
-                        &closed
-                    }
-                    None => &states[i],
-                };
-                let mut yaw = self.legs[i].turn_sole(leg.kind, state, heading, arm_turn);
-                if let Some((_, closing)) = &closing {
-                    yaw = (Quat::from_rotation_y(closing.soles[i]) * yaw).unit();
-                }
-                // The controller's two-bone solution (world, the knee toward the pole), in
-                // body space.
-                let solved = &state.joints;
-                let to_body = |p: Vec3| unturn * (p - body.translation);
-                let (root, mut end) = (to_body(solved.root), to_body(solved.end));
-                let mut middle = to_body(solved.middle);
-                // The sole fitted to the ground across its width, and raised off it where an
-                // edge would be in it (a step's edge under a foot): a planted foot's fit is
-                // made once where it stands (the ground under a planted foot is taken not to
-                // change, as the controller takes it).
-                let mut normal = state.normal;
-                // Whether the foot moved off the solution (its knee solved again, once).
-                let mut moved = false;
-                if let Some((g, _)) = ground {
-                    let fitted = self.legs[i].fitted_sole(g, leg, state, (heading, yaw), plant);
-                    if let Some((fit, lift)) = fitted {
-                        normal = fit;
-                        if lift > 0.0 {
-                            end = to_body(solved.end + Vec3::Y * lift);
-                            moved = true;
-                        }
-                    }
-                }
-                // The sole flat on the ground: level, turned to its yaw, tilted to the ground's
-                // normal.
-                let sole_turn = self.legs[i].sole_rotation(normal, yaw);
-                let live = &self.legs[i];
-                // A foot in the air short of a straight leg, as the baked clips hold it.
-                if !state.planted {
-                    let soft = soft_reach(root, end, leg.upper + leg.lower, up);
-                    if soft != end {
-                        end = soft;
-                        moved = true;
-                    }
-                }
-                if moved {
-                    [_, middle, _] =
-                        solve_two_bone_joints(root, end, leg.upper, leg.lower, leg.pole);
-                }
-                let floor = ground.map_or(f32::NEG_INFINITY, |(g, flat)| {
-                    let knee = body.transform_point(middle);
-                    let above = Vec3::new(knee.x, knee.y + leg.size, knee.z);
-                    let range = 2.0 * leg.size;
-                    match flat.and_then(|f| f.hit(above, range)) {
-                        Some(height) => Some(height),
-                        None => g.cast_down_point(above, range).map(|hit| hit.y),
-                    }
-                    .map_or(f32::NEG_INFINITY, |hit| {
-                        hit + live.knee_radius - body.translation.y
-                    })
-                });
-                let middle = knee_above(root, middle, end, up, floor);
-                let upper = (middle - root).unit_or(live.rest_upper);
-                let lower = (end - middle).unit_or(live.rest_lower);
+                let LegPose {
+                    root,
+                    sole,
+                    hip,
+                    knee,
+                    ..
+                } = self.leg_poses[i];
                 let (knee_joint, foot_joint) = (j + 1, j + 2);
                 // The hip's world transform as solved; the knee's and the foot's as matrices
                 // (the foot turned in the world as its sole).
-                let (hip, knee) = live.hinge.matrices((upper, lower));
                 let hip_world = Affine3A {
                     matrix3: body_turn * hip,
-                    translation: solved.root.into(),
+                    translation: root,
                 };
-                let foot = (hip_world.matrix3 * knee).transpose() * sole_turn;
+                let foot = (hip_world.matrix3 * knee).transpose() * sole;
                 if leg.kind == LimbKind::Arm && arm_turn != f32::INFINITY {
                     // An arm's joints turned from their last pose no more than `arm_turn`.
                     let damped = |old: &Affine3A, new: &Mat3A| {
@@ -1487,6 +1568,10 @@ const TURN_BEND_TIME: f32 = 0.3;
 /// is a steep ramp across it.
 const MAX_SOLE_TILT: f32 = 0.45;
 
+/// `cos(MAX_SOLE_TILT)`, rounded to the nearest `f32` (unit test
+/// `max_sole_tilt_cos_is_its_cosine`).
+const MAX_SOLE_TILT_COS: f32 = 0.900_447_13;
+
 /// The ground under a sole's rim within this fraction of the sole's radius of a plane is
 /// taken as that plane: the sole's vertices are tested against it without a ray each.
 const FLAT_SOLE: f32 = 0.01;
@@ -1616,7 +1701,7 @@ impl FlatUnder {
 
 /// The ground under a sole, sampled on its rim: ahead of, behind, to either side of its
 /// middle and between them.
-struct SoleFit {
+struct SoleFit<'a> {
     /// The plane through the samples' normal, tilted at most [`MAX_SOLE_TILT`].
     normal: Vec3,
     /// The sole's middle above the samples' mean.
@@ -1626,15 +1711,15 @@ struct SoleFit {
     clearance: f32,
     /// The ground under each rim sample: its offset from the foot joint along world x and z
     /// and its height over the joint.
-    ground: RimLanes,
+    ground: &'a RimLanes,
 }
 
-impl SoleFit {
+impl SoleFit<'_> {
     /// The plane nearest the ground under the rim (least squares), where none of the ground
     /// under the rim is farther than `flat` off it; `None` where some is, or where the rim
     /// spans no area. Fitted only when asked: a foot high in a step needs none.
     fn plane_within(&self, flat: f32) -> Option<RimPlane> {
-        let g = &self.ground;
+        let g = self.ground;
         let (a, p, q) = plane_fit_lanes(g)?;
         // Four samples at a time, as `(h - a - p x - q z).abs()` computes each; their largest
         // in the samples' order (as a fold of `max_f` finds it).
@@ -1718,15 +1803,17 @@ fn sole_lift<G: Ground + ?Sized>(
 }
 
 /// The ground under a sole of `radius` at `foot` (world) turned with `heading`: `None` when a
-/// ray misses.
-fn fit_sole<G: Ground + ?Sized>(
+/// ray misses. The ground under the rim is written to `under` (the fit's
+/// [`ground`](SoleFit::ground)).
+fn fit_sole<'a, G: Ground + ?Sized>(
     ground: &G,
     foot: Vec3,
     heading: Quat,
     rim: &RimLanes,
     reach: f32,
     bounds: Option<(f32, f32)>,
-) -> Option<SoleFit> {
+    under: &'a mut RimLanes,
+) -> Option<SoleFit<'a>> {
     // A matrix turns the 16 offsets in half the arithmetic of the quaternion; four at a time,
     // lane for lane as `turn * d` turns each.
     let turn = glam::Mat3A::from_quat(heading);
@@ -1744,7 +1831,7 @@ fn fit_sole<G: Ground + ?Sized>(
     let foot_y = Vec4::splat(foot.y);
     // Per sample: its offset turned (x and z), and the ground's height there over the sole's
     // vertex, in the sole's level frame (`height - foot.y - d.y`).
-    let mut fit = RimLanes::ZERO;
+    let fit = under;
     let mut heights = [Vec4::ZERO; LANE_GROUPS];
     for (k, heights) in heights.iter_mut().enumerate() {
         let (x, y, z) = (turned(k, |v| v.x), turned(k, |v| v.y), turned(k, |v| v.z));
@@ -1781,7 +1868,7 @@ fn fit_sole<G: Ground + ?Sized>(
     let normal =
         (Vec3::Y - slope(sample(0), sample(1)) - slope(sample(2), sample(3))).unit_or(Vec3::Y);
     // At most the steepest tilt: the normal's horizontal part scaled down.
-    let normal = tilted(normal, MAX_SOLE_TILT);
+    let normal = tilted(normal, (MAX_SOLE_TILT, MAX_SOLE_TILT_COS));
     let all = heights.map(|h| h.to_array());
     let all = all.as_flattened();
     let mean = all.iter().sum::<f32>() / RIM_SAMPLES as f32;
@@ -1881,15 +1968,20 @@ fn plane_fit(samples: impl Iterator<Item = (f32, f32, f32)> + Clone) -> Option<(
     })
 }
 
+/// A yaw `angle` (radians about +Y, taken into one turn about 0) and its rotation.
+fn yawed(angle: f32) -> (f32, Quat) {
+    let angle = wrap(angle);
+    (angle, Quat::from_rotation_y(angle))
+}
+
 /// `x` less its whole part (for non-negative phases).
 fn fract(x: f32) -> f32 {
     x - crate::math::floor_f(x)
 }
 
-/// `normal` (a unit vector) tilted from straight up by at most `most` radians: where it leans
-/// further, its horizontal part scaled down to that.
-fn tilted(normal: Vec3, most: f32) -> Vec3 {
-    let cos = crate::math::cos(most);
+/// `normal` (a unit vector) tilted from straight up by at most `most` radians (whose cosine is
+/// `cos`): where it leans further, its horizontal part scaled down to that.
+fn tilted(normal: Vec3, (most, cos): (f32, f32)) -> Vec3 {
     if normal.y >= cos {
         return normal;
     }
@@ -2174,6 +2266,13 @@ mod tests {
         let top = (2.0 * walker.speed).max(run);
         assert!((velocity.length() - top).abs() < 1e-3 * walker.speed);
         assert_eq!(turn, animator.max_turn_rate());
+    }
+
+    #[test]
+    fn max_sole_tilt_cos_is_its_cosine() {
+        let cos = f64::from(MAX_SOLE_TILT).cos();
+        assert_eq!(MAX_SOLE_TILT_COS, cos as f32);
+        assert!((MAX_SOLE_TILT_COS - crate::math::cos(MAX_SOLE_TILT)).abs() <= f32::EPSILON);
     }
 
     #[test]

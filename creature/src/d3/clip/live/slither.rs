@@ -520,7 +520,7 @@ impl Animator {
             let normal = if sum.y > 0.0 && sum.y * sum.y >= cos_tilt2 * sum.length_squared() {
                 sum
             } else {
-                tilted(sum.unit_or(Vec3::Y), MAX_TILT)
+                tilted(sum.unit_or(Vec3::Y), (MAX_TILT, crate::math::cos(MAX_TILT)))
             };
             let turn = frame(along, normal) * s.rest_frames[i];
             let joint = s.spine[i];
